@@ -1,0 +1,52 @@
+// rtmot: one executable, one subcommand per job (`rtmot --help` lists them).
+#include <spdlog/spdlog.h>
+
+#include <exception>
+#include <vector>
+
+#include "apps/subcommand.hpp"
+#include "common/exit_codes.hpp"
+#include "common/input_error.hpp"
+
+namespace {
+
+// Every failure ends here: one clear line, a documented exit code, never an uncaught exception.
+int run_reporting_errors(const std::function<int()>& run) {
+  try {
+    return run();
+  } catch (const rtmot::InputError& error) {
+    spdlog::error("{}", error.what());
+    return rtmot::to_int(error.exit_code());
+  } catch (const std::exception& error) {
+    spdlog::critical("internal error: {}", error.what());
+    return rtmot::to_int(rtmot::ExitCode::internal_error);
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"rtmot: real-time multiple-object tracking (SSD detector + SORT tracker)"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "rtmot " RTMOT_VERSION);
+  std::string log_level = "info";
+  app.add_option("--log-level", log_level, "trace, debug, info, warn, error, off")
+      ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "off"}));
+
+  using namespace rtmot::app;
+  const std::vector<Subcommand> subcommands = {
+      // SUBCOMMAND-LIST
+  };
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& error) {
+    const int code = app.exit(error);
+    return code == 0 ? 0 : rtmot::to_int(rtmot::ExitCode::usage);
+  }
+  spdlog::set_level(spdlog::level::from_str(log_level));
+  for (const auto& subcommand : subcommands) {
+    if (subcommand.cli->parsed()) return run_reporting_errors(subcommand.run);
+  }
+  return rtmot::to_int(rtmot::ExitCode::usage);
+}

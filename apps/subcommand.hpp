@@ -1,0 +1,17 @@
+#pragma once
+// How `rtmot` is put together: each subcommand lives in its own cmd_*.cpp, registers its options on
+// the top-level CLI and hands back what to run if the user chose it.
+#include <functional>
+
+#include <CLI/CLI.hpp>
+
+namespace rtmot::app {
+
+struct Subcommand {
+  CLI::App* cli{nullptr};
+  std::function<int()> run;  // returns the process exit code (common/exit_codes.hpp)
+};
+
+// One line per subcommand (keep alphabetical). Defined in apps/cmd_<name>.cpp.
+// SUBCOMMAND-DECLARATIONS
+}  // namespace rtmot::app

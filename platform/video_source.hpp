@@ -1,0 +1,50 @@
+#pragma once
+// Video input by URI (jetson-utils style): file://PATH or a plain path, v4l2:///dev/videoN, csi://N,
+// rtsp://HOST/..., and test://PATTERN (GStreamer's videotestsrc, for tests and fault injection).
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include <opencv2/core/mat.hpp>
+
+namespace rtmot::platform {
+
+struct FrameInfo {
+  std::int64_t frame_number{0};  // 1-based count of frames the source produced (gaps = frames lost)
+  std::int64_t pts_ns{0};        // stream timestamp, from the source (0 at the first frame)
+  std::int64_t capture_ns{0};    // steady clock (platform/clock.hpp) when the frame reached us
+};
+
+struct SourceInfo {
+  std::string uri;
+  bool live{false};  // cameras and streams; files are not live
+  double fps{0.0};   // nominal rate; 0 if unknown
+  int width{0};
+  int height{0};
+};
+
+enum class ReadStatus { frame, end_of_stream, error };
+
+class VideoSource {
+ public:
+  virtual ~VideoSource() = default;
+  /// Blocks until the next frame. Writes it into `bgr` (8-bit BGR), reusing its buffer when the size
+  /// is unchanged. A live source hands over only its newest frame.
+  virtual ReadStatus read(cv::Mat& bgr, FrameInfo& info) = 0;
+  virtual const SourceInfo& info() const = 0;
+  /// Human-readable reason of the last `error`.
+  virtual std::string last_error() const = 0;
+};
+
+struct SourceOptions {
+  int width{0};  // requested capture size for cameras; 0 = source default
+  int height{0};
+  double fps{0.0};
+  int open_timeout_ms{5000};
+};
+
+/// Opens a source; throws rtmot::InputError (exit code source_failed) naming the URI on failure.
+std::unique_ptr<VideoSource> open_video_source(const std::string& uri,
+                                               const SourceOptions& options = {});
+
+}  // namespace rtmot::platform

@@ -1,0 +1,36 @@
+#pragma once
+// Value types the tracker speaks: boxes, detections and what it reports per track.
+#include <cstdint>
+
+namespace rtmot::tracker {
+
+/// Axis-aligned box in pixels: top-left corner and size (the MOTChallenge convention).
+struct Box {
+  float x{0.F};
+  float y{0.F};
+  float w{0.F};
+  float h{0.F};
+
+  float area() const { return w * h; }
+  float center_x() const { return x + 0.5F * w; }
+  float center_y() const { return y + 0.5F * h; }
+};
+
+/// One detector output. `class_id` uses the detector's own ids (COCO's 91-id map for the SSD).
+struct Detection {
+  Box box;
+  float score{1.F};
+  int class_id{0};
+};
+
+/// What the tracker reports for a confirmed track in one frame.
+struct TrackReport {
+  std::int32_t id{0};        // 1-based, unique for the life of a Tracker
+  Box box;                   // the filtered (posterior) box
+  float score{0.F};          // score of the detection matched in this frame
+  std::int32_t class_id{0};  // class of the detections that made the track
+  std::int32_t hits{0};      // consecutive matched updates
+  std::int32_t age{0};       // updates since the track was born
+};
+
+}  // namespace rtmot::tracker

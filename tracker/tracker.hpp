@@ -1,0 +1,40 @@
+#pragma once
+// SORT-style tracking by detection: predict every track, associate predictions with detections
+// optimally, update the matched, coast the rest, start new tracks, retire old ones.
+#include <memory>
+#include <vector>
+
+#include "tracker/box.hpp"
+#include "tracker/tracker_config.hpp"
+
+namespace rtmot::tracker {
+
+class Tracker {
+ public:
+  explicit Tracker(const TrackerConfig& config);
+  ~Tracker();
+  Tracker(Tracker&&) noexcept;
+  Tracker& operator=(Tracker&&) noexcept;
+  Tracker(const Tracker&) = delete;
+  Tracker& operator=(const Tracker&) = delete;
+
+  /// Processes one frame's detections, taken at `time_seconds` (any origin; only differences
+  /// matter, and only with TimeStep::elapsed). A frame without detections still advances every
+  /// track. Returns the tracks to report for this frame; the reference stays valid until the next
+  /// call. Allocates nothing once the storage has grown to the scene's size.
+  const std::vector<TrackReport>& update(const std::vector<Detection>& detections,
+                                         double time_seconds);
+
+  /// Forgets every track and restarts ids at 1 (e.g. at a new sequence).
+  void reset();
+
+  const TrackerConfig& config() const;
+  /// Tracks alive now, reported or not.
+  int live_tracks() const;
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
+};
+
+}  // namespace rtmot::tracker

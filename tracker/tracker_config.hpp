@@ -1,0 +1,70 @@
+#pragma once
+// Everything that parameterises a Tracker. Plain values: copy it, compare it, print it.
+#include <cstdint>
+#include <optional>
+#include <string_view>
+
+namespace rtmot::tracker {
+
+enum class PredictorKind { kalman, stationary, particle };
+enum class AffinityKind { iou, linear, exponential };
+
+/// How the predictors advance between two updates.
+enum class TimeStep {
+  per_update,  // one fixed step per processed frame, whatever time passed (SORT, C++SORT)
+  elapsed,     // by the real time between updates, in units of the nominal frame period
+};
+
+struct TrackerConfig {
+  PredictorKind predictor{PredictorKind::kalman};
+  AffinityKind affinity{AffinityKind::iou};
+  /// Minimum affinity for a match. Meaning depends on `affinity`: IoU 0.3, linear 10000 (after
+  /// inversion, larger is more similar), exponential 0.5. See default_threshold().
+  double affinity_threshold{0.3};
+  /// Detections scoring below this are dropped before anything else.
+  float detection_threshold{0.0F};
+  /// A track is deleted after more than `max_age` nominal frames without a match.
+  int max_age{1};
+  /// A track is reported once it has `min_hits` consecutive matches.
+  int min_hits{3};
+
+  TimeStep time_step{TimeStep::per_update};
+  /// The source's nominal frame rate: converts timestamps into frame periods for `elapsed`.
+  double frame_rate{30.0};
+  /// Image size, used by the linear affinity to normalise distances.
+  float image_width{1920.F};
+  float image_height{1080.F};
+
+  // --- what SORT's descendants learned (options measured by `rtmot study`) ---
+  /// ByteTrack: a second association round for detections scoring in [low_score, detection_threshold).
+  bool second_round{false};
+  float low_score{0.1F};
+  /// OC-SORT: when a lost track is found again, re-update it from a virtual trajectory between its
+  /// last observation and the new one, instead of from its drifted coasted state.
+  bool observation_centric_reupdate{false};
+  /// Widen the association gate with the time since the track's last match.
+  bool time_widened_gate{false};
+
+  // --- particle filter ---
+  int particle_count{100};
+  std::uint64_t seed{1};
+
+  // --- capacity: the tracker preallocates for this many; beyond it, extra detections are ignored ---
+  int max_tracks{1024};
+  int max_detections{1024};
+
+  /// SORT / C++SORT exactly: Kalman, IoU 0.3, max_age 1, min_hits 3, one step per processed frame.
+  static TrackerConfig sort_preset();
+};
+
+/// The usual threshold for an affinity, as in C++SORT.
+double default_threshold(AffinityKind affinity);
+
+std::string_view to_string(PredictorKind kind);
+std::string_view to_string(AffinityKind kind);
+std::string_view to_string(TimeStep step);
+std::optional<PredictorKind> parse_predictor(std::string_view text);
+std::optional<AffinityKind> parse_affinity(std::string_view text);
+std::optional<TimeStep> parse_time_step(std::string_view text);
+
+}  // namespace rtmot::tracker
