@@ -23,7 +23,7 @@ struct MotRow {
   int id{-1};
   tracker::Box box;
   float conf{1.F};
-  int class_id{-1};      // gt of MOT16/17: class; -1 when absent
+  int class_id{-1};  // gt of MOT16/17: class; -1 when absent
   float visibility{-1.F};
 };
 
@@ -31,6 +31,9 @@ enum class MotFileKind { detections, ground_truth, results };
 
 SequenceInfo read_seqinfo(const std::filesystem::path& ini_path);
 std::vector<MotRow> read_mot_file(const std::filesystem::path& path, MotFileKind kind);
+/// As above, and a row whose frame is beyond `max_frame` (the sequence's length) is an error too.
+std::vector<MotRow> read_mot_file(const std::filesystem::path& path, MotFileKind kind,
+                                  int max_frame);
 
 /// Detections grouped by frame: result[f - 1] holds frame f's, for f in 1..length.
 std::vector<std::vector<tracker::Detection>> detections_by_frame(const std::vector<MotRow>& rows,
