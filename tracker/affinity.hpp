@@ -1,0 +1,31 @@
+#pragma once
+// How alike a track's predicted box and a detection are; larger is more similar for every kind.
+#include "tracker/box.hpp"
+#include "tracker/tracker_config.hpp"
+
+namespace rtmot::tracker {
+
+/// Intersection over union, in [0, 1].
+float iou_affinity(const Box& track, const Box& detection);
+
+/// Sanchez-Matilla et al.'s linear cost (centre distance times area difference), inverted as in
+/// C++SORT: (image diagonal / centre distance) * (image area / |area difference|). Capped at
+/// kMaxLinearAffinity so that identical boxes stay finite for the assignment.
+double linear_affinity(const Box& track, const Box& detection, float image_width,
+                       float image_height);
+inline constexpr double kMaxLinearAffinity = 1e12;
+
+/// Yu et al.'s motion and shape affinity without the appearance term, in (0, 1]:
+/// exp(-0.5((dx/w)^2 + (dy/h)^2)) * exp(-1.5(|dh|/(h+h') + |dw|/(w+w'))), w and h of the track.
+double exponential_affinity(const Box& track, const Box& detection);
+
+/// The affinity the config selects. With `time_widened_gate`, `frames_unmatched` (nominal frames
+/// since the track's last match, >= 1 after a prediction) loosens the comparison: IoU is taken on
+/// boxes enlarged with the time lost (as C-BIoU), the other kinds are scaled up by it.
+double affinity(const TrackerConfig& config, const Box& track, const Box& detection,
+                double frames_unmatched);
+
+/// The enlargement margin (fraction of the size per side) after `frames_unmatched` frames.
+float widened_gate_margin(double frames_unmatched);
+
+}  // namespace rtmot::tracker
