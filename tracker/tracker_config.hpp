@@ -36,8 +36,7 @@ struct TrackerConfig {
   float image_height{1080.F};
 
   // --- what SORT's descendants learned (options measured by `rtmot study`) ---
-  /// ByteTrack: a second association round for detections scoring in [low_score,
-  /// detection_threshold).
+  /// ByteTrack: a second association round for detections scoring in [low_score, detection_threshold).
   bool second_round{false};
   float low_score{0.1F};
   /// OC-SORT: when a lost track is found again, re-update it from a virtual trajectory between its
@@ -50,8 +49,7 @@ struct TrackerConfig {
   int particle_count{100};
   std::uint64_t seed{1};
 
-  // --- capacity: the tracker preallocates for this many; beyond it, extra detections are ignored
-  // ---
+  // --- capacity: the tracker preallocates for this many; beyond it, extra detections are ignored ---
   int max_tracks{1024};
   int max_detections{1024};
 
