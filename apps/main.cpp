@@ -36,6 +36,7 @@ int main(int argc, char** argv) {
   using namespace rtmot::app;
   const std::vector<Subcommand> subcommands = {
       // SUBCOMMAND-LIST
+      add_listen_command(app),
   };
 
   try {

@@ -14,4 +14,5 @@ struct Subcommand {
 
 // One line per subcommand (keep alphabetical). Defined in apps/cmd_<name>.cpp.
 // SUBCOMMAND-DECLARATIONS
+Subcommand add_listen_command(CLI::App& parent);
 }  // namespace rtmot::app

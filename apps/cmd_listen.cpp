@@ -1,0 +1,237 @@
+// `rtmot listen`: receives track messages (UDP, or a binary file sink's output with --read), prints
+// them, and ends with what arrived, was lost, came late or twice, or was corrupt, per stream.
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "apps/subcommand.hpp"
+#include "common/input_error.hpp"
+#include "pipeline/jsonl_sink.hpp"
+#include "pipeline/message_file_reader.hpp"
+#include "pipeline/message_format.hpp"
+#include "pipeline/message_stream_stats.hpp"
+#include "platform/clock.hpp"
+#include "platform/signals.hpp"
+#include "platform/udp_socket.hpp"
+
+namespace rtmot::app {
+namespace {
+
+using pipeline::Arrival;
+using pipeline::DecodedMessage;
+using pipeline::DecodeError;
+using pipeline::ListenerStats;
+
+struct ListenOptions {
+  std::uint16_t port{0};
+  std::string bind_address{"0.0.0.0"};
+  std::uint64_t count{0};  // datagrams (or file records); 0 = no limit
+  double duration_s{0.0};  // 0 = no limit
+  double stats_every_s{5.0};
+  std::string jsonl_path;
+  std::string read_path;
+  bool quiet{false};
+};
+
+constexpr int poll_interval_ms =
+    200;  // how often a quiet socket checks for Ctrl-C, duration, stats
+
+const char* describe(Arrival arrival) {
+  switch (arrival) {
+    case Arrival::first:
+      return " (first)";
+    case Arrival::in_order:
+      return "";
+    case Arrival::after_gap:
+      return " (after a gap)";
+    case Arrival::late:
+      return " (late)";
+    case Arrival::duplicate:
+      return " (duplicate)";
+    case Arrival::restart:
+      return " (sender restarted)";
+  }
+  return "";
+}
+
+double to_ms(double ns) {
+  return ns / 1e6;
+}
+
+void print_message(const DecodedMessage& message, Arrival arrival) {
+  const auto& frame = message.frame;
+  fmt::print(
+      "stream {} seq {} frame {}: {} tracks{}, latency {:.1f} ms, dropped {}{}\n", frame.stream_id,
+      frame.sequence, frame.frame_number, frame.tracks.size(),
+      message.truncated() ? fmt::format(" of {} (truncated)", message.total_track_count) : "",
+      to_ms(static_cast<double>(message.latency_ns())), frame.frames_dropped, describe(arrival));
+}
+
+void print_corrupt(DecodeError reason, std::size_t size) {
+  fmt::print("corrupt message ({} bytes): {}\n", size, pipeline::to_string(reason));
+}
+
+void print_stats_line(const ListenerStats& stats, double elapsed_s) {
+  std::uint64_t lost = 0;
+  for (const auto& entry : stats.streams()) lost += entry.second.sequences.lost();
+  fmt::print("[{:.1f} s] received {}, lost {}, corrupt {}, streams {}\n", elapsed_s,
+             stats.received(), lost, stats.corrupt(), stats.streams().size());
+  std::fflush(stdout);
+}
+
+void print_summary(const ListenerStats& stats, double elapsed_s) {
+  fmt::print("summary after {:.1f} s: {} messages, {} corrupt, {} streams\n", elapsed_s,
+             stats.received(), stats.corrupt(), stats.streams().size());
+  for (const auto& [id, stream] : stats.streams()) {
+    const auto& seq = stream.sequences;
+    fmt::print(
+        "  stream {}: received {}, lost {}, reordered {}, duplicated {}, restarts {}, truncated "
+        "{}; "
+        "latency min/mean/max {:.2f}/{:.2f}/{:.2f} ms; sender dropped {} frames\n",
+        id, seq.received(), seq.lost(), seq.reordered(), seq.duplicated(), seq.restarts(),
+        stream.truncated, to_ms(static_cast<double>(stream.latency_min_ns)),
+        to_ms(stream.latency_mean_ns()), to_ms(static_cast<double>(stream.latency_max_ns)),
+        stream.last_frames_dropped);
+  }
+  if (stats.corrupt() > 0) {
+    fmt::print("  corrupt by reason:");
+    for (std::size_t i = 1; i < pipeline::decode_error_count; ++i) {
+      const auto reason = static_cast<DecodeError>(i);
+      if (stats.corrupt(reason) > 0)
+        fmt::print(" {} {};", pipeline::to_string(reason), stats.corrupt(reason));
+    }
+    fmt::print("\n");
+  }
+  std::fflush(stdout);
+}
+
+/// What both modes do with one message's bytes.
+class MessageHandler {
+ public:
+  explicit MessageHandler(const ListenOptions& options) : quiet_(options.quiet) {
+    if (!options.jsonl_path.empty())
+      jsonl_ = std::make_unique<pipeline::JsonlSink>(options.jsonl_path);
+  }
+
+  void handle(const std::uint8_t* data, std::size_t size) {
+    const DecodeError error = pipeline::decode_message(data, size, decoded_);
+    if (error != DecodeError::none) {
+      stats_.record_corrupt(error);
+      if (!quiet_) print_corrupt(error, size);
+      return;
+    }
+    const Arrival arrival = stats_.record(decoded_);
+    if (!quiet_) print_message(decoded_, arrival);
+    if (jsonl_) jsonl_->write(decoded_);
+  }
+
+  void flush() {
+    if (jsonl_) jsonl_->flush();
+  }
+  const ListenerStats& stats() const { return stats_; }
+
+ private:
+  bool quiet_;
+  DecodedMessage decoded_;  // reused: decoding allocates nothing once it has seen the largest frame
+  ListenerStats stats_;
+  std::unique_ptr<pipeline::JsonlSink> jsonl_;
+};
+
+int listen_udp(const ListenOptions& options) {
+  platform::StopSignals signals;  // before anything else: see its header
+  platform::UdpReceiver receiver(options.bind_address, options.port);
+  MessageHandler handler(options);
+  spdlog::info("listening on udp://{}", receiver.local_address());
+
+  // Room for the largest UDP payload: a longer message than we send is still seen, and rejected.
+  std::vector<std::uint8_t> datagram(pipeline::message::max_message_size + 1);
+  const std::int64_t start_ns = platform::steady_now_ns();
+  const auto elapsed_s = [start_ns] {
+    return static_cast<double>(platform::steady_now_ns() - start_ns) / 1e9;
+  };
+  double next_stats_s = options.stats_every_s;
+  std::uint64_t datagrams = 0;
+  while (!signals.stop_requested()) {
+    if (options.count > 0 && datagrams >= options.count) break;
+    if (options.duration_s > 0 && elapsed_s() >= options.duration_s) break;
+    if (options.stats_every_s > 0 && elapsed_s() >= next_stats_s) {
+      print_stats_line(handler.stats(), elapsed_s());
+      next_stats_s += options.stats_every_s;
+    }
+    std::size_t size = 0;
+    bool cut = false;
+    const auto status =
+        receiver.receive(datagram.data(), datagram.size(), poll_interval_ms, size, cut);
+    if (status != platform::ReceiveStatus::datagram) continue;
+    ++datagrams;
+    handler.handle(datagram.data(),
+                   size);  // a cut datagram fails its length check: counted corrupt
+  }
+  handler.flush();
+  print_summary(handler.stats(), elapsed_s());
+  return to_int(ExitCode::ok);
+}
+
+int read_file(const ListenOptions& options) {
+  pipeline::MessageFileReader reader(options.read_path);
+  MessageHandler handler(options);
+  std::vector<std::uint8_t> record;
+  pipeline::FileReadStatus status = pipeline::FileReadStatus::message;
+  while (options.count == 0 || reader.records_read() < options.count) {
+    status = reader.next(record);
+    if (status != pipeline::FileReadStatus::message) break;
+    handler.handle(record.data(), record.size());
+  }
+  handler.flush();
+  print_summary(handler.stats(), 0.0);
+  if (status == pipeline::FileReadStatus::broken_framing) {
+    // Everything before the break was read and reported; the file itself is malformed.
+    throw InputError(options.read_path, 0, "", reader.problem());
+  }
+  return to_int(ExitCode::ok);
+}
+
+}  // namespace
+
+Subcommand add_listen_command(CLI::App& parent) {
+  auto options = std::make_shared<ListenOptions>();
+  CLI::App* cli = parent.add_subcommand(
+      "listen",
+      "Receive track messages over UDP (or read a binary message file), print them and count "
+      "lost, reordered, duplicated and corrupt messages per stream");
+  auto* port = cli->add_option("--port,-p", options->port, "UDP port to listen on")
+                   ->check(CLI::Range(1, 65535));
+  auto* bind =
+      cli->add_option("--bind", options->bind_address, "local address to bind (IPv4 or IPv6)")
+          ->capture_default_str();
+  cli->add_option("--count,-n", options->count,
+                  "stop after this many datagrams/records (0 = no limit)");
+  auto* duration = cli->add_option("--duration", options->duration_s,
+                                   "stop after this many seconds (0 = no limit)")
+                       ->check(CLI::NonNegativeNumber);
+  cli->add_option("--stats-every", options->stats_every_s,
+                  "print running counts every S seconds (0 = never)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  cli->add_option("--jsonl", options->jsonl_path,
+                  "also write every valid message to this JSON-lines file");
+  auto* read =
+      cli->add_option("--read", options->read_path, "decode a binary message file instead of UDP");
+  cli->add_flag("--quiet,-q", options->quiet,
+                "print no line per message, only stats and the summary");
+  read->excludes(port)->excludes(bind)->excludes(duration);
+  cli->callback([port, read] {
+    if (port->count() == 0 && read->count() == 0)
+      throw CLI::RequiredError("--port (or --read FILE)");
+  });
+  return {cli, [options] {
+            return options->read_path.empty() ? listen_udp(*options) : read_file(*options);
+          }};
+}
+
+}  // namespace rtmot::app
