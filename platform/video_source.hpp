@@ -1,11 +1,11 @@
 #pragma once
-// Video input by URI (jetson-utils style): file://PATH or a plain path, v4l2:///dev/videoN, csi://N,
-// rtsp://HOST/..., and test://PATTERN (GStreamer's videotestsrc, for tests and fault injection).
+// Video input by URI (jetson-utils style): file://PATH or a plain path, v4l2:///dev/videoN,
+// csi://N, rtsp://HOST/..., and test://PATTERN (GStreamer's videotestsrc, for tests and fault
+// injection).
 #include <cstdint>
 #include <memory>
-#include <string>
-
 #include <opencv2/core/mat.hpp>
+#include <string>
 
 namespace rtmot::platform {
 
@@ -28,8 +28,8 @@ enum class ReadStatus { frame, end_of_stream, error };
 class VideoSource {
  public:
   virtual ~VideoSource() = default;
-  /// Blocks until the next frame. Writes it into `bgr` (8-bit BGR), reusing its buffer when the size
-  /// is unchanged. A live source hands over only its newest frame.
+  /// Blocks until the next frame. Writes it into `bgr` (8-bit BGR), reusing its buffer when the
+  /// size is unchanged. A live source hands over only its newest frame.
   virtual ReadStatus read(cv::Mat& bgr, FrameInfo& info) = 0;
   virtual const SourceInfo& info() const = 0;
   /// Human-readable reason of the last `error`.
@@ -41,6 +41,9 @@ struct SourceOptions {
   int height{0};
   double fps{0.0};
   int open_timeout_ms{5000};
+  int read_timeout_ms{
+      5000};  // read() reports `error` when no frame came for this long; 0 = wait forever
+  int rtsp_latency_ms{200};  // rtspsrc jitter buffer
 };
 
 /// Opens a source; throws rtmot::InputError (exit code source_failed) naming the URI on failure.

@@ -1,0 +1,228 @@
+#include "platform/video_uri.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <cstdlib>
+#include <set>
+
+#include "common/input_error.hpp"
+
+namespace rtmot::platform {
+namespace {
+
+[[noreturn]] void fail(const std::string& uri, const std::string& part,
+                       const std::string& problem) {
+  throw InputError(uri, 0, part, problem, ExitCode::source_failed);
+}
+
+std::string lowercase(std::string text) {
+  std::transform(text.begin(), text.end(), text.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return text;
+}
+
+bool all_digits(const std::string& text) {
+  return !text.empty() &&
+         std::all_of(text.begin(), text.end(), [](unsigned char c) { return std::isdigit(c); });
+}
+
+int parse_int(const std::string& uri, const std::string& key, const std::string& value, int min,
+              int max) {
+  int parsed = 0;
+  const auto [end, error] = std::from_chars(value.data(), value.data() + value.size(), parsed);
+  if (error != std::errc() || end != value.data() + value.size()) {
+    fail(uri, key, "'" + value + "' is not an integer");
+  }
+  if (parsed < min || parsed > max) {
+    fail(uri, key,
+         std::to_string(parsed) + " is out of range [" + std::to_string(min) + ", " +
+             std::to_string(max) + "]");
+  }
+  return parsed;
+}
+
+double parse_fps(const std::string& uri, const std::string& key, const std::string& value) {
+  // strtod rather than from_chars<double>: g++ 9/10 on the boards lack the floating-point overload.
+  char* end = nullptr;
+  const double parsed = std::strtod(value.c_str(), &end);
+  if (value.empty() || end != value.c_str() + value.size()) {
+    fail(uri, key, "'" + value + "' is not a number");
+  }
+  if (!(parsed > 0.0 && parsed <= 1000.0)) fail(uri, key, value + " is out of range (0, 1000]");
+  return parsed;
+}
+
+bool parse_bool(const std::string& uri, const std::string& key, const std::string& value) {
+  const std::string v = lowercase(value);
+  if (v == "true" || v == "1" || v == "yes") return true;
+  if (v == "false" || v == "0" || v == "no") return false;
+  fail(uri, key, "'" + value + "' is not a boolean (true/false)");
+}
+
+constexpr int max_frames = 1'000'000'000;
+
+void apply_test_parameter(const std::string& uri, const std::string& key, const std::string& value,
+                          TestSourceParams& params) {
+  if (key == "width") {
+    params.width = parse_int(uri, key, value, 16, 16384);
+  } else if (key == "height") {
+    params.height = parse_int(uri, key, value, 16, 16384);
+  } else if (key == "fps") {
+    params.fps = parse_fps(uri, key, value);
+  } else if (key == "num-buffers") {
+    params.num_buffers = parse_int(uri, key, value, 1, max_frames);
+  } else if (key == "is-live") {
+    params.is_live = parse_bool(uri, key, value);
+  } else if (key == "error-after") {
+    params.error_after = parse_int(uri, key, value, 0, max_frames);
+  } else if (key == "stall-after") {
+    params.stall_after = parse_int(uri, key, value, 0, max_frames);
+  } else if (key == "stall-ms") {
+    params.stall_ms = parse_int(uri, key, value, 1, 600'000);
+  } else if (key == "eos-after") {
+    params.eos_after = parse_int(uri, key, value, 0, max_frames);
+  } else {
+    fail(uri, key,
+         "unknown test:// parameter (known: width, height, fps, num-buffers, is-live, "
+         "error-after, stall-after, stall-ms, eos-after)");
+  }
+}
+
+TestSourceParams parse_test(const std::string& uri, const std::string& rest) {
+  TestSourceParams params;
+  const auto question = rest.find('?');
+  const std::string pattern = rest.substr(0, question);
+  if (!pattern.empty()) {
+    const bool valid = std::all_of(pattern.begin(), pattern.end(), [](unsigned char c) {
+      return std::islower(c) || std::isdigit(c) || c == '-';
+    });
+    if (!valid) fail(uri, "pattern", "'" + pattern + "' is not a videotestsrc pattern name");
+    params.pattern = pattern;
+  }
+  if (question == std::string::npos) return params;
+
+  std::set<std::string> seen;
+  const std::string query = rest.substr(question + 1);
+  std::size_t start = 0;
+  while (start <= query.size()) {
+    const auto amp = std::min(query.find('&', start), query.size());
+    const std::string pair = query.substr(start, amp - start);
+    start = amp + 1;
+    if (pair.empty()) continue;
+    const auto equals = pair.find('=');
+    if (equals == std::string::npos) fail(uri, pair, "expected key=value");
+    const std::string key = pair.substr(0, equals);
+    if (!seen.insert(key).second) fail(uri, key, "given twice");
+    apply_test_parameter(uri, key, pair.substr(equals + 1), params);
+  }
+  if ((params.stall_after >= 0) != (params.stall_ms > 0)) {
+    fail(uri, "stall-after", "stall-after and stall-ms go together");
+  }
+  return params;
+}
+
+int hex_value(char c) {
+  if (c >= '0' && c <= '9') return c - '0';
+  const int lower = std::tolower(static_cast<unsigned char>(c));
+  if (lower >= 'a' && lower <= 'f') return lower - 'a' + 10;
+  return -1;
+}
+
+// file:// URIs may carry %XX escapes (e.g. %20 for a space); plain paths are taken literally.
+std::string percent_decode(const std::string& uri, const std::string& text) {
+  std::string decoded;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    if (text[i] != '%') {
+      decoded += text[i];
+      continue;
+    }
+    const int high = i + 2 < text.size() ? hex_value(text[i + 1]) : -1;
+    const int low = i + 2 < text.size() ? hex_value(text[i + 2]) : -1;
+    if (high < 0 || low < 0) fail(uri, "path", "bad %-escape at position " + std::to_string(i));
+    decoded += static_cast<char>(high * 16 + low);
+    i += 2;
+  }
+  return decoded;
+}
+
+}  // namespace
+
+VideoUri parse_video_uri(const std::string& text) {
+  if (text.empty()) fail(text, "", "empty video source URI");
+  VideoUri uri;
+  uri.text = text;
+  const auto separator = text.find("://");
+  if (separator == std::string::npos) {
+    uri.kind = SourceKind::file;
+    uri.location = text;
+    return uri;
+  }
+  const std::string scheme = lowercase(text.substr(0, separator));
+  const std::string rest = text.substr(separator + 3);
+
+  if (scheme == "file") {
+    uri.kind = SourceKind::file;
+    // file://localhost/abs is the same file as file:///abs.
+    const bool localhost = rest.rfind("localhost/", 0) == 0;
+    uri.location = percent_decode(text, localhost ? rest.substr(9) : rest);
+    if (uri.location.empty()) fail(text, "path", "no file path after file://");
+  } else if (scheme == "v4l2") {
+    uri.kind = SourceKind::v4l2;
+    if (all_digits(rest)) {
+      uri.location = "/dev/video" + rest;
+    } else if (rest.size() > 1 && rest[0] == '/') {
+      uri.location = rest;
+    } else {
+      fail(text, "device", "expected v4l2:///dev/videoN or v4l2://N");
+    }
+  } else if (scheme == "csi") {
+    uri.kind = SourceKind::csi;
+    if (!all_digits(rest)) fail(text, "sensor-id", "expected csi://N with a sensor number");
+    uri.sensor_id = parse_int(text, "sensor-id", rest, 0, 63);
+  } else if (scheme == "rtsp" || scheme == "rtsps") {
+    uri.kind = SourceKind::rtsp;
+    const std::string host = rest.substr(0, rest.find('/'));
+    if (host.empty() || host[0] == ':') fail(text, "host", "no host in the rtsp:// URL");
+    uri.location = text;
+  } else if (scheme == "test") {
+    uri.kind = SourceKind::test;
+    uri.test = parse_test(text, rest);
+  } else {
+    fail(text, "scheme",
+         "unknown scheme '" + scheme + "' (known: file, v4l2, csi, rtsp, rtsps, test)");
+  }
+  return uri;
+}
+
+bool is_live(const VideoUri& uri) {
+  switch (uri.kind) {
+    case SourceKind::file:
+      return false;
+    case SourceKind::test:
+      return uri.test.is_live;
+    case SourceKind::v4l2:
+    case SourceKind::csi:
+    case SourceKind::rtsp:
+      return true;
+  }
+  return true;
+}
+
+const char* to_string(SourceKind kind) {
+  switch (kind) {
+    case SourceKind::file:
+      return "file";
+    case SourceKind::v4l2:
+      return "v4l2";
+    case SourceKind::csi:
+      return "csi";
+    case SourceKind::rtsp:
+      return "rtsp";
+    case SourceKind::test:
+      return "test";
+  }
+  return "unknown";
+}
+
+}  // namespace rtmot::platform

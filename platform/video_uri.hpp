@@ -1,0 +1,40 @@
+#pragma once
+// A video-source URI taken apart into what the capture code needs. Parsing needs no GStreamer, so
+// it is cheap to test and to validate command lines with.
+#include <string>
+
+namespace rtmot::platform {
+
+enum class SourceKind { file, v4l2, csi, rtsp, test };
+
+/// test://PATTERN?key=value&... : GStreamer's videotestsrc plus injected faults. -1 means "off".
+struct TestSourceParams {
+  std::string pattern{"smpte"};  // a videotestsrc pattern nick (smpte, ball, snow, black, ...)
+  int width{320};
+  int height{240};
+  double fps{30.0};
+  int num_buffers{-1};  // videotestsrc's own limit; ends with end-of-stream
+  bool is_live{false};  // live: produced at `fps` in real time, only the newest frame handed over
+  int error_after{-1};  // the source fails (GStreamer error) after this many frames
+  int stall_after{-1};  // the source stops producing for `stall_ms` after this many frames
+  int stall_ms{0};
+  int eos_after{-1};  // the source ends (end-of-stream) after this many frames
+};
+
+struct VideoUri {
+  std::string text;  // as the user wrote it
+  SourceKind kind{SourceKind::file};
+  std::string location;  // file path, v4l2 device, or the full rtsp:// URL
+  int sensor_id{0};      // csi://N
+  TestSourceParams test;
+};
+
+/// Throws rtmot::InputError (ExitCode::source_failed) naming the URI and the offending part.
+VideoUri parse_video_uri(const std::string& uri);
+
+/// Cameras, streams and live test sources deliver frames in real time (and drop old ones).
+bool is_live(const VideoUri& uri);
+
+const char* to_string(SourceKind kind);
+
+}  // namespace rtmot::platform

@@ -1,0 +1,198 @@
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <fstream>
+#include <opencv2/core.hpp>
+#include <thread>
+
+#include "common/input_error.hpp"
+#include "platform/video_source.hpp"
+#include "shared_data.hpp"
+
+namespace rtmot::platform {
+namespace {
+
+using rtmot::test::shared_path;
+
+constexpr std::int64_t ms = 1'000'000;
+
+/// Expects open_video_source(uri) to throw InputError(source_failed) whose message contains
+/// `words`.
+void expect_open_fails(const std::string& uri, const std::string& words,
+                       const SourceOptions& options = {}) {
+  try {
+    open_video_source(uri, options);
+    ADD_FAILURE() << "opened " << uri;
+  } catch (const InputError& error) {
+    EXPECT_EQ(error.exit_code(), ExitCode::source_failed) << error.what();
+    EXPECT_NE(std::string(error.what()).find(words), std::string::npos) << error.what();
+  }
+}
+
+TEST(FileSource, ReadsEveryFrameOfVtestWithTimestamps) {
+  const auto path = shared_path("data/video/vtest.avi");
+  RTMOT_REQUIRE_FILE(path);
+  const auto source = open_video_source("file://" + path.string());
+  EXPECT_EQ(source->info().width, 768);
+  EXPECT_EQ(source->info().height, 576);
+  EXPECT_DOUBLE_EQ(source->info().fps, 10.0);
+  EXPECT_FALSE(source->info().live);
+
+  cv::Mat frame;
+  FrameInfo info;
+  std::int64_t frames = 0;
+  std::int64_t previous_capture_ns = 0;
+  const uchar* buffer = nullptr;
+  while (source->read(frame, info) == ReadStatus::frame) {
+    ++frames;
+    ASSERT_EQ(info.frame_number, frames);
+    ASSERT_EQ(info.pts_ns, (frames - 1) * 100 * ms) << "frame " << frames;
+    ASSERT_GE(info.capture_ns, previous_capture_ns);
+    previous_capture_ns = info.capture_ns;
+    ASSERT_EQ(frame.cols, 768);
+    ASSERT_EQ(frame.rows, 576);
+    ASSERT_EQ(frame.type(), CV_8UC3);
+    if (frames == 1) buffer = frame.data;
+    ASSERT_EQ(frame.data, buffer) << "the frame buffer was reallocated at frame " << frames;
+  }
+  EXPECT_EQ(frames, 795);
+  EXPECT_EQ(source->read(frame, info), ReadStatus::end_of_stream) << source->last_error();
+  // People walk through the scene: the last frame is a real picture, not a blank buffer.
+  cv::Scalar mean, stddev;
+  cv::meanStdDev(frame, mean, stddev);
+  EXPECT_GT(stddev[0], 10.0);
+}
+
+TEST(FileSource, PlainPathOpensTheSameVideo) {
+  const auto path = shared_path("data/video/vtest.avi");
+  RTMOT_REQUIRE_FILE(path);
+  const auto source = open_video_source(path.string());
+  cv::Mat frame;
+  FrameInfo info;
+  ASSERT_EQ(source->read(frame, info), ReadStatus::frame) << source->last_error();
+  EXPECT_EQ(info.frame_number, 1);
+  EXPECT_EQ(frame.size(), cv::Size(768, 576));
+}
+
+TEST(FileSource, MissingFileFailsToOpen) {
+  expect_open_fails("file:///nonexistent/dir/clip.avi", "/nonexistent/dir/clip.avi");
+}
+
+TEST(FileSource, NonVideoFileFailsToOpen) {
+  const auto path = std::filesystem::temp_directory_path() / "rtmot-not-a-video.avi";
+  {
+    std::ofstream text(path);
+    for (int i = 0; i < 200; ++i) text << "frame,id,x,y,w,h\n";
+  }
+  expect_open_fails(path.string(), path.string());
+  std::filesystem::remove(path);
+}
+
+TEST(TestSource, DeliversFramesOfTheRequestedSizeThenEnds) {
+  const auto source = open_video_source("test://ball?width=64&height=48&fps=25&num-buffers=5");
+  EXPECT_EQ(source->info().width, 64);
+  EXPECT_EQ(source->info().height, 48);
+  EXPECT_DOUBLE_EQ(source->info().fps, 25.0);
+  cv::Mat frame;
+  FrameInfo info;
+  for (int n = 1; n <= 5; ++n) {
+    ASSERT_EQ(source->read(frame, info), ReadStatus::frame) << source->last_error();
+    EXPECT_EQ(info.frame_number, n);
+    EXPECT_EQ(info.pts_ns, (n - 1) * 40 * ms);
+    EXPECT_EQ(frame.size(), cv::Size(64, 48));
+  }
+  EXPECT_EQ(source->read(frame, info), ReadStatus::end_of_stream);
+  EXPECT_EQ(source->read(frame, info), ReadStatus::end_of_stream);
+}
+
+/// Reads until something other than a frame; returns it and how many frames came first.
+std::pair<ReadStatus, int> read_to_end(VideoSource& source) {
+  cv::Mat frame;
+  FrameInfo info;
+  int frames = 0;
+  ReadStatus status;
+  while ((status = source.read(frame, info)) == ReadStatus::frame) ++frames;
+  return {status, frames};
+}
+
+TEST(TestSource, ErrorAfterNFrames) {
+  const auto source = open_video_source("test://?width=32&height=32&error-after=3");
+  const auto [status, frames] = read_to_end(*source);
+  EXPECT_EQ(status, ReadStatus::error);
+  EXPECT_EQ(frames, 3);
+  EXPECT_FALSE(source->last_error().empty());
+  cv::Mat frame;
+  FrameInfo info;
+  EXPECT_EQ(source->read(frame, info), ReadStatus::error) << "an error is final";
+}
+
+TEST(TestSource, EndOfStreamAfterNFrames) {
+  const auto source = open_video_source("test://?width=32&height=32&eos-after=4&num-buffers=9");
+  const auto [status, frames] = read_to_end(*source);
+  EXPECT_EQ(status, ReadStatus::end_of_stream);
+  EXPECT_EQ(frames, 4);
+}
+
+TEST(TestSource, ErrorBeforeTheFirstFrameFailsToOpen) {
+  expect_open_fails("test://?error-after=0", "test://?error-after=0");
+}
+
+TEST(TestSource, UnknownPatternFailsToOpen) {
+  expect_open_fails("test://plaid", "plaid");
+}
+
+TEST(TestSource, ShortStallDelaysButLosesNothing) {
+  SourceOptions options;
+  options.read_timeout_ms = 5000;
+  const auto source = open_video_source(
+      "test://?width=32&height=32&num-buffers=4&stall-after=2&stall-ms=300", options);
+  cv::Mat frame;
+  std::vector<FrameInfo> infos(4);
+  for (auto& info : infos) ASSERT_EQ(source->read(frame, info), ReadStatus::frame);
+  EXPECT_EQ(infos[3].frame_number, 4);
+  // The third frame could not be produced before the stall ended.
+  EXPECT_GE(infos[2].capture_ns - infos[1].capture_ns, 300 * ms);
+  EXPECT_EQ(read_to_end(*source).first, ReadStatus::end_of_stream);
+}
+
+TEST(TestSource, StallLongerThanTheReadTimeoutIsAnError) {
+  SourceOptions options;
+  options.read_timeout_ms = 200;
+  const auto source =
+      open_video_source("test://?width=32&height=32&stall-after=1&stall-ms=60000", options);
+  const auto [status, frames] = read_to_end(*source);
+  EXPECT_EQ(status, ReadStatus::error);
+  EXPECT_EQ(frames, 1);
+  EXPECT_NE(source->last_error().find("200 ms"), std::string::npos) << source->last_error();
+  // Destroying the source ends the stall rather than waiting out its minute.
+}
+
+TEST(TestSource, StallBeforeTheFirstFrameTimesOutTheOpen) {
+  SourceOptions options;
+  options.open_timeout_ms = 200;
+  expect_open_fails("test://?stall-after=0&stall-ms=60000", "200 ms", options);
+}
+
+TEST(LiveTestSource, HandsOverTheNewestFrameAndCountsTheDroppedOnes) {
+  const auto source = open_video_source("test://?width=32&height=32&fps=100&is-live=true");
+  EXPECT_TRUE(source->info().live);
+  cv::Mat frame;
+  FrameInfo info;
+  std::int64_t previous = 0;
+  std::int64_t first = 0;
+  constexpr int reads = 5;
+  for (int n = 0; n < reads; ++n) {
+    ASSERT_EQ(source->read(frame, info), ReadStatus::frame) << source->last_error();
+    if (n == 0) first = info.frame_number;
+    EXPECT_GT(info.frame_number, previous);
+    // The frame number counts produced frames: it matches the source's clock.
+    EXPECT_EQ(info.pts_ns, (info.frame_number - 1) * 10 * ms);
+    previous = info.frame_number;
+    std::this_thread::sleep_for(std::chrono::milliseconds(60));
+  }
+  EXPECT_EQ(first, 1);
+  EXPECT_GT(previous - first + 1, reads) << "a slow reader must see gaps in a live source";
+}
+
+}  // namespace
+}  // namespace rtmot::platform
