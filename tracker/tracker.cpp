@@ -30,6 +30,8 @@ struct Track {
   bool matched{false};
 };
 
+constexpr std::size_t kTypicalSceneSize = 64;
+
 struct Match {
   int detection;
   int track;  // position in the live order
@@ -75,6 +77,13 @@ struct Tracker::State {
     unmatched_tracks.reserve(tracks);
     row_hits.reserve(detections);
     col_hits.reserve(tracks);
+    // The association matrix grows on demand; start it at a size that covers crowded scenes
+    // (MOT15 peaks at 16 detections a frame) so that it rarely grows at all.
+    const auto typical_rows = std::min(detections, kTypicalSceneSize);
+    const auto typical_cols = std::min(tracks, kTypicalSceneSize);
+    affinities.reserve(typical_rows * typical_cols);
+    costs.reserve(typical_rows * typical_cols);
+    assignment.reserve(static_cast<int>(typical_rows), static_cast<int>(typical_cols));
     restart();
   }
 

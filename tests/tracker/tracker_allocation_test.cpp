@@ -1,0 +1,84 @@
+// Steady state allocates nothing. This executable replaces the global operator new/delete to
+// count allocations, warms a tracker up on the first half of a MOT15 sequence, then requires zero
+// allocations over the second half, for every predictor and affinity.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cstdlib>
+#include <new>
+
+#include "mot_detections.hpp"
+#include "shared_data.hpp"
+#include "tracker/tracker.hpp"
+
+namespace {
+// Test instrumentation: the one place a global counter is the point.
+std::atomic<long> g_allocations{0};
+}  // namespace
+
+void* operator new(std::size_t size) {
+  g_allocations.fetch_add(1, std::memory_order_relaxed);
+  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
+  throw std::bad_alloc();
+}
+void* operator new[](std::size_t size) { return operator new(size); }
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete[](void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
+
+namespace rtmot::tracker {
+namespace {
+
+class SteadyState : public ::testing::TestWithParam<std::tuple<PredictorKind, AffinityKind>> {};
+
+TEST_P(SteadyState, AllocatesNothingAfterWarmUp) {
+  const auto dir = test::shared_path("data/mot15-train/ADL-Rundle-6");
+  RTMOT_REQUIRE_FILE(dir / "det" / "det.txt");
+  const test::MotSequence sequence = test::load_mot_sequence(dir);
+  TrackerConfig config = TrackerConfig::sort_preset();
+  config.predictor = std::get<0>(GetParam());
+  config.affinity = std::get<1>(GetParam());
+  config.affinity_threshold = default_threshold(config.affinity);
+  config.image_width = sequence.width;
+  config.image_height = sequence.height;
+  config.particle_count = 30;
+  // Every option on: they must not allocate either.
+  config.second_round = true;
+  config.detection_threshold = 0.6F;
+  config.low_score = 0.3F;
+  config.observation_centric_reupdate = true;
+  config.time_widened_gate = true;
+  config.max_age = 3;
+  Tracker tracker(config);
+
+  const std::size_t half = sequence.frames.size() / 2;
+  long reported = 0;
+  for (std::size_t f = 0; f < half; ++f) tracker.update(sequence.frames[f], 0.0);
+  const long before = g_allocations.load();
+  for (std::size_t f = half; f < sequence.frames.size(); ++f)
+    reported += static_cast<long>(tracker.update(sequence.frames[f], 0.0).size());
+  const long during = g_allocations.load() - before;
+  EXPECT_EQ(during, 0) << "allocations over " << sequence.frames.size() - half << " frames";
+  EXPECT_GT(reported, 0);  // it did track something
+}
+
+TEST(AllocationCounter, CountsAllocations) {
+  const long before = g_allocations.load();
+  auto p = std::make_unique<int>(3);
+  EXPECT_EQ(g_allocations.load() - before, 1);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    AllModels, SteadyState,
+    ::testing::Combine(::testing::Values(PredictorKind::kalman, PredictorKind::stationary,
+                                         PredictorKind::particle),
+                       ::testing::Values(AffinityKind::iou, AffinityKind::linear,
+                                         AffinityKind::exponential)),
+    [](const auto& info) {
+      return std::string(to_string(std::get<0>(info.param))) + "_" +
+             std::string(to_string(std::get<1>(info.param)));
+    });
+
+}  // namespace
+}  // namespace rtmot::tracker

@@ -1,0 +1,41 @@
+// The SORT preset and the names of the options.
+#include <gtest/gtest.h>
+
+#include "tracker/tracker_config.hpp"
+
+namespace rtmot::tracker {
+namespace {
+
+TEST(TrackerConfig, SortPresetIsSort) {
+  const TrackerConfig config = TrackerConfig::sort_preset();
+  EXPECT_EQ(config.predictor, PredictorKind::kalman);
+  EXPECT_EQ(config.affinity, AffinityKind::iou);
+  EXPECT_DOUBLE_EQ(config.affinity_threshold, 0.3);
+  EXPECT_EQ(config.max_age, 1);
+  EXPECT_EQ(config.min_hits, 3);
+  EXPECT_EQ(config.time_step, TimeStep::per_update);
+  EXPECT_FALSE(config.second_round || config.observation_centric_reupdate ||
+               config.time_widened_gate);
+}
+
+TEST(TrackerConfig, DefaultThresholdsAreCppSorts) {
+  EXPECT_DOUBLE_EQ(default_threshold(AffinityKind::iou), 0.3);
+  EXPECT_DOUBLE_EQ(default_threshold(AffinityKind::linear), 10000.0);
+  EXPECT_DOUBLE_EQ(default_threshold(AffinityKind::exponential), 0.5);
+}
+
+TEST(TrackerConfig, NamesRoundTripAndUnknownNamesAreRejected) {
+  for (auto kind : {PredictorKind::kalman, PredictorKind::stationary, PredictorKind::particle})
+    EXPECT_EQ(parse_predictor(to_string(kind)), kind);
+  for (auto kind : {AffinityKind::iou, AffinityKind::linear, AffinityKind::exponential})
+    EXPECT_EQ(parse_affinity(to_string(kind)), kind);
+  for (auto step : {TimeStep::per_update, TimeStep::elapsed})
+    EXPECT_EQ(parse_time_step(to_string(step)), step);
+  EXPECT_EQ(parse_affinity("exp"), AffinityKind::exponential);
+  EXPECT_FALSE(parse_predictor("Kalman").has_value());
+  EXPECT_FALSE(parse_affinity("").has_value());
+  EXPECT_FALSE(parse_time_step("realtime").has_value());
+}
+
+}  // namespace
+}  // namespace rtmot::tracker

@@ -1,0 +1,154 @@
+// The options SORT's descendants added, each on a small scene where it changes the outcome.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "scene.hpp"
+#include "tracker/tracker.hpp"
+
+namespace rtmot::tracker {
+namespace {
+using test::detection;
+using test::reports_id;
+
+// --- ByteTrack's second round --------------------------------------------------------------
+
+// A walker whose detector score sags to 0.3 in frames 6 and 7 (say, partly occluded).
+Detection sagging_walker(int frame) {
+  const float score = (frame == 6 || frame == 7) ? 0.3F : 0.9F;
+  return detection(100.F + 3.F * frame, 200.F, 40.F, 80.F, score);
+}
+
+std::vector<std::vector<TrackReport>> run_sagging_walker(bool second_round) {
+  TrackerConfig config = TrackerConfig::sort_preset();
+  config.detection_threshold = 0.5F;
+  config.low_score = 0.1F;
+  config.second_round = second_round;
+  Tracker tracker(config);
+  std::vector<std::vector<TrackReport>> history;
+  for (int f = 1; f <= 11; ++f) {
+    // A low-score clutter detection far away must never start a track.
+    history.push_back(tracker.update(
+        {sagging_walker(f), detection(900.F, 500.F, 40.F, 80.F, 0.2F)}, f / 30.0));
+    EXPECT_LE(tracker.live_tracks(), 1) << "frame " << f;
+  }
+  return history;
+}
+
+TEST(SecondRound, LowScoreDetectionsKeepAnExistingTrackAlive) {
+  const auto plain = run_sagging_walker(false);
+  const auto byte = run_sagging_walker(true);
+  // Without it the track is lost after two frames without usable detections; the walker comes
+  // back as track 2 and is only reported again once it has three hits.
+  EXPECT_TRUE(plain[5].empty());
+  EXPECT_FALSE(reports_id(plain[7], 1));
+  EXPECT_FALSE(reports_id(plain[7], 2));
+  EXPECT_FALSE(reports_id(plain[9], 2));
+  EXPECT_TRUE(reports_id(plain[10], 2));
+  // With it, frames 6 and 7 match the low-score detections and the identity never breaks.
+  for (int f = 4; f <= 11; ++f) {
+    ASSERT_EQ(byte[f - 1].size(), 1U) << "frame " << f;
+    EXPECT_EQ(byte[f - 1][0].id, 1) << "frame " << f;
+  }
+  EXPECT_FLOAT_EQ(byte[5][0].score, 0.3F);
+}
+
+// --- OC-SORT's observation-centric re-update ------------------------------------------------
+
+// Moves right 10 px a frame, stops while unseen (frames 11..14) and stays put from then on.
+Box stopping_object(int frame) {
+  const float x = frame <= 10 ? 10.F * frame : 120.F;
+  return Box{x, 100.F, 100.F, 200.F};
+}
+
+// Mean error of the reported box's centre over the frames after the object is found again.
+double error_after_gap(bool oru, int* final_id) {
+  TrackerConfig config = TrackerConfig::sort_preset();
+  config.max_age = 5;
+  config.observation_centric_reupdate = oru;
+  Tracker tracker(config);
+  double error = 0.0;
+  int counted = 0;
+  for (int f = 1; f <= 22; ++f) {
+    std::vector<Detection> detections;
+    if (f <= 10 || f >= 15) detections.push_back(Detection{stopping_object(f), 0.9F, 1});
+    const auto& reports = tracker.update(detections, 0.0);
+    if (f >= 16 && !reports.empty()) {
+      error += std::abs(reports[0].box.center_x() - stopping_object(f).center_x());
+      ++counted;
+      *final_id = reports[0].id;
+    }
+  }
+  EXPECT_GT(counted, 0);
+  return counted > 0 ? error / counted : 1e9;
+}
+
+TEST(ObservationCentricReupdate, RelearnsVelocityFromTheObservationsAfterAGap) {
+  int plain_id = 0;
+  int oru_id = 0;
+  const double plain = error_after_gap(false, &plain_id);
+  const double oru = error_after_gap(true, &oru_id);
+  EXPECT_EQ(oru_id, 1);
+  // Without the re-update the filter keeps part of its coasting velocity and overshoots the
+  // stopped object for several frames.
+  EXPECT_LT(oru, 0.5 * plain) << "plain " << plain << " oru " << oru;
+}
+
+TEST(ObservationCentricReupdate, ChangesNothingWithoutGaps) {
+  TrackerConfig config = TrackerConfig::sort_preset();
+  Tracker plain(config);
+  config.observation_centric_reupdate = true;
+  Tracker oru(config);
+  for (int f = 1; f <= 10; ++f) {
+    const std::vector<Detection> detections{Detection{stopping_object(f), 0.9F, 1}};
+    const auto a = plain.update(detections, 0.0);
+    const auto& b = oru.update(detections, 0.0);
+    ASSERT_EQ(a.size(), b.size());
+    for (std::size_t i = 0; i < a.size(); ++i) EXPECT_FLOAT_EQ(a[i].box.x, b[i].box.x);
+  }
+}
+
+// --- time-widened gate ----------------------------------------------------------------------
+
+// Stands still in frames 1..5, unseen in 6..7, seen again 30 px to the right from frame 8.
+std::vector<Detection> jumping_object(int frame) {
+  if (frame >= 6 && frame <= 7) return {};
+  return {detection(frame <= 5 ? 0.F : 30.F, 0.F)};
+}
+
+int id_after_jump(bool widened) {
+  TrackerConfig config = TrackerConfig::sort_preset();
+  config.predictor = PredictorKind::stationary;
+  config.max_age = 3;
+  config.time_widened_gate = widened;
+  Tracker tracker(config);
+  for (int f = 1; f <= 7; ++f) tracker.update(jumping_object(f), 0.0);
+  tracker.update(jumping_object(8), 0.0);
+  int id = 0;
+  for (int f = 9; f <= 12; ++f) {
+    const auto& reports = tracker.update(jumping_object(f), 0.0);
+    if (!reports.empty()) id = reports[0].id;
+  }
+  return id;
+}
+
+TEST(TimeWidenedGate, RecoversATrackThatMovedWhileUnseen) {
+  // 40 px wide boxes 30 px apart: IoU 0.14 fails the 0.3 gate; after three frames unmatched the
+  // widened gate compares boxes grown by 30% a side (IoU 0.36) and keeps the identity.
+  EXPECT_EQ(id_after_jump(false), 2);
+  EXPECT_EQ(id_after_jump(true), 1);
+}
+
+TEST(TimeWidenedGate, LeavesTracksMatchedLastFrameAlone) {
+  TrackerConfig config = TrackerConfig::sort_preset();
+  config.predictor = PredictorKind::stationary;
+  config.time_widened_gate = true;
+  Tracker tracker(config);
+  tracker.update({detection(0.F, 0.F)}, 0.0);
+  tracker.update({detection(30.F, 0.F)}, 0.0);  // 30 px jump in one frame: too far
+  EXPECT_EQ(tracker.live_tracks(), 2);
+}
+
+}  // namespace
+}  // namespace rtmot::tracker
