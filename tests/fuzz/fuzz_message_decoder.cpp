@@ -1,0 +1,29 @@
+// Received track messages: decode_message on the raw bytes (it must never throw or read outside
+// them), and the same bytes as a length-prefixed message file read back record by record.
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "common/input_error.hpp"
+#include "memory_file.hpp"
+#include "pipeline/message_file_reader.hpp"
+#include "pipeline/message_format.hpp"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  using namespace rtmot::pipeline;
+  static DecodedMessage decoded;  // reused as a receiver reuses it
+  // An exact-size heap copy, so that AddressSanitizer sees any read past the end.
+  const std::vector<std::uint8_t> bytes(data, data + size);
+  decode_message(bytes.data(), bytes.size(), decoded);
+
+  static rtmot::fuzz::MemoryFile file;
+  try {
+    MessageFileReader reader(file.write(data, size));
+    std::vector<std::uint8_t> record;
+    while (reader.next(record) == FileReadStatus::message) {
+      decode_message(record.data(), record.size(), decoded);
+    }
+  } catch (const rtmot::InputError&) {
+  }
+  return 0;
+}

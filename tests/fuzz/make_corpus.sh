@@ -1,0 +1,52 @@
+#!/usr/bin/env bash
+# Seed corpora for the fuzz targets, made from the real data (never committed in bulk).
+# Usage: tests/fuzz/make_corpus.sh BUILD_DIR OUT_DIR   (BUILD_DIR holds make_message_seeds)
+set -euo pipefail
+build=$1
+out=$2
+root=$(cd "$(dirname "$0")/../.." && pwd)
+shared=${RTMOT_SHARED_DIR:-$root/../shared}
+mot=$shared/data/mot15-train
+[[ -d $mot ]] || { echo "missing test data: $mot" >&2; exit 1; }
+
+rm -rf "$out"
+mkdir -p "$out"/{mot_rows,seqinfo,run_config,video_uri,message_decoder}
+
+# MOT rows: the first byte picks the kind (0 det, 1 gt, 2 results; +0x80 = with a length check).
+prefixed() {  # BYTE FILE OUT
+  { printf "\\x$1"; head -n 60 "$2"; } >"$3"
+}
+for seq_dir in "$mot"/*/; do
+  seq=$(basename "$seq_dir")
+  cp "$seq_dir/seqinfo.ini" "$out/seqinfo/$seq.ini"
+  prefixed 00 "$seq_dir/det/det.txt" "$out/mot_rows/$seq-det"
+  prefixed 81 "$seq_dir/gt/gt.txt" "$out/mot_rows/$seq-gt"
+done
+# Results as trackers write them: frame,id,x,y,w,h,conf,-1,-1,-1.
+for f in "$shared"/data/metrics-fixtures/*/result-*.txt; do
+  name=$(basename "$(dirname "$f")")
+  prefixed 02 "$f" "$out/mot_rows/$name-results"
+  prefixed 82 "$f" "$out/mot_rows/$name-results-checked"
+done
+
+# Run configurations as shipped.
+for f in "$root"/configs/*.yaml; do
+  [[ -e $f ]] && cp "$f" "$out/run_config/"
+done
+printf 'source:\n  uri: test://ball\ndetector:\n  kind: ssd\n  model: models/x.onnx\n' \
+  >"$out/run_config/minimal.yaml"
+
+# Video URIs of every kind.
+i=0
+for uri in "$root/data/vtest.avi" "file:///work/data/vtest.avi" "v4l2:///dev/video0" "v4l2://1" \
+  "csi://0" "rtsp://user:pw@camera.local:554/stream1" "rtsps://host/a%20b" \
+  "test://ball?is-live=true&width=64&height=48&fps=60&error-after=5" \
+  "test://smpte?num-buffers=10&stall-after=3&stall-ms=100&eos-after=8"; do
+  printf '%s' "$uri" >"$out/video_uri/uri-$i"
+  i=$((i + 1))
+done
+
+# Encoded track messages from the ground truth.
+"$build/tests/fuzz/make_message_seeds" "$mot/TUD-Campus/gt/gt.txt" "$out/message_decoder"
+
+for d in "$out"/*/; do echo "corpus $(basename "$d"): $(ls "$d" | wc -l) files"; done
