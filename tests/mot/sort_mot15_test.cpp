@@ -1,0 +1,49 @@
+// End to end through the library: the SORT preset on MOT15-train's public detections, scored by
+// our devkit-exact scorer, must land on the reference Python SORT's published figures
+// (MOTA 39.9, IDF1 45.9 with py-motmetrics; see ../shared/README.md).
+#include <gtest/gtest.h>
+
+#include "mot/evaluation.hpp"
+#include "mot/prepared_sequence.hpp"
+#include "mot/scorer.hpp"
+#include "mot/track_runner.hpp"
+#include "mot/tracker_presets.hpp"
+#include "shared_data.hpp"
+
+namespace rtmot::mot {
+namespace {
+
+TEST(SortOnMot15Train, ReachesTheReferenceMotaAndIdf1) {
+  const auto dataset = test::shared_path("data/mot15-train");
+  RTMOT_REQUIRE_FILE(dataset);
+  const auto sequence_dirs = find_sequence_dirs(dataset);
+  ASSERT_EQ(sequence_dirs.size(), 11U);
+
+  TrackOptions options;
+  options.config = *find_preset("sort");
+  std::vector<SequenceScore> scores;
+  for (const auto& dir : sequence_dirs) {
+    const TrackRun run = track_sequence(dir, options);
+    const auto gt_rows =
+        read_mot_file(dir / "gt" / "gt.txt", MotFileKind::ground_truth, run.info.length);
+    PrepareOptions prepare;
+    prepare.sequence_length = run.info.length;
+    SequenceScore score;
+    score.name = run.info.name;
+    score.counts = count_all(prepare_sequence(gt_rows, run.tracks, prepare));
+    score.metrics = summarize(score.counts);
+    scores.push_back(score);
+  }
+  const Metrics overall = pool(scores).metrics;
+  RecordProperty("MOTA", std::to_string(overall.mota));
+  RecordProperty("IDF1", std::to_string(overall.idf1));
+  EXPECT_NEAR(overall.mota, 39.9, 0.5);
+  EXPECT_NEAR(overall.idf1, 45.9, 1.0);
+  std::printf("OVERALL MOTA %.2f IDF1 %.2f FP %lld FN %lld IDs %lld HOTA %.2f\n", overall.mota,
+              overall.idf1, static_cast<long long>(overall.false_positives),
+              static_cast<long long>(overall.false_negatives),
+              static_cast<long long>(overall.id_switches), overall.hota);
+}
+
+}  // namespace
+}  // namespace rtmot::mot
