@@ -1,9 +1,9 @@
 // The three affinities on boxes whose values can be worked out by hand.
+#include "tracker/affinity.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
-
-#include "tracker/affinity.hpp"
 
 namespace rtmot::tracker {
 namespace {
@@ -19,8 +19,8 @@ TEST(IouAffinity, MatchesHandComputedOverlaps) {
 }
 
 TEST(LinearAffinity, IsDiagonalOverDistanceTimesAreaOverAreaDifference) {
-  const Box track{0.F, 0.F, 10.F, 10.F};        // centre (5, 5), area 100
-  const Box detection{3.F, 4.F, 10.F, 12.F};    // centre (8, 10), area 120
+  const Box track{0.F, 0.F, 10.F, 10.F};      // centre (5, 5), area 100
+  const Box detection{3.F, 4.F, 10.F, 12.F};  // centre (8, 10), area 120
   const double expected = (std::hypot(100.0, 50.0) / std::hypot(3.0, 5.0)) * (5000.0 / 20.0);
   EXPECT_NEAR(linear_affinity(track, detection, 100.F, 50.F), expected, expected * 1e-9);
   // Closer and more alike is more similar.

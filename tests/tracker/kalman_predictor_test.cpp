@@ -1,8 +1,8 @@
 // The Kalman predictor against numbers worked out by hand from sort.py's equations
 // (x' = F x, P' = F P F' + Q, K = P H' (H P H' + R)^-1, with its R, P0 and Q).
-#include <gtest/gtest.h>
-
 #include "tracker/kalman_predictor.hpp"
+
+#include <gtest/gtest.h>
 
 namespace rtmot::tracker {
 namespace {

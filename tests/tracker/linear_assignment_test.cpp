@@ -1,4 +1,6 @@
 // The Jonker-Volgenant solver against exhaustive search on random matrices of every shape.
+#include "tracker/linear_assignment.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -6,8 +8,6 @@
 #include <numeric>
 #include <random>
 #include <vector>
-
-#include "tracker/linear_assignment.hpp"
 
 namespace rtmot::tracker {
 namespace {
@@ -33,8 +33,8 @@ double brute_force_minimum(const std::vector<double>& cost, int rows, int cols) 
 }
 
 // Checks the solver's answer is a valid assignment of min(rows, cols) pairs; returns its cost.
-double checked_total(const std::vector<int>& row_to_col, const std::vector<double>& cost,
-                     int rows, int cols) {
+double checked_total(const std::vector<int>& row_to_col, const std::vector<double>& cost, int rows,
+                     int cols) {
   EXPECT_EQ(static_cast<int>(row_to_col.size()), rows);
   std::vector<int> used(cols, 0);
   int assigned = 0;

@@ -68,7 +68,7 @@ inline MotSequence load_mot_sequence(const std::filesystem::path& sequence_dir) 
 }
 
 inline const char* const kMot15Sequences[] = {
-    "ADL-Rundle-6", "ADL-Rundle-8", "ETH-Bahnhof",   "ETH-Pedcross2",  "ETH-Sunnyday", "KITTI-13",
-    "KITTI-17",     "PETS09-S2L1",  "TUD-Campus",    "TUD-Stadtmitte", "Venice-2"};
+    "ADL-Rundle-6", "ADL-Rundle-8", "ETH-Bahnhof", "ETH-Pedcross2",  "ETH-Sunnyday", "KITTI-13",
+    "KITTI-17",     "PETS09-S2L1",  "TUD-Campus",  "TUD-Stadtmitte", "Venice-2"};
 
 }  // namespace rtmot::test

@@ -28,7 +28,9 @@ struct ParticleFixture {
 };
 
 // A box walking right by 4 px a frame.
-Box walker(int frame) { return Box{100.F + 4.F * frame, 50.F, 40.F, 80.F}; }
+Box walker(int frame) {
+  return Box{100.F + 4.F * frame, 50.F, 40.F, 80.F};
+}
 
 TEST(ParticlePredictor, SameSeedAndIdGiveTheSameTrajectory) {
   ParticleFixture a(64);

@@ -1,7 +1,7 @@
 // The SORT preset and the names of the options.
-#include <gtest/gtest.h>
-
 #include "tracker/tracker_config.hpp"
+
+#include <gtest/gtest.h>
 
 namespace rtmot::tracker {
 namespace {

@@ -12,7 +12,9 @@ using test::detection;
 using test::reports_id;
 
 // Frame f (1-based) of a pedestrian walking right by 3 px a frame.
-Detection walker(int frame) { return detection(100.F + 3.F * frame, 200.F); }
+Detection walker(int frame) {
+  return detection(100.F + 3.F * frame, 200.F);
+}
 
 TEST(TrackerLifecycle, ReportsFromTheStartThenAfterMinHitsConsecutiveMatches) {
   Tracker tracker(TrackerConfig::sort_preset());

@@ -31,8 +31,8 @@ std::vector<std::vector<TrackReport>> run_sagging_walker(bool second_round) {
   std::vector<std::vector<TrackReport>> history;
   for (int f = 1; f <= 11; ++f) {
     // A low-score clutter detection far away must never start a track.
-    history.push_back(tracker.update(
-        {sagging_walker(f), detection(900.F, 500.F, 40.F, 80.F, 0.2F)}, f / 30.0));
+    history.push_back(
+        tracker.update({sagging_walker(f), detection(900.F, 500.F, 40.F, 80.F, 0.2F)}, f / 30.0));
     EXPECT_LE(tracker.live_tracks(), 1) << "frame " << f;
   }
   return history;
@@ -70,10 +70,9 @@ Box filter_with_virtual_trajectory(int last_frame) {
   KalmanPredictor kf(stopping_object(1));
   for (int f = 2; f <= last_frame; ++f) {
     kf.predict(1.0);
-    const Box observed =
-        (f > 10 && f < 15)
-            ? interpolate(stopping_object(10), stopping_object(15), (f - 10) / 5.F)
-            : stopping_object(f);
+    const Box observed = (f > 10 && f < 15)
+                             ? interpolate(stopping_object(10), stopping_object(15), (f - 10) / 5.F)
+                             : stopping_object(f);
     kf.update(observed);
   }
   return kf.box();

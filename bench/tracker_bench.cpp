@@ -1,0 +1,134 @@
+// Tracker throughput on the MOT15 training detections. All 11 sequences are parsed into memory
+// first; the timed loop is Tracker::update only. Counter "fps" is frames per second (Hz).
+#include <benchmark/benchmark.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "mot/mot_files.hpp"
+#include "tracker/linear_assignment.hpp"
+#include "tracker/tracker.hpp"
+
+namespace {
+using rtmot::tracker::AffinityKind;
+using rtmot::tracker::PredictorKind;
+using rtmot::tracker::Tracker;
+using rtmot::tracker::TrackerConfig;
+
+struct Sequence {
+  rtmot::mot::SequenceInfo info;
+  std::vector<std::vector<rtmot::tracker::Detection>> frames;
+};
+
+std::filesystem::path shared_dir() {
+  if (const char* env = std::getenv("RTMOT_SHARED_DIR")) return env;
+  return RTMOT_SHARED_DIR;
+}
+
+std::vector<Sequence> load_all() {
+  static const char* const kNames[] = {
+      "ADL-Rundle-6", "ADL-Rundle-8", "ETH-Bahnhof", "ETH-Pedcross2",  "ETH-Sunnyday", "KITTI-13",
+      "KITTI-17",     "PETS09-S2L1",  "TUD-Campus",  "TUD-Stadtmitte", "Venice-2"};
+  std::vector<Sequence> sequences;
+  for (const char* name : kNames) {
+    const auto dir = shared_dir() / "data" / "mot15-train" / name;
+    Sequence sequence;
+    sequence.info = rtmot::mot::read_seqinfo(dir / "seqinfo.ini");
+    const auto rows =
+        rtmot::mot::read_mot_file(dir / "det" / "det.txt", rtmot::mot::MotFileKind::detections);
+    sequence.frames = rtmot::mot::detections_by_frame(rows, sequence.info.length);
+    sequences.push_back(std::move(sequence));
+  }
+  return sequences;
+}
+
+// Parsed once, before the first benchmark runs, and read-only afterwards.
+const std::vector<Sequence>& mot15() {
+  static const std::vector<Sequence> sequences = load_all();
+  return sequences;
+}
+
+void track_all(benchmark::State& state, const TrackerConfig& base) {
+  const auto& sequences = mot15();
+  std::vector<Tracker> trackers;
+  long frames_per_pass = 0;
+  for (const Sequence& sequence : sequences) {
+    TrackerConfig config = base;
+    config.image_width = static_cast<float>(sequence.info.width);
+    config.image_height = static_cast<float>(sequence.info.height);
+    config.frame_rate = sequence.info.frame_rate;
+    trackers.emplace_back(config);
+    frames_per_pass += static_cast<long>(sequence.frames.size());
+  }
+  long reported = 0;
+  for (auto _ : state) {
+    for (std::size_t s = 0; s < sequences.size(); ++s) {
+      Tracker& tracker = trackers[s];
+      tracker.reset();
+      const auto& frames = sequences[s].frames;
+      const double period = 1.0 / sequences[s].info.frame_rate;
+      for (std::size_t f = 0; f < frames.size(); ++f) {
+        reported += static_cast<long>(tracker.update(frames[f], f * period).size());
+      }
+    }
+    benchmark::DoNotOptimize(reported);
+  }
+  state.counters["fps"] = benchmark::Counter(
+      static_cast<double>(frames_per_pass) * static_cast<double>(state.iterations()),
+      benchmark::Counter::kIsRate);
+  state.counters["frames"] = static_cast<double>(frames_per_pass);
+}
+
+void BM_SortMot15(benchmark::State& state) {
+  track_all(state, TrackerConfig::sort_preset());
+}
+BENCHMARK(BM_SortMot15)->Unit(benchmark::kMillisecond);
+
+void BM_ModelMot15(benchmark::State& state) {
+  TrackerConfig config = TrackerConfig::sort_preset();
+  config.predictor = static_cast<PredictorKind>(state.range(0));
+  config.affinity = static_cast<AffinityKind>(state.range(1));
+  config.affinity_threshold = rtmot::tracker::default_threshold(config.affinity);
+  state.SetLabel(std::string(to_string(config.predictor)) + "/" +
+                 std::string(to_string(config.affinity)));
+  track_all(state, config);
+}
+BENCHMARK(BM_ModelMot15)
+    ->ArgsProduct({{static_cast<int>(PredictorKind::kalman),
+                    static_cast<int>(PredictorKind::stationary),
+                    static_cast<int>(PredictorKind::particle)},
+                   {static_cast<int>(AffinityKind::iou), static_cast<int>(AffinityKind::linear),
+                    static_cast<int>(AffinityKind::exponential)}})
+    ->Unit(benchmark::kMillisecond);
+
+void BM_SortAllOptionsMot15(benchmark::State& state) {
+  TrackerConfig config = TrackerConfig::sort_preset();
+  config.second_round = true;
+  config.detection_threshold = 0.6F;
+  config.low_score = 0.3F;
+  config.observation_centric_reupdate = true;
+  config.time_widened_gate = true;
+  config.max_age = 3;
+  config.time_step = rtmot::tracker::TimeStep::elapsed;
+  track_all(state, config);
+}
+BENCHMARK(BM_SortAllOptionsMot15)->Unit(benchmark::kMillisecond);
+
+// The assignment alone on a dense square matrix of the given size.
+void BM_LinearAssignment(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  std::mt19937 rng(1);
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  std::vector<double> cost(static_cast<std::size_t>(n) * n);
+  for (double& c : cost) c = uniform(rng);
+  rtmot::tracker::LinearAssignment solver;
+  for (auto _ : state) benchmark::DoNotOptimize(solver.solve(cost.data(), n, n).data());
+}
+BENCHMARK(BM_LinearAssignment)->Arg(8)->Arg(16)->Arg(64);
+
+}  // namespace
+
+BENCHMARK_MAIN();
