@@ -1,0 +1,57 @@
+#pragma once
+// What the TF.js graph's Postprocessor did, plus the non-maximum suppression of the TensorFlow
+// Object Detection API's SSD (multi-class: every class of every anchor is a candidate, NMS per
+// class): the network's raw outputs become scored boxes in pixels. See docs/model.md.
+#include <vector>
+
+#include "detector/ssd_anchors.hpp"
+#include "tracker/box.hpp"
+
+namespace rtmot::detector {
+
+struct SsdPostprocessConfig {
+  float score_threshold{0.5F};
+  /// Boxes of one class overlapping a better one by more than this IoU are dropped. 0.6 is what the
+  /// model's training pipeline (ssdlite_mobilenet_v2_coco) uses.
+  float nms_iou{0.6F};
+  int max_detections{100};   // per class and in total, as the TF pipeline
+  std::vector<int> classes;  // class ids to report; empty = all
+};
+
+class SsdPostprocessor {
+ public:
+  /// `num_classes` counts the background column 0 (91 for COCO). Throws std::invalid_argument for
+  /// class ids outside 1..num_classes-1 or an empty anchor list.
+  SsdPostprocessor(std::vector<Anchor> anchors, int num_classes, SsdPostprocessConfig config);
+
+  /// `box_encodings`: num_anchors() x 4 (ty, tx, th, tw); `class_logits`: num_anchors() x
+  /// num_classes. Fills `out` (cleared first) with boxes in pixels of a `image_width` x
+  /// `image_height` image, clipped to it, best score first. Allocates nothing once `out` has grown
+  /// to its working size.
+  void run(const float* box_encodings, const float* class_logits, int image_width, int image_height,
+           std::vector<tracker::Detection>& out);
+
+  int num_anchors() const { return static_cast<int>(anchors_.size()); }
+  int num_classes() const { return num_classes_; }
+
+ private:
+  struct Candidate {
+    float score;
+    int class_id;
+    float x1, y1, x2, y2;  // pixels, not clipped (as the TF pipeline suppresses)
+  };
+
+  void collect(const float* box_encodings, const float* class_logits, int image_width,
+               int image_height);
+  void suppress_and_emit(int image_width, int image_height, std::vector<tracker::Detection>& out);
+
+  std::vector<Anchor> anchors_;
+  int num_classes_;
+  SsdPostprocessConfig config_;
+  std::vector<int> class_ids_;  // the classes to look at, ascending
+  float logit_threshold_;       // sigmoid is monotonic: compare logits, take exp() of few
+  std::vector<Candidate> candidates_;
+  std::vector<Candidate> kept_;
+};
+
+}  // namespace rtmot::detector

@@ -1,0 +1,162 @@
+// A missing, truncated or corrupt model (or anchors file) is an InputError with ExitCode::bad_model
+// that names the file; a backend or class that cannot be had is a usage error.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <fstream>
+#include <string>
+
+#include "common/input_error.hpp"
+#include "detector/ssd_detector.hpp"
+#include "shared_data.hpp"
+
+namespace rtmot::detector {
+namespace {
+
+const std::filesystem::path kModelName = "ssdlite_mobilenet_v2_coco.onnx";
+const std::filesystem::path kAnchorsName = "ssdlite_mobilenet_v2_coco.anchors.csv";
+
+class SsdModelErrors : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    real_model_ = test::source_path("models") / kModelName;
+    if (!std::filesystem::exists(real_model_)) {
+      FAIL() << "missing model " << real_model_ << ": run scripts/fetch_model.sh";
+    }
+    dir_ = std::filesystem::temp_directory_path() /
+           ("rtmot_detector_test_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    std::filesystem::create_directories(dir_);
+    std::filesystem::copy_file(default_anchors_path(real_model_), dir_ / kAnchorsName);
+  }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+
+  void write(const std::filesystem::path& path, const std::string& bytes) {
+    std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes;
+  }
+  std::string real_model_bytes() const {
+    std::ifstream in(real_model_, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  }
+  SsdConfig config_for(const std::filesystem::path& model) const {
+    SsdConfig config;
+    config.model_path = model;
+    config.backend = BackendRequest::cpu;
+    return config;
+  }
+  static void expect_model_error(const SsdConfig& config, const std::filesystem::path& named) {
+    try {
+      SsdDetector detector(config);
+      ADD_FAILURE() << "no error for " << named;
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.exit_code(), ExitCode::bad_model) << e.what();
+      EXPECT_EQ(e.file(), named.string()) << e.what();
+    }
+  }
+
+  std::filesystem::path real_model_;
+  std::filesystem::path dir_;
+};
+
+TEST_F(SsdModelErrors, MissingModelSaysHowToGetIt) {
+  const auto config = config_for(dir_ / kModelName);
+  try {
+    SsdDetector detector(config);
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.exit_code(), ExitCode::bad_model);
+    EXPECT_EQ(e.file(), config.model_path.string());
+    EXPECT_NE(std::string(e.what()).find("scripts/fetch_model.sh"), std::string::npos) << e.what();
+  }
+}
+
+TEST_F(SsdModelErrors, TruncatedModel) {
+  const std::string bytes = real_model_bytes();
+  write(dir_ / kModelName, bytes.substr(0, bytes.size() / 2));
+  expect_model_error(config_for(dir_ / kModelName), dir_ / kModelName);
+}
+
+TEST_F(SsdModelErrors, CorruptModel) {
+  write(dir_ / kModelName, std::string(4096, '\x7f') + "not a protobuf");
+  expect_model_error(config_for(dir_ / kModelName), dir_ / kModelName);
+}
+
+TEST_F(SsdModelErrors, MissingAnchors) {
+  std::filesystem::copy_file(real_model_, dir_ / kModelName);
+  std::filesystem::remove(dir_ / kAnchorsName);
+  expect_model_error(config_for(dir_ / kModelName), dir_ / kAnchorsName);
+}
+
+TEST_F(SsdModelErrors, MalformedAnchorsNameTheLine) {
+  std::filesystem::copy_file(real_model_, dir_ / kModelName);
+  write(dir_ / kAnchorsName, "# comment\n0.5,0.5,0.1,0.1\n0.5,zero,0.1,0.1\n");
+  try {
+    SsdDetector detector(config_for(dir_ / kModelName));
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.exit_code(), ExitCode::bad_model);
+    EXPECT_EQ(e.line(), 3);
+    EXPECT_EQ(e.field(), "xcenter");
+  }
+}
+
+TEST_F(SsdModelErrors, AnchorsThatDoNotFitTheModel) {
+  std::filesystem::copy_file(real_model_, dir_ / kModelName);
+  write(dir_ / kAnchorsName, "0.5,0.5,0.1,0.1\n0.2,0.2,0.1,0.1\n");
+  expect_model_error(config_for(dir_ / kModelName), dir_ / kModelName);
+}
+
+TEST_F(SsdModelErrors, ClassOutsideCocoIsAUsageError) {
+  std::filesystem::copy_file(real_model_, dir_ / kModelName);
+  auto config = config_for(dir_ / kModelName);
+  config.classes = {1, 91};
+  try {
+    SsdDetector detector(config);
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.exit_code(), ExitCode::usage);
+    EXPECT_EQ(e.field(), "classes");
+  }
+}
+
+TEST(DnnBackend, AutomaticPicksCudaOnlyWhenUsable) {
+  const BackendCapabilities none{};
+  EXPECT_EQ(choose_backend(BackendRequest::automatic, Fp16Request::automatic, none).name, "cpu");
+  const BackendCapabilities built_no_device{true, 0, false};
+  const auto cpu =
+      choose_backend(BackendRequest::automatic, Fp16Request::automatic, built_no_device);
+  EXPECT_EQ(cpu.name, "cpu");
+  EXPECT_NE(cpu.reason.find("no CUDA device"), std::string::npos) << cpu.reason;
+  const BackendCapabilities jetson{true, 1, true};
+  EXPECT_EQ(choose_backend(BackendRequest::automatic, Fp16Request::automatic, jetson).name,
+            "cuda-fp16");
+  EXPECT_EQ(choose_backend(BackendRequest::automatic, Fp16Request::off, jetson).name, "cuda");
+  EXPECT_EQ(choose_backend(BackendRequest::cpu, Fp16Request::automatic, jetson).name, "cpu");
+  const BackendCapabilities discrete{true, 1, false};
+  EXPECT_EQ(choose_backend(BackendRequest::automatic, Fp16Request::automatic, discrete).name,
+            "cuda");
+  EXPECT_EQ(choose_backend(BackendRequest::cuda, Fp16Request::on, discrete).name, "cuda-fp16");
+}
+
+TEST(DnnBackend, ForcingWhatCannotBeHadIsAClearError) {
+  const BackendCapabilities none{};
+  try {
+    choose_backend(BackendRequest::cuda, Fp16Request::automatic, none);
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.exit_code(), ExitCode::usage);
+    EXPECT_NE(std::string(e.what()).find("without the CUDA DNN backend"), std::string::npos);
+  }
+  EXPECT_THROW(choose_backend(BackendRequest::cpu, Fp16Request::on, none), InputError);
+}
+
+TEST(DnnBackend, ParsesConfigWords) {
+  EXPECT_EQ(parse_backend_request("cuda"), BackendRequest::cuda);
+  EXPECT_EQ(parse_backend_request("gpu"), std::nullopt);
+  EXPECT_EQ(parse_fp16_request("auto"), Fp16Request::automatic);
+  EXPECT_EQ(parse_fp16_request("false"), Fp16Request::off);
+  EXPECT_EQ(parse_fp16_request("maybe"), std::nullopt);
+}
+
+}  // namespace
+}  // namespace rtmot::detector
