@@ -104,6 +104,17 @@ if ((${#missing[@]} > 0)); then
   apt-get update -qq
   safe_apt_install "${missing[@]}"
 fi
+# Tests that start the rtmot binary themselves (tests/catalogue) exec an arm64 program from inside qemu;
+# the kernel hands that to qemu-aarch64 only through a binfmt_misc entry. Without the F flag, qemu is
+# found at exec time and takes the sysroot from QEMU_LD_PREFIX (scripts/cross_env.sh).
+binfmt=/proc/sys/fs/binfmt_misc
+[[ -e "$binfmt/register" ]] || mount -t binfmt_misc binfmt_misc "$binfmt" ||
+  die "cannot mount binfmt_misc: tests that run rtmot as a child process would fail"
+if [[ ! -e "$binfmt/qemu-aarch64" ]]; then
+  printf '%s' ':qemu-aarch64:M::\x7fELF\x02\x01\x01\x00\x00\x00\x00\x00\x00\x00\x00\x00\x02\x00\xb7\x00:\xff\xff\xff\xff\xff\xff\xff\x00\xff\xff\xff\xff\xff\xff\xff\xff\xfe\xff\xff\xff:/usr/bin/qemu-aarch64:' \
+    >"$binfmt/register"
+  echo "registered qemu-aarch64 with binfmt_misc"
+fi
 # The native build (phase 7 compares against it) and the model fetch need the project's own packages.
 # Not fatal: a host whose npm comes from another node package makes it fail although everything is
 # there; a phase that really lacks a package fails below and says so.
