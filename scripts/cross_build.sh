@@ -141,6 +141,9 @@ else
   include="$(IFS=,; echo "${sysroot_packages[*]}")"
   mmdebstrap --quiet --variant=extract --architectures=arm64 --include="$include" \
     "$suite" "$RTMOT_SYSROOT.tmp" "${sources[@]}"
+  # qemu -L looks every absolute path up in the sysroot first: an empty /tmp or device nodes there would
+  # shadow the host's.
+  rm -rf "$RTMOT_SYSROOT.tmp"/{dev,tmp,proc,sys,run}
   bash "$root/scripts/cross_fix_sysroot_links.sh" "$RTMOT_SYSROOT.tmp"
   # The extract variant runs no maintainer scripts, so update-alternatives never made the links through
   # which OpenCV and libav find BLAS and LAPACK: make them as the reference implementations' postinst would.

@@ -5,9 +5,8 @@
 #      sudo apt-get install libopencv-dev libeigen3-dev libgstreamer1.0-dev \
 #        libgstreamer-plugins-base1.0-dev libspdlog-dev libcli11-dev libyaml-cpp-dev nlohmann-json3-dev
 #    (JetPack's OpenCV is nvidia-opencv-dev / libopencv-dev from the L4T repository; either works.)
-# 2. Copy its root to the host (symlinks kept; absolute symlinks are fixed up by cmake/../scripts
-#    cross_fix_sysroot_links.sh):
-#      rsync -aHz --delete --info=progress2 jetson:/usr jetson:/lib jetson:/etc/alternatives \
+# 2. Copy its root to the host, then make its absolute symlinks relative so they point into the copy:
+#      rsync -aHzR --delete --info=progress2 jetson:/usr jetson:/lib jetson:/etc/alternatives \
 #        jetson:/opt/nvidia "$HOME/jetson-sysroot/"   # /opt/nvidia only if you link VPI/TensorRT
 #      scripts/cross_fix_sysroot_links.sh "$HOME/jetson-sysroot"
 # 3. Configure with a host cross compiler no newer in glibc/libstdc++ than the board's (Ubuntu 22.04's
