@@ -1,0 +1,86 @@
+#include "pipeline/pipeline_report.hpp"
+
+#include <fmt/format.h>
+
+#include <fstream>
+
+#include "common/input_error.hpp"
+
+namespace rtmot::pipeline {
+namespace {
+
+void record_between(LatencyHistogram& histogram, std::int64_t from_ns, std::int64_t to_ns) {
+  if (from_ns != 0 && to_ns != 0) histogram.record(to_ns - from_ns);
+}
+
+double to_ms(double nanoseconds) {
+  return nanoseconds / 1e6;
+}
+
+nlohmann::json to_json(const LatencyHistogram& histogram) {
+  return {{"count", histogram.count()},
+          {"mean_ms", to_ms(histogram.mean_ns())},
+          {"p50_ms", to_ms(static_cast<double>(histogram.quantile_ns(0.50)))},
+          {"p95_ms", to_ms(static_cast<double>(histogram.quantile_ns(0.95)))},
+          {"p99_ms", to_ms(static_cast<double>(histogram.quantile_ns(0.99)))},
+          {"max_ms", to_ms(static_cast<double>(histogram.max_ns()))}};
+}
+
+}  // namespace
+
+void StageLatencies::record(const FrameTimes& times) {
+  record_between(queued, times.captured_ns, times.detect_start_ns);
+  record_between(detect, times.detect_start_ns, times.detected_ns);
+  record_between(track, times.detected_ns, times.tracked_ns);
+  record_between(send, times.tracked_ns, times.sent_ns);
+  record_between(end_to_end, times.captured_ns, times.sent_ns);
+}
+
+void StageLatencies::clear() {
+  queued.clear();
+  detect.clear();
+  track.clear();
+  send.clear();
+  end_to_end.clear();
+}
+
+nlohmann::json to_json(const PipelineReport& report) {
+  return {{"source", report.source},
+          {"detector", report.detector},
+          {"playback", report.playback},
+          {"frames",
+           {{"captured", report.frames_captured},
+            {"processed", report.frames_processed},
+            {"dropped", report.frames_dropped},
+            {"lost_by_source", report.frames_lost}}},
+          {"wall_seconds", report.wall_seconds},
+          {"fps", report.fps},
+          {"detector_fps", report.detector_fps},
+          {"latency",
+           {{"queued", to_json(report.latency.queued)},
+            {"detect", to_json(report.latency.detect)},
+            {"track", to_json(report.latency.track)},
+            {"send", to_json(report.latency.send)},
+            {"end_to_end", to_json(report.latency.end_to_end)}}}};
+}
+
+std::string summary_line(const PipelineReport& report) {
+  const auto& e2e = report.latency.end_to_end;
+  return fmt::format(
+      "frames captured {} processed {} dropped {} lost {} | {:.2f} fps (detector {:.2f} fps) "
+      "over {:.2f} s | capture->sent ms p50 {:.1f} p95 {:.1f} p99 {:.1f} max {:.1f}",
+      report.frames_captured, report.frames_processed, report.frames_dropped, report.frames_lost,
+      report.fps, report.detector_fps, report.wall_seconds,
+      to_ms(static_cast<double>(e2e.quantile_ns(0.5))),
+      to_ms(static_cast<double>(e2e.quantile_ns(0.95))),
+      to_ms(static_cast<double>(e2e.quantile_ns(0.99))), to_ms(static_cast<double>(e2e.max_ns())));
+}
+
+void write_report(const PipelineReport& report, const std::string& path) {
+  std::ofstream file(path);
+  if (!file) throw InputError(path, 0, "output.report", "cannot open the report file for writing");
+  file << to_json(report).dump(2) << '\n';
+  if (!file.flush()) throw InputError(path, 0, "output.report", "cannot write the report file");
+}
+
+}  // namespace rtmot::pipeline

@@ -1,0 +1,160 @@
+// The run configuration: every shipped config loads, and every kind of mistake names file, line
+// and field.
+#include "pipeline/run_config.hpp"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "common/input_error.hpp"
+#include "shared_data.hpp"
+
+namespace rtmot::pipeline {
+namespace {
+
+const char* const full = R"(source:
+  uri: data/vtest.avi
+  width: 640
+  height: 480
+  fps: 10
+playback:
+  mode: simulated
+  latency_ms: 250
+detector:
+  kind: ssd
+  model: models/ssdlite_mobilenet_v2_coco.onnx
+  backend: cpu
+  fp16: false
+  score_threshold: 0.4
+  nms_threshold: 0.5
+  classes: [1, 3]
+tracker:
+  preset: sort
+  max_age: 3
+  affinity: linear
+output:
+  udp: 127.0.0.1:5600
+  jsonl_file: out.jsonl
+  report_file: report.json
+stats_interval_s: 2
+stream_id: 7
+max_frames: 100
+)";
+
+TEST(RunConfig, ReadsEverySection) {
+  const RunConfig config = parse_run_config(full, "full.yaml");
+  EXPECT_EQ(config.source.uri, "data/vtest.avi");
+  EXPECT_EQ(config.source.width, 640);
+  EXPECT_DOUBLE_EQ(config.source.fps, 10.0);
+  EXPECT_EQ(config.playback.mode, PlaybackMode::simulated);
+  EXPECT_DOUBLE_EQ(config.playback.latency_ms, 250.0);
+  EXPECT_EQ(config.detector.backend, "cpu");
+  EXPECT_EQ(config.detector.fp16, "false");
+  EXPECT_FLOAT_EQ(config.detector.score_threshold, 0.4F);
+  EXPECT_EQ(config.detector.classes, (std::vector<int>{1, 3}));
+  EXPECT_EQ(config.tracker.max_age, 3);
+  EXPECT_EQ(config.tracker.min_hits, 3);
+  EXPECT_EQ(config.tracker.affinity, tracker::AffinityKind::linear);
+  EXPECT_DOUBLE_EQ(config.tracker.affinity_threshold,
+                   tracker::default_threshold(tracker::AffinityKind::linear));
+  EXPECT_DOUBLE_EQ(config.tracker.frame_rate, 0.0) << "unset: taken from the source";
+  EXPECT_EQ(config.output.udp, "127.0.0.1:5600");
+  EXPECT_EQ(config.output.report_file, "report.json");
+  EXPECT_DOUBLE_EQ(config.stats_interval_s, 2.0);
+  EXPECT_EQ(config.stream_id, 7U);
+  EXPECT_EQ(config.max_frames, 100);
+}
+
+TEST(RunConfig, EveryShippedConfigLoadsAndValidates) {
+  const auto folder = test::source_path("configs");
+  int count = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(folder)) {
+    if (entry.path().extension() != ".yaml") continue;
+    SCOPED_TRACE(entry.path().string());
+    const RunConfig config = load_run_config(entry.path().string());
+    EXPECT_NO_THROW(validate(config));
+    ++count;
+  }
+  EXPECT_GE(count, 5) << "desktop, jetson-csi, jetson-usb, tx1-replay, mot";
+}
+
+// Parses `yaml` expecting an InputError at `line` naming `field`.
+void expect_error(const std::string& yaml, int line, const std::string& field) {
+  try {
+    parse_run_config(yaml, "bad.yaml");
+    FAIL() << "accepted:\n" << yaml;
+  } catch (const InputError& error) {
+    EXPECT_EQ(error.file(), "bad.yaml");
+    EXPECT_EQ(error.line(), line) << error.what();
+    EXPECT_EQ(error.field(), field) << error.what();
+    EXPECT_EQ(error.exit_code(), ExitCode::bad_input);
+  }
+}
+
+TEST(RunConfig, UnknownKeysAreRejectedWithTheirLine) {
+  expect_error("source:\n  uri: a.avi\n  fsp: 10\n", 3, "source.fsp");
+  expect_error("source:\n  uri: a.avi\nsauce: 1\n", 3, "sauce");
+  expect_error("tracker:\n  max_age: 2\n  maxage: 3\n", 3, "tracker.maxage");
+}
+
+TEST(RunConfig, WrongTypesNameLineAndField) {
+  expect_error("source:\n  uri: a.avi\n  width: wide\n", 3, "source.width");
+  expect_error("detector:\n  fp16: maybe\n", 2, "detector.fp16");
+  expect_error("detector:\n  threads: [2]\n", 2, "detector.threads");
+  expect_error("detector:\n  classes: 1\n", 2, "detector.classes");
+  expect_error("detector:\n  classes: [1, person]\n", 2, "detector.classes");
+  expect_error("source: [1, 2]\n", 1, "source");
+  expect_error("stats_interval_s:\n", 1, "stats_interval_s");
+}
+
+TEST(RunConfig, BadValuesNameLineAndField) {
+  expect_error("playback:\n  mode: fast\n", 2, "playback.mode");
+  expect_error("playback:\n  latency_ms: 0\n", 2, "playback.latency_ms");
+  expect_error("\n\ndetector:\n  backend: tpu\n", 4, "detector.backend");
+  expect_error("detector:\n  score_threshold: 1.5\n", 2, "detector.score_threshold");
+  expect_error("tracker:\n  predictor: magic\n", 2, "tracker.predictor");
+  expect_error("tracker:\n  preset: deepsort\n", 2, "tracker.preset");
+  expect_error("tracker:\n  min_hits: -1\n", 2, "tracker.min_hits");
+  expect_error("max_frames: -5\n", 1, "max_frames");
+}
+
+TEST(RunConfig, MalformedYamlNamesTheLine) {
+  expect_error("source:\n  uri: [a.avi\n", 3, "");
+}
+
+TEST(RunConfig, ValidateNamesWhatIsMissing) {
+  RunConfig config = parse_run_config("detector:\n  kind: replay\n", "x.yaml");
+  try {
+    validate(config);
+    FAIL();
+  } catch (const InputError& error) {
+    EXPECT_EQ(error.field(), "source.uri");
+  }
+  config.source.uri = "mot-seq://x";
+  try {
+    validate(config);
+    FAIL();
+  } catch (const InputError& error) {
+    EXPECT_EQ(error.field(), "detector.det_file");
+  }
+}
+
+TEST(RunConfig, MissingFileNamesIt) {
+  try {
+    load_run_config("/nonexistent/run.yaml");
+    FAIL();
+  } catch (const InputError& error) {
+    EXPECT_EQ(error.file(), "/nonexistent/run.yaml");
+  }
+}
+
+TEST(RunConfig, PlaybackModesRoundTrip) {
+  for (const auto mode :
+       {PlaybackMode::every_frame, PlaybackMode::realtime, PlaybackMode::simulated}) {
+    EXPECT_EQ(parse_playback_mode(to_string(mode)), mode);
+  }
+  EXPECT_EQ(parse_playback_mode("every_frame"), std::nullopt);
+}
+
+}  // namespace
+}  // namespace rtmot::pipeline
