@@ -115,9 +115,10 @@ void SsdDetector::detect(const cv::Mat& bgr_image, std::int64_t /*frame_number*/
   }
   preprocess(bgr_image);
   net_.setInput(blob_);
-  // What OpenCV still allocates per frame: forward() hands back headers on the network's own output
-  // blobs (refcounts, no pixel data) and allocates small per-call bookkeeping (layer id vectors,
-  // the output pin lists); setInput() keeps our blob by reference. No image-sized buffers.
+  // What OpenCV still allocates per frame (measured, OpenCV 4.6, CPU, 1 thread): forward() makes
+  // about 1000 small heap allocations (per-layer bookkeeping: Mat vectors, scratch of at most
+  // 64 KB) and returns headers on the network's own output blobs; cv::resize two interpolation
+  // tables (14 KB). No buffer the size of an image or blob: those above are reused.
   net_.forward(outputs_, output_names_);
   postprocess_.run(outputs_[0].ptr<float>(), outputs_[1].ptr<float>(), bgr_image.cols,
                    bgr_image.rows, out);
