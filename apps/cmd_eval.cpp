@@ -1,0 +1,63 @@
+// `rtmot eval`: scores MOTChallenge result files against ground truth with the devkit's rules and
+// prints its table (plus HOTA), per sequence and OVERALL.
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <memory>
+#include <string>
+
+#include "apps/subcommand.hpp"
+#include "common/exit_codes.hpp"
+#include "mot/evaluation.hpp"
+#include "mot/metrics_report.hpp"
+
+namespace rtmot::app {
+namespace {
+
+struct EvalOptions {
+  std::string gt_dir;
+  std::string results_dir;
+  int interval{1};
+  std::string csv_path;
+  std::string json_path;
+};
+
+int run_eval(const EvalOptions& options) {
+  const mot::EvaluationReport report =
+      mot::evaluate(options.gt_dir, options.results_dir, options.interval);
+  fmt::print("{}", mot::format_table(report));
+  std::fflush(stdout);
+  if (!options.csv_path.empty()) {
+    mot::write_text_file(options.csv_path, mot::format_csv(report));
+    spdlog::info("wrote {}", options.csv_path);
+  }
+  if (!options.json_path.empty()) {
+    mot::write_text_file(options.json_path, mot::format_json(report));
+    spdlog::info("wrote {}", options.json_path);
+  }
+  return to_int(ExitCode::ok);
+}
+
+}  // namespace
+
+Subcommand add_eval_command(CLI::App& parent) {
+  auto options = std::make_shared<EvalOptions>();
+  CLI::App* cli = parent.add_subcommand(
+      "eval",
+      "Score MOTChallenge results against ground truth exactly as the official devkit (CLEAR MOT, "
+      "identity metrics) plus HOTA; prints one line per sequence and OVERALL");
+  cli->add_option("--gt", options->gt_dir,
+                  "a sequence folder (seqinfo.ini + gt/gt.txt) or a folder of them")
+      ->required();
+  cli->add_option("--results", options->results_dir, "folder holding <sequence>.txt per sequence")
+      ->required();
+  cli->add_option("--interval", options->interval,
+                  "score only frames 1, 1+N, 1+2N, ... (as `rtmot track --interval N`)")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cli->add_option("--csv", options->csv_path, "also write the table as CSV to this file");
+  cli->add_option("--json", options->json_path, "also write full-precision results as JSON");
+  return {cli, [options] { return run_eval(*options); }};
+}
+
+}  // namespace rtmot::app

@@ -1,0 +1,166 @@
+// `rtmot track`: runs the tracker over MOTChallenge sequences' detections and writes one results
+// file per sequence; reports the tracker's own speed (time inside Tracker::update only).
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "apps/subcommand.hpp"
+#include "common/exit_codes.hpp"
+#include "common/input_error.hpp"
+#include "mot/evaluation.hpp"
+#include "mot/results_writer.hpp"
+#include "mot/track_runner.hpp"
+#include "mot/tracker_presets.hpp"
+#include "tracker/tracker_config.hpp"
+
+namespace rtmot::app {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr double kProgressEverySeconds = 3.0;
+
+struct TrackCommandOptions {
+  std::string dataset;
+  std::string out_dir;
+  std::string preset{"sort"};
+  std::string predictor;
+  std::string affinity;
+  std::string time_step;
+  double threshold{0.0};
+  float detection_threshold{0.0F};
+  int max_age{0};
+  int min_hits{0};
+  int interval{1};
+  std::string detections{"det/det.txt"};
+  // Which of the optional overrides were given.
+  const CLI::Option* threshold_option{nullptr};
+  const CLI::Option* detection_threshold_option{nullptr};
+  const CLI::Option* max_age_option{nullptr};
+  const CLI::Option* min_hits_option{nullptr};
+};
+
+template <typename Value>
+Value parsed(const std::optional<Value>& value, const char* option, const std::string& text) {
+  if (!value) throw InputError("", 0, option, "unknown value '" + text + "'", ExitCode::usage);
+  return *value;
+}
+
+// The preset first, then every option given on the command line.
+tracker::TrackerConfig make_config(const TrackCommandOptions& options) {
+  const auto preset = mot::find_preset(options.preset);
+  if (!preset) {
+    throw InputError("", 0, "--preset",
+                     "unknown preset '" + options.preset + "' (known: " + mot::preset_names() + ")",
+                     ExitCode::usage);
+  }
+  tracker::TrackerConfig config = *preset;
+  if (!options.predictor.empty()) {
+    config.predictor =
+        parsed(tracker::parse_predictor(options.predictor), "--predictor", options.predictor);
+  }
+  if (!options.affinity.empty()) {
+    config.affinity =
+        parsed(tracker::parse_affinity(options.affinity), "--affinity", options.affinity);
+    config.affinity_threshold = tracker::default_threshold(config.affinity);
+  }
+  if (!options.time_step.empty()) {
+    config.time_step =
+        parsed(tracker::parse_time_step(options.time_step), "--time-step", options.time_step);
+  }
+  if (options.threshold_option->count() > 0) config.affinity_threshold = options.threshold;
+  if (options.detection_threshold_option->count() > 0) {
+    config.detection_threshold = options.detection_threshold;
+  }
+  if (options.max_age_option->count() > 0) config.max_age = options.max_age;
+  if (options.min_hits_option->count() > 0) config.min_hits = options.min_hits;
+  return config;
+}
+
+double hz(int frames, double seconds) {
+  return seconds > 0.0 ? frames / seconds : 0.0;
+}
+
+int run_track(const TrackCommandOptions& options) {
+  mot::TrackOptions track_options;
+  track_options.config = make_config(options);
+  track_options.detections = options.detections;
+  track_options.interval = options.interval;
+  const auto sequences = mot::find_sequence_dirs(options.dataset);
+  std::error_code error;
+  fs::create_directories(options.out_dir, error);
+  if (error) throw InputError(options.out_dir, 0, "--out", "cannot create: " + error.message());
+
+  int total_frames = 0;
+  double total_seconds = 0.0;
+  for (const auto& dir : sequences) {
+    using Clock = std::chrono::steady_clock;
+    auto next_report = Clock::now() + std::chrono::duration<double>(kProgressEverySeconds);
+    const auto progress = [&](int frame, int length) {
+      if (Clock::now() < next_report) return;
+      next_report = Clock::now() + std::chrono::duration<double>(kProgressEverySeconds);
+      spdlog::info("{}: frame {} of {}", dir.filename().string(), frame, length);
+    };
+    const mot::TrackRun run = mot::track_sequence(dir, track_options, progress);
+    const fs::path out_file = fs::path(options.out_dir) / (run.info.name + ".txt");
+    mot::write_results(out_file, run.tracks);
+    fmt::print("{:<16} {:>6} frames {:>7} boxes  tracker {:>9.0f} Hz  -> {}\n", run.info.name,
+               run.frames_processed, run.tracks.size(),
+               hz(run.frames_processed, run.seconds_in_update), out_file.string());
+    std::fflush(stdout);
+    total_frames += run.frames_processed;
+    total_seconds += run.seconds_in_update;
+  }
+  fmt::print("{:<16} {:>6} frames  tracker {:.0f} Hz (time inside Tracker::update only)\n",
+             "OVERALL", total_frames, hz(total_frames, total_seconds));
+  return to_int(ExitCode::ok);
+}
+
+}  // namespace
+
+Subcommand add_track_command(CLI::App& parent) {
+  auto options = std::make_shared<TrackCommandOptions>();
+  CLI::App* cli = parent.add_subcommand(
+      "track",
+      "Run the tracker on MOTChallenge sequences' detections; writes OUT/<sequence>.txt in the "
+      "MOTChallenge results format");
+  cli->add_option("--dataset", options->dataset,
+                  "a sequence folder (with seqinfo.ini) or a folder of them")
+      ->required();
+  cli->add_option("--out", options->out_dir, "folder for the results files")->required();
+  cli->add_option("--preset", options->preset,
+                  "starting configuration (" + mot::preset_names() + "); options below override it")
+      ->capture_default_str();
+  cli->add_option("--predictor", options->predictor, "kalman, stationary or particle")
+      ->check(CLI::IsMember({"kalman", "stationary", "particle"}));
+  cli->add_option("--affinity", options->affinity,
+                  "iou, linear or exponential (sets its usual --threshold)")
+      ->check(CLI::IsMember({"iou", "linear", "exponential"}));
+  options->threshold_option =
+      cli->add_option("--threshold", options->threshold, "minimum affinity for a match");
+  options->detection_threshold_option = cli->add_option(
+      "--detection-threshold", options->detection_threshold, "drop detections scoring below this");
+  options->max_age_option =
+      cli->add_option("--max-age", options->max_age, "frames a track survives without a match")
+          ->check(CLI::NonNegativeNumber);
+  options->min_hits_option =
+      cli->add_option("--min-hits", options->min_hits, "matches before a track is reported")
+          ->check(CLI::NonNegativeNumber);
+  cli->add_option("--time-step", options->time_step, "per-update or elapsed")
+      ->check(CLI::IsMember({"per-update", "elapsed"}));
+  cli->add_option("--interval", options->interval,
+                  "process frames 1, 1+N, 1+2N, ... only (frame numbers and times kept)")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cli->add_option("--det", options->detections,
+                  "detections file relative to each sequence folder (gt/gt.txt = perfect detector)")
+      ->capture_default_str();
+  return {cli, [options] { return run_track(*options); }};
+}
+
+}  // namespace rtmot::app
