@@ -5,9 +5,8 @@
 #include <stdexcept>
 #include <utility>
 
-#include "tracker/affinity.hpp"
+#include "tracker/association.hpp"
 #include "tracker/box_geometry.hpp"
-#include "tracker/linear_assignment.hpp"
 #include "tracker/predictor.hpp"
 
 namespace rtmot::tracker {
@@ -30,14 +29,14 @@ struct Track {
   bool matched{false};
 };
 
-constexpr std::size_t kTypicalSceneSize = 64;
+constexpr int kTypicalSceneSize = 64;
 
 struct Match {
   int detection;
   int track;  // position in the live order
 };
 
-void validate(const TrackerConfig& config) {
+const TrackerConfig& validated(const TrackerConfig& config) {
   if (config.max_tracks < 1 || config.max_detections < 1)
     throw std::invalid_argument("tracker: max_tracks and max_detections must be >= 1");
   if (config.predictor == PredictorKind::particle && config.particle_count < 1)
@@ -48,6 +47,7 @@ void validate(const TrackerConfig& config) {
     throw std::invalid_argument("tracker: frame_rate must be > 0 with elapsed time steps");
   if (!std::isfinite(config.affinity_threshold))
     throw std::invalid_argument("tracker: affinity_threshold must be finite");
+  return config;
 }
 
 bool usable(const Detection& detection) {
@@ -58,8 +58,11 @@ bool usable(const Detection& detection) {
 }  // namespace
 
 struct Tracker::State {
-  explicit State(const TrackerConfig& c) : config(c) {
-    validate(config);
+  explicit State(const TrackerConfig& c)
+      : config(validated(c)),
+        // MOT15 peaks at 16 detections a frame: a 64 x 64 workspace rarely has to grow.
+        associator(std::min(c.max_detections, kTypicalSceneSize),
+                   std::min(c.max_tracks, kTypicalSceneSize)) {
     const auto tracks = static_cast<std::size_t>(config.max_tracks);
     const auto detections = static_cast<std::size_t>(config.max_detections);
     slots.resize(tracks);
@@ -75,15 +78,8 @@ struct Tracker::State {
     detection_matched.reserve(detections);
     track_matched.reserve(tracks);
     unmatched_tracks.reserve(tracks);
-    row_hits.reserve(detections);
-    col_hits.reserve(tracks);
-    // The association matrix grows on demand; start it at a size that covers crowded scenes
-    // (MOT15 peaks at 16 detections a frame) so that it rarely grows at all.
-    const auto typical_rows = std::min(detections, kTypicalSceneSize);
-    const auto typical_cols = std::min(tracks, kTypicalSceneSize);
-    affinities.reserve(typical_rows * typical_cols);
-    costs.reserve(typical_rows * typical_cols);
-    assignment.reserve(static_cast<int>(typical_rows), static_cast<int>(typical_cols));
+    candidates.reserve(tracks);
+    round_matches.reserve(std::min(tracks, detections));
     restart();
   }
 
@@ -138,55 +134,19 @@ struct Tracker::State {
     order.resize(kept);
   }
 
-  // Associates detections (rows) with the tracks at live positions `columns`, appending matches.
-  // As sort.py: when every detection and track has at most one candidate above the threshold the
-  // candidates are taken directly, otherwise the optimal assignment decides; either way only pairs
-  // reaching the threshold are kept.
-  void associate(const std::vector<Detection>& detections, const std::vector<int>& columns) {
-    const int rows = static_cast<int>(detections.size());
-    const int cols = static_cast<int>(columns.size());
-    if (rows == 0 || cols == 0) return;
-    const double threshold = config.affinity_threshold;
-    affinities.resize(static_cast<std::size_t>(rows) * cols);
-    row_hits.assign(rows, 0);
-    col_hits.assign(cols, 0);
-    int candidates = 0;
-    for (int r = 0; r < rows; ++r) {
-      for (int c = 0; c < cols; ++c) {
-        const Track& track = slots[order[columns[c]]];
-        const double value =
-            affinity(config, track.predicted, detections[r].box, track.frames_since_update);
-        affinities[static_cast<std::size_t>(r) * cols + c] = value;
-        if (value > threshold) {
-          ++row_hits[r];
-          ++col_hits[c];
-          ++candidates;
-        }
-      }
+  // Runs one association round of `detections` against the live tracks at `positions`, and
+  // appends the matches with live positions.
+  void associate_round(const std::vector<Detection>& detections,
+                       const std::vector<int>& positions) {
+    candidates.clear();
+    for (const int position : positions) {
+      const Track& track = slots[order[position]];
+      candidates.push_back(AssociationCandidate{track.predicted, track.frames_since_update});
     }
-    const bool unique = candidates > 0 &&
-                        *std::max_element(row_hits.begin(), row_hits.end()) == 1 &&
-                        *std::max_element(col_hits.begin(), col_hits.end()) == 1;
-    if (unique) {
-      for (int r = 0; r < rows; ++r) {
-        for (int c = 0; c < cols; ++c) {
-          if (affinities[static_cast<std::size_t>(r) * cols + c] > threshold)
-            matches.push_back(Match{r, columns[c]});
-        }
-      }
-      return;
-    }
-    const double best = *std::max_element(affinities.begin(), affinities.end());
-    if (!(best >= threshold)) return;  // nothing could pass the gate
-    costs.resize(affinities.size());
-    std::transform(affinities.begin(), affinities.end(), costs.begin(),
-                   [](double value) { return -value; });
-    const std::vector<int>& assigned = assignment.solve(costs.data(), rows, cols);
-    for (int r = 0; r < rows; ++r) {
-      const int c = assigned[r];
-      if (c >= 0 && affinities[static_cast<std::size_t>(r) * cols + c] >= threshold)
-        matches.push_back(Match{r, columns[c]});
-    }
+    round_matches.clear();
+    associator.associate(config, detections, candidates, round_matches);
+    for (const AssociationMatch& m : round_matches)
+      matches.push_back(Match{m.detection, positions[m.candidate]});
   }
 
   void apply(const Match& match, const Detection& detection) {
@@ -270,7 +230,7 @@ struct Tracker::State {
     matches.clear();
     unmatched_tracks.clear();
     for (int t = 0; t < static_cast<int>(order.size()); ++t) unmatched_tracks.push_back(t);
-    associate(high, unmatched_tracks);
+    associate_round(high, unmatched_tracks);
     detection_matched.assign(high.size(), 0);
     track_matched.assign(order.size(), 0);
     for (const Match& match : matches) {
@@ -286,7 +246,7 @@ struct Tracker::State {
         if (!track_matched[t]) unmatched_tracks.push_back(t);
       }
       matches.clear();
-      associate(low, unmatched_tracks);
+      associate_round(low, unmatched_tracks);
       for (const Match& match : matches) apply(match, low[match.detection]);
     }
 
@@ -324,16 +284,14 @@ struct Tracker::State {
   std::vector<Particle> particles;
   std::vector<Detection> high;
   std::vector<Detection> low;
-  std::vector<double> affinities;
-  std::vector<double> costs;
-  std::vector<int> row_hits;
-  std::vector<int> col_hits;
+  std::vector<AssociationCandidate> candidates;
+  std::vector<AssociationMatch> round_matches;
   std::vector<Match> matches;
   std::vector<char> detection_matched;
   std::vector<char> track_matched;
   std::vector<int> unmatched_tracks;
   std::vector<TrackReport> reports;
-  LinearAssignment assignment;
+  Associator associator;
   std::int32_t next_id{1};
   int frame_count{0};
   double previous_time{0.0};

@@ -1,0 +1,43 @@
+#pragma once
+// One association round: detections against candidate tracks, as sort.py's
+// associate_detections_to_trackers, for any affinity.
+#include <vector>
+
+#include "tracker/box.hpp"
+#include "tracker/linear_assignment.hpp"
+#include "tracker/tracker_config.hpp"
+
+namespace rtmot::tracker {
+
+/// What association needs to know of a track.
+struct AssociationCandidate {
+  Box predicted;
+  double frames_unmatched{1.0};  // nominal frames since its last match (widens the gate)
+};
+
+struct AssociationMatch {
+  int detection;  // index into the detections
+  int candidate;  // index into the candidates
+};
+
+class Associator {
+ public:
+  /// Reserves a workspace for up to rows x cols matrices; larger ones grow it once.
+  Associator(int rows, int cols);
+
+  /// Appends to `matches` the pairs whose affinity reaches config.affinity_threshold. When every
+  /// detection and every candidate has at most one partner above the threshold, those pairs are
+  /// taken directly (sort.py's shortcut); otherwise the optimal assignment decides.
+  void associate(const TrackerConfig& config, const std::vector<Detection>& detections,
+                 const std::vector<AssociationCandidate>& candidates,
+                 std::vector<AssociationMatch>& matches);
+
+ private:
+  std::vector<double> affinities_;
+  std::vector<double> costs_;
+  std::vector<int> row_hits_;
+  std::vector<int> col_hits_;
+  LinearAssignment assignment_;
+};
+
+}  // namespace rtmot::tracker
