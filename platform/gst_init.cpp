@@ -17,7 +17,8 @@ void ensure_initialized() {
     // GStreamer itself honours GST_REGISTRY (where the plugin cache lives) and
     // GST_REGISTRY_UPDATE=no (trust the cache, skip the rescan). Under qemu the first scan can take
     // over 10 minutes, so cross-test setups pre-build the cache and set both; we only report them.
-    for (const char* name : {"GST_REGISTRY", "GST_REGISTRY_UPDATE", "GST_PLUGIN_PATH"}) {
+    for (const char* name : {"GST_REGISTRY", "GST_REGISTRY_UPDATE", "GST_REGISTRY_FORK",
+                             "GST_PLUGIN_SYSTEM_PATH", "GST_PLUGIN_PATH"}) {
       if (const char* value = std::getenv(name)) spdlog::debug("gstreamer: {}={}", name, value);
     }
     GError* raw_error = nullptr;

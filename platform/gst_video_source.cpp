@@ -111,7 +111,10 @@ void GstVideoSource::open() {
     }
     first_sample_.reset(
         gst_app_sink_try_pull_sample(sink_.get(), std::min(left_ms, poll_slice_ms) * ns_per_ms));
-    if (first_sample_) break;
+    if (first_sample_) {
+      first_capture_ns_ = steady_now_ns();
+      break;
+    }
     drain_bus();
     if (bus_error_) fail_open(last_error_);
     if (gst_app_sink_is_eos(sink_.get())) fail_open("the stream ended before its first frame");
@@ -134,7 +137,10 @@ void GstVideoSource::drain_bus() {
     switch (GST_MESSAGE_TYPE(message.get())) {
       case GST_MESSAGE_ERROR:
         // The first error is the cause; later ones are usually its consequences.
-        if (!bus_error_) last_error_ = describe_error(message.get());
+        if (!bus_error_) {
+          last_error_ = describe_error(message.get());
+          if (!missing_plugin_.empty()) last_error_ += " (" + missing_plugin_ + ")";
+        }
         bus_error_ = true;
         break;
       case GST_MESSAGE_WARNING: {
@@ -144,6 +150,16 @@ void GstVideoSource::drain_bus() {
         spdlog::warn("{}: {}", uri_.text, warning ? warning->message : "GStreamer warning");
         break;
       }
+      case GST_MESSAGE_ELEMENT:
+        // decodebin announces what it lacks before failing with a generic "missing a plug-in".
+        if (gst_message_has_name(message.get(), "missing-plugin")) {
+          const GstStructure* details = gst_message_get_structure(message.get());
+          // "name" is a description such as "Microsoft MPEG-4 4.3 decoder".
+          const char* name = gst_structure_get_string(details, "name");
+          missing_plugin_ = std::string("GStreamer lacks: ") + (name ? name : "a plugin") +
+                            missing_element_hint(uri_.kind);
+        }
+        break;
       default:
         break;  // state changes, stream status, QoS: nothing to act on
     }
@@ -164,8 +180,22 @@ gst::SamplePtr GstVideoSource::pull_sample(std::int64_t timeout_ms) {
 
 ReadStatus GstVideoSource::read(cv::Mat& bgr, FrameInfo& info) {
   drain_bus();
-  gst::SamplePtr sample =
-      first_sample_ ? std::move(first_sample_) : pull_sample(options_.read_timeout_ms);
+  gst::SamplePtr sample;
+  std::int64_t capture_ns = 0;
+  if (first_sample_ && info_.live) {
+    // The first frame was pulled while opening; a camera may have a newer one by now.
+    if (GstSample* newer = gst_app_sink_try_pull_sample(sink_.get(), 0)) {
+      first_sample_.reset(newer);
+      first_capture_ns_ = steady_now_ns();
+    }
+  }
+  if (first_sample_) {
+    sample = std::move(first_sample_);
+    capture_ns = first_capture_ns_;
+  } else {
+    sample = pull_sample(options_.read_timeout_ms);
+    capture_ns = steady_now_ns();
+  }
   if (!sample) {
     drain_bus();
     if (bus_error_) return ReadStatus::error;
@@ -173,7 +203,6 @@ ReadStatus GstVideoSource::read(cv::Mat& bgr, FrameInfo& info) {
     last_error_ = "no frame for " + std::to_string(options_.read_timeout_ms) + " ms";
     return ReadStatus::error;
   }
-  const std::int64_t capture_ns = steady_now_ns();
 
   if (!adopt_caps(gst_sample_get_caps(sample.get()))) {
     last_error_ = "a frame arrived with unusable caps";

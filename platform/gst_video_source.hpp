@@ -43,12 +43,14 @@ class GstVideoSource final : public VideoSource {
   SourceInfo info_;
   std::string last_error_;
   bool bus_error_{false};
+  std::string missing_plugin_;  // what decodebin said it lacks, to explain its error
 
   std::unique_ptr<StallInjector> stalls_;  // declared first: must outlive the pipeline's threads
   gst::ObjectPtr<GstElement> pipeline_;
   gst::ObjectPtr<GstAppSink> sink_;
   gst::ObjectPtr<GstBus> bus_;
   gst::SamplePtr first_sample_;  // pulled while opening, handed out by the first read()
+  std::int64_t first_capture_ns_{0};
 
   gst::CapsPtr caps_;  // of the frames being delivered, and what they mean:
   GstVideoInfo video_info_{};

@@ -1,3 +1,4 @@
+#include <gst/gst.h>
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -86,6 +87,21 @@ TEST(FileSource, NonVideoFileFailsToOpen) {
   }
   expect_open_fails(path.string(), path.string());
   std::filesystem::remove(path);
+}
+
+// Without its decoder (rank NONE hides it from decodebin, as if gstreamer1.0-libav were not
+// installed) vtest.avi cannot be decoded: the open fails and says which decoder is missing.
+TEST(FileSource, MissingDecoderFailsToOpenNamingIt) {
+  const auto path = shared_path("data/video/vtest.avi");
+  RTMOT_REQUIRE_FILE(path);
+  open_video_source("test://?num-buffers=1");  // initialises GStreamer
+  GstPluginFeature* decoder = gst_registry_lookup_feature(gst_registry_get(), "avdec_msmpeg4");
+  ASSERT_NE(decoder, nullptr) << "gstreamer1.0-libav's avdec_msmpeg4 is not installed";
+  const guint rank = gst_plugin_feature_get_rank(decoder);
+  gst_plugin_feature_set_rank(decoder, GST_RANK_NONE);
+  expect_open_fails(path.string(), "MPEG-4");
+  gst_plugin_feature_set_rank(decoder, rank);
+  gst_object_unref(decoder);
 }
 
 TEST(TestSource, DeliversFramesOfTheRequestedSizeThenEnds) {
