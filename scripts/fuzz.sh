@@ -3,11 +3,14 @@
 # Configures build-fuzz with clang, builds the targets, makes seed corpora from the real data
 # (tests/fuzz/make_corpus.sh), runs each target and prints executions and time. Exits 1 if any target
 # found a crash (the reproducer is in build-fuzz/artifacts/; turn it into a tests/regression case).
-# Usage: scripts/fuzz.sh [SECONDS]   Env: JOBS (build parallelism, default 2).
+# Usage: scripts/fuzz.sh [SECONDS]   Env: JOBS (build parallelism, default 2), BUILD_DIR,
+# RTMOT_SHARED_DIR (default ../shared).
 set -euo pipefail
 seconds=${1:-60}
 root=$(cd "$(dirname "$0")/.." && pwd)
-build=$root/build-fuzz
+build=${BUILD_DIR:-$root/build-fuzz}
+shared=${RTMOT_SHARED_DIR:-$root/../shared}
+export RTMOT_SHARED_DIR=$shared
 jobs=${JOBS:-2}
 
 # -fsanitize=fuzzer-no-link instruments our libraries for coverage; the targets link libFuzzer.
@@ -15,7 +18,7 @@ jobs=${JOBS:-2}
 # warn where the g++ of the normal build does not, and that must not stop fuzzing.
 CC=clang CXX=clang++ cmake -S "$root" -B "$build" -G Ninja \
   -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRTMOT_BUILD_FUZZERS=ON -DRTMOT_BUILD_BENCH=OFF \
-  -DRTMOT_SANITIZE=address,undefined -DRTMOT_WERROR=OFF \
+  -DRTMOT_SANITIZE=address,undefined -DRTMOT_WERROR=OFF -DRTMOT_SHARED_DIR="$shared" \
   -DCMAKE_CXX_FLAGS="-fsanitize=fuzzer-no-link -fno-sanitize-recover=all" >"$build.configure.log"
 cmake --build "$build" --target fuzzers -j "$jobs"
 
