@@ -4,7 +4,8 @@
 #   build-tsan: -DRTMOT_SANITIZE=thread, the concurrency tests (pipeline, queues, slot, signals,
 #               reconnecting source): where ThreadSanitizer can find something.
 # Uses the default compiler (g++ works with Debian's OpenCV/GStreamer; CXX=clang++ also works).
-# Suppressions for uninstrumented system libraries only: scripts/sanitizers/*.supp (documented there).
+# Suppressions for uninstrumented system libraries only: TSan's in scripts/sanitizers/tsan.supp; LSan's
+# are compiled into every executable by platform/ (platform/sanitizer/lsan_suppressions.cpp).
 # Prints the wall time of each half. Usage: scripts/sanitize.sh [asan|tsan|all]
 # Env: JOBS (default 2), ASAN_DIR, TSAN_DIR (build folders), TSAN_TESTS (ctest -R regex).
 set -euo pipefail
@@ -27,7 +28,6 @@ if [[ $which == asan || $which == all ]]; then
   configure "$asan_dir" address,undefined
   cmake --build "$asan_dir" -j "$jobs"
   ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1 \
-    LSAN_OPTIONS=suppressions=$supp/lsan.supp:print_suppressions=0 \
     UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 \
     ctest --test-dir "$asan_dir" -j "$jobs" --output-on-failure || status=1
   echo "sanitize: asan+ubsan build and tests took $(($(date +%s) - start)) s"
