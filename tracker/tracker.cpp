@@ -30,6 +30,9 @@ struct Track {
 };
 
 constexpr int kTypicalSceneSize = 64;
+// Timestamps of nominal frames (f / rate) do not subtract to exactly one period in floating
+// point; a track one frame late must not die of a rounding error in the last bit.
+constexpr double kFrameTolerance = 1e-6;
 
 struct Match {
   int detection;
@@ -268,7 +271,7 @@ struct Tracker::State {
         reports.push_back(TrackReport{track.id, current_box(track.predictor), track.score,
                                       track.class_id, track.hit_streak, track.age});
       }
-      if (track.frames_since_update > config.max_age) {
+      if (track.frames_since_update > config.max_age + kFrameTolerance) {
         release(slot);
       } else {
         order[kept++] = slot;

@@ -103,6 +103,20 @@ TEST_F(Mot15, SortReportsMostGroundTruthBoxesWithFewIdentities) {
   EXPECT_LE(summary.ids.size(), 7 * truth_.ids.size());
 }
 
+TEST_F(Mot15, ElapsedTimeAtTheNominalRateBehavesAsSort) {
+  // Timestamps f / 7 s do not differ by exactly 1/7 s in floating point: rounding must change
+  // nothing that SORT decides.
+  TrackerConfig config = TrackerConfig::sort_preset();
+  const RunSummary per_update = run(sequence_, config);
+  config.time_step = TimeStep::elapsed;
+  const RunSummary elapsed = run(sequence_, config);
+  ASSERT_EQ(per_update.all.size(), elapsed.all.size());
+  for (std::size_t i = 0; i < per_update.all.size(); ++i) {
+    EXPECT_EQ(per_update.all[i].id, elapsed.all[i].id);
+    EXPECT_NEAR(per_update.all[i].box.x, elapsed.all[i].box.x, 1e-2);
+  }
+}
+
 TEST_F(Mot15, ParticleFilterIsReproducibleForASeed) {
   TrackerConfig config = TrackerConfig::sort_preset();
   config.predictor = PredictorKind::particle;
