@@ -131,7 +131,8 @@ std::string SsdDetector::describe() const {
        << config_.nms_iou << ", classes ";
   if (config_.classes.empty()) text << "all";
   for (std::size_t i = 0; i < config_.classes.size(); ++i) {
-    text << (i ? "," : "") << coco_label(config_.classes[i]);
+    const int id = config_.classes[i];
+    text << (i ? "," : "") << id << " (" << coco_label(id) << ")";
   }
   return text.str();
 }

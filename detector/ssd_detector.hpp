@@ -29,12 +29,15 @@ struct SsdConfig {
 /// The anchors file that belongs to `model_path` when the config does not name one.
 std::filesystem::path default_anchors_path(const std::filesystem::path& model_path);
 
+/// One thread at a time: detect() works in the detector's own buffers.
 class SsdDetector : public Detector {
  public:
   /// Loads the model and runs it once. Throws rtmot::InputError: ExitCode::bad_model naming the
   /// file when the model or anchors are missing, truncated or corrupt; ExitCode::usage for a
   /// backend that cannot be had or class ids outside 1..90.
   explicit SsdDetector(SsdConfig config);
+  SsdDetector(const SsdDetector&) = delete;  // planes_ point into blob_
+  SsdDetector& operator=(const SsdDetector&) = delete;
 
   void detect(const cv::Mat& bgr_image, std::int64_t frame_number,
               std::vector<tracker::Detection>& out) override;
