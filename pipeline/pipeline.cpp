@@ -1,6 +1,5 @@
 #include "pipeline/pipeline.hpp"
 
-#include <pthread.h>
 #include <spdlog/spdlog.h>
 
 #include <exception>
@@ -14,6 +13,7 @@
 #include "pipeline/simulated_clock.hpp"
 #include "pipeline/spsc_queue.hpp"
 #include "platform/clock.hpp"
+#include "platform/thread.hpp"
 #include "tracker/tracker.hpp"
 
 namespace rtmot::pipeline {
@@ -34,11 +34,6 @@ struct TrackedFrame {
   FrameResult result;
   cv::Mat image;  // only when the annotated video is on
 };
-
-void name_this_thread(const char* name) {
-  // Shows in top -H, gdb and perf; Linux limits names to 15 characters.
-  pthread_setname_np(pthread_self(), name);
-}
 
 SlotMode slot_mode_for(PlaybackMode mode, bool live) {
   if (live) return SlotMode::latest;
@@ -91,19 +86,13 @@ struct Pipeline::Stages {
         playback(live ? PlaybackMode::realtime : options.playback),
         annotate(!options.video_file.empty()),
         slot(slot_mode_for(options.playback, live)),
-        detected(options.queue_capacity, prototype_detected(tracker_config)),
-        tracked(options.queue_capacity, prototype_tracked(tracker_config)) {}
-
-  static DetectedFrame prototype_detected(const tracker::TrackerConfig& config) {
-    DetectedFrame item;
-    item.detections.reserve(static_cast<std::size_t>(config.max_detections));
-    return item;
-  }
-  static TrackedFrame prototype_tracked(const tracker::TrackerConfig& config) {
-    TrackedFrame item;
-    item.result.tracks.reserve(static_cast<std::size_t>(config.max_tracks));
-    return item;
-  }
+        detected(options.queue_capacity,
+                 [&](DetectedFrame& item) {
+                   item.detections.reserve(static_cast<std::size_t>(tracker_config.max_detections));
+                 }),
+        tracked(options.queue_capacity, [&](TrackedFrame& item) {
+          item.result.tracks.reserve(static_cast<std::size_t>(tracker_config.max_tracks));
+        }) {}
 
   void fail(std::exception_ptr exception) {
     {
@@ -117,7 +106,7 @@ struct Pipeline::Stages {
   template <typename Body, typename Finish>
   std::thread start(const char* name, Body body, Finish finish) {
     return std::thread([this, name, body, finish] {
-      name_this_thread(name);
+      platform::configure_current_thread({name, -1, 0});
       try {
         body();
       } catch (...) {

@@ -9,6 +9,7 @@
 
 #include "common/input_error.hpp"
 #include "detector/dnn_backend.hpp"
+#include "mot/tracker_presets.hpp"
 #include "pipeline/sequence_clock_source.hpp"
 
 namespace rtmot::pipeline {
@@ -214,8 +215,11 @@ bool read_enum(Section& section, const std::string& key, Parse parse,
 void read_tracker(Section section, tracker::TrackerConfig& config) {
   std::string preset;
   if (section.read("preset", preset)) {
-    if (preset != "sort") section.fail(*section.find("preset"), "preset", "expected sort");
-    config = tracker::TrackerConfig::sort_preset();
+    const auto found = mot::find_preset(preset);
+    if (!found) {
+      section.fail(*section.find("preset"), "preset", "expected one of: " + mot::preset_names());
+    }
+    config = *found;
     config.frame_rate = 0.0;  // still "from the source" unless set below
     config.image_width = 0.F;
     config.image_height = 0.F;

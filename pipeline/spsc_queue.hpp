@@ -21,9 +21,13 @@ namespace rtmot::pipeline {
 template <typename T>
 class SpscQueue {
  public:
-  /// Holds up to `capacity` items; every slot starts as a copy of `prototype` (give it reserved
-  /// capacity so items never grow in steady state).
-  SpscQueue(std::size_t capacity, const T& prototype) : slots_(capacity + 1, prototype) {}
+  /// Holds up to `capacity` items, each default-constructed and then passed to `prepare(T&)`:
+  /// reserve there what the items need, so they never grow in steady state. (Copying a prototype
+  /// would not do: a copied vector does not keep the original's capacity.)
+  template <typename Prepare>
+  SpscQueue(std::size_t capacity, Prepare prepare) : slots_(capacity + 1) {
+    for (T& slot : slots_) prepare(slot);
+  }
   SpscQueue(const SpscQueue&) = delete;
   SpscQueue& operator=(const SpscQueue&) = delete;
 

@@ -106,18 +106,15 @@ struct Item {
 };
 
 TEST(SpscQueue, FifoBoundedAndSlotsKeepTheirCapacity) {
-  Item prototype;
-  prototype.payload.reserve(64);
-  SpscQueue<Item> queue(3, prototype);
+  SpscQueue<Item> queue(3, [](Item& item) { item.payload.reserve(64); });
   EXPECT_EQ(queue.capacity(), 3U);
   EXPECT_EQ(queue.try_front(), nullptr);
-  std::vector<const void*> storage;
   for (int i = 0; i < 3; ++i) {
     Item* slot = queue.try_claim();
     ASSERT_NE(slot, nullptr);
+    EXPECT_GE(slot->payload.capacity(), 64U) << "prepared before first use";
     slot->sequence = i;
     slot->payload.assign(10, i);
-    storage.push_back(slot->payload.data());
     queue.publish();
   }
   EXPECT_EQ(queue.try_claim(), nullptr) << "full at capacity";
@@ -130,11 +127,15 @@ TEST(SpscQueue, FifoBoundedAndSlotsKeepTheirCapacity) {
   EXPECT_EQ(queue.try_front(), nullptr);
   queue.close();
   EXPECT_EQ(queue.front(never), nullptr);
-  // Refilling reuses the slots' reserved vectors: no new allocation.
-  Item* again = queue.try_claim();
-  ASSERT_NE(again, nullptr);
-  again->payload.assign(64, 1);
-  EXPECT_EQ(again->payload.capacity(), 64U);
+  // Refilling reuses the slots' vectors in place: same storage, no new allocation.
+  for (int i = 0; i < 3; ++i) {
+    Item* again = queue.try_claim();
+    ASSERT_NE(again, nullptr);
+    const void* before = again->payload.data();
+    again->payload.assign(64, -i);
+    EXPECT_EQ(again->payload.data(), before);
+    queue.publish();
+  }
 }
 
 void random_pause(std::mt19937& random) {
@@ -149,9 +150,7 @@ void random_pause(std::mt19937& random) {
 // capture -> slot -> detect -> queue -> track, as in the pipeline, with random delays everywhere.
 void stress(SlotMode mode, std::int64_t frames, std::uint32_t seed) {
   LatestFrameSlot slot(mode);
-  Item prototype;
-  prototype.payload.reserve(256);
-  SpscQueue<Item> queue(4, prototype);
+  SpscQueue<Item> queue(4, [](Item& item) { item.payload.reserve(256); });
 
   std::thread producer([&] {
     std::mt19937 random(seed);

@@ -10,9 +10,11 @@
 #include <set>
 #include <thread>
 
+#include "common/input_error.hpp"
 #include "mot/mot_files.hpp"
 #include "pipeline/pipeline.hpp"
 #include "pipeline/sequence_clock_source.hpp"
+#include "platform/clock.hpp"
 #include "shared_data.hpp"
 #include "tracker/tracker_config.hpp"
 

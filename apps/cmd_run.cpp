@@ -1,0 +1,123 @@
+// `rtmot run`: the real-time pipeline (source -> SSD or replay detector -> SORT -> sinks) from a
+// YAML configuration, with command-line overrides. Ends at the end of the stream, --max-frames or
+// SIGINT/SIGTERM (all exit 0), after draining, flushing and the final report.
+#include <spdlog/spdlog.h>
+
+#include <memory>
+#include <string>
+
+#include "apps/subcommand.hpp"
+#include "common/exit_codes.hpp"
+#include "common/input_error.hpp"
+#include "pipeline/pipeline.hpp"
+#include "pipeline/run_config.hpp"
+#include "pipeline/run_setup.hpp"
+#include "platform/board.hpp"
+#include "platform/signals.hpp"
+
+namespace rtmot::app {
+namespace {
+
+struct RunOverrides {
+  std::string config_file;
+  std::string source;
+  std::string playback;
+  double latency_ms{0.0};
+  std::string udp;
+  std::string jsonl;
+  std::string binary;
+  std::string video_out;
+  std::string report;
+  std::string det_file;
+  std::int64_t max_frames{-1};
+  double stats_interval_s{-1.0};
+  std::int64_t stream_id{-1};
+};
+
+void apply(const RunOverrides& overrides, pipeline::RunConfig& config) {
+  if (!overrides.source.empty()) config.source.uri = overrides.source;
+  if (!overrides.playback.empty()) {
+    const auto mode = pipeline::parse_playback_mode(overrides.playback);
+    if (!mode) {
+      throw InputError("", 0, "--playback", "expected every-frame, realtime or simulated",
+                       ExitCode::usage);
+    }
+    config.playback.mode = *mode;
+  }
+  if (overrides.latency_ms > 0.0) config.playback.latency_ms = overrides.latency_ms;
+  if (!overrides.udp.empty()) config.output.udp = overrides.udp;
+  if (!overrides.jsonl.empty()) config.output.jsonl_file = overrides.jsonl;
+  if (!overrides.binary.empty()) config.output.binary_file = overrides.binary;
+  if (!overrides.video_out.empty()) config.output.video_file = overrides.video_out;
+  if (!overrides.report.empty()) config.output.report_file = overrides.report;
+  if (!overrides.det_file.empty()) config.detector.det_file = overrides.det_file;
+  if (overrides.max_frames >= 0) config.max_frames = overrides.max_frames;
+  if (overrides.stats_interval_s >= 0.0) config.stats_interval_s = overrides.stats_interval_s;
+  if (overrides.stream_id >= 0) config.stream_id = static_cast<std::uint32_t>(overrides.stream_id);
+}
+
+int run(const RunOverrides& overrides) {
+  // Before any thread exists: every thread inherits the blocked SIGINT/SIGTERM.
+  platform::StopSignals signals;
+  pipeline::RunConfig config = pipeline::load_run_config(overrides.config_file);
+  apply(overrides, config);
+  pipeline::validate(config);
+
+  spdlog::info("board: {}", platform::describe(platform::detect_board()));
+  auto source = pipeline::make_source(config);
+  const platform::SourceInfo source_info = source->info();
+  spdlog::info("source: {} ({}x{} at {:.2f} fps{})", source_info.uri, source_info.width,
+               source_info.height, source_info.fps, source_info.live ? ", live" : "");
+  auto detector = pipeline::make_detector(config);
+  spdlog::info("detector: {}", detector->describe());
+  pipeline::Pipeline pipeline(std::move(source), std::move(detector),
+                              pipeline::complete_tracker_config(config, source_info),
+                              pipeline::make_sinks(config), pipeline::make_options(config));
+  const pipeline::PipelineReport report = pipeline.run(signals.stop_flag());
+
+  spdlog::info("{}", pipeline::summary_line(report));
+  if (!config.output.report_file.empty()) {
+    pipeline::write_report(report, config.output.report_file);
+    spdlog::info("report written to {}", config.output.report_file);
+  }
+  if (!report.source_error.empty()) {
+    spdlog::error("{}: the source failed: {}", source_info.uri, report.source_error);
+    return to_int(ExitCode::source_failed);
+  }
+  return to_int(ExitCode::ok);
+}
+
+}  // namespace
+
+Subcommand add_run_command(CLI::App& parent) {
+  auto overrides = std::make_shared<RunOverrides>();
+  CLI::App* cli = parent.add_subcommand(
+      "run",
+      "Track in real time: video source -> detector -> tracker -> UDP/files (see "
+      "docs/config.md)");
+  cli->add_option("--config", overrides->config_file, "YAML run configuration (configs/*.yaml)")
+      ->required();
+  cli->add_option("--source", overrides->source,
+                  "source URI: file path, v4l2:///dev/videoN, csi://N, rtsp://..., test://..., "
+                  "mot-seq://SEQUENCE_DIR");
+  cli->add_option("--playback", overrides->playback, "every-frame, realtime or simulated")
+      ->check(CLI::IsMember({"every-frame", "realtime", "simulated"}));
+  cli->add_option("--latency-ms", overrides->latency_ms, "simulated detector latency (ms)")
+      ->check(CLI::PositiveNumber);
+  cli->add_option("--udp", overrides->udp, "send track messages to HOST:PORT");
+  cli->add_option("--jsonl", overrides->jsonl, "write track messages as JSON lines to FILE");
+  cli->add_option("--binary", overrides->binary, "write binary track messages to FILE");
+  cli->add_option("--video-out", overrides->video_out, "write an annotated video to FILE");
+  cli->add_option("--report", overrides->report, "write the final report as JSON to FILE");
+  cli->add_option("--det-file", overrides->det_file, "replay detector: MOTChallenge det.txt");
+  cli->add_option("--max-frames", overrides->max_frames, "stop after N captured frames")
+      ->check(CLI::NonNegativeNumber);
+  cli->add_option("--stats-interval", overrides->stats_interval_s,
+                  "seconds between progress lines (0 = none)")
+      ->check(CLI::NonNegativeNumber);
+  cli->add_option("--stream-id", overrides->stream_id, "stream id in every message")
+      ->check(CLI::Range(std::int64_t{0}, std::int64_t{4294967295}));
+  return {cli, [overrides] { return run(*overrides); }};
+}
+
+}  // namespace rtmot::app
