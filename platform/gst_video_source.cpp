@@ -24,7 +24,14 @@ std::string describe_error(GstMessage* message) {
   gst_message_parse_error(message, &raw_error, &raw_debug);
   const gst::ErrorPtr error(raw_error);
   const gst::StringPtr debug(raw_debug);
+  // The factory name (v4l2src, decodebin) says more than our instance names ("src").
   const char* origin = GST_MESSAGE_SRC_NAME(message);
+  if (GST_IS_ELEMENT(GST_MESSAGE_SRC(message))) {
+    if (GstElementFactory* factory =
+            gst_element_get_factory(GST_ELEMENT(GST_MESSAGE_SRC(message)))) {
+      origin = gst_plugin_feature_get_name(GST_PLUGIN_FEATURE(factory));
+    }
+  }
   spdlog::debug("gstreamer error from {}: {} ({})", origin ? origin : "?",
                 error ? error->message : "?", debug ? debug.get() : "");
   return std::string(origin ? origin : "pipeline") + ": " +

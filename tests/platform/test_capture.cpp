@@ -94,7 +94,7 @@ TEST(FileSource, NonVideoFileFailsToOpen) {
 TEST(FileSource, MissingDecoderFailsToOpenNamingIt) {
   const auto path = shared_path("data/video/vtest.avi");
   RTMOT_REQUIRE_FILE(path);
-  open_video_source("test://?num-buffers=1");  // initialises GStreamer
+  gst_init(nullptr, nullptr);  // to reach the registry; the library's own init is then a no-op
   GstPluginFeature* decoder = gst_registry_lookup_feature(gst_registry_get(), "avdec_msmpeg4");
   ASSERT_NE(decoder, nullptr) << "gstreamer1.0-libav's avdec_msmpeg4 is not installed";
   const guint rank = gst_plugin_feature_get_rank(decoder);
@@ -102,6 +102,25 @@ TEST(FileSource, MissingDecoderFailsToOpenNamingIt) {
   expect_open_fails(path.string(), "MPEG-4");
   gst_plugin_feature_set_rank(decoder, rank);
   gst_object_unref(decoder);
+}
+
+TEST(CameraSource, MissingV4l2DeviceFailsToOpen) {
+  expect_open_fails("v4l2:///dev/rtmot-no-such-camera", "v4l2:///dev/rtmot-no-such-camera");
+}
+
+TEST(CameraSource, CsiWithoutNvidiaPluginsFailsToOpenNamingThem) {
+  gst_init(nullptr, nullptr);
+  if (gst_registry_check_feature_version(gst_registry_get(), "nvarguscamerasrc", 0, 0, 0)) {
+    GTEST_SKIP() << "this machine has nvarguscamerasrc (a Jetson): the failure cannot be shown";
+  }
+  expect_open_fails("csi://0", "nvarguscamerasrc");
+}
+
+TEST(StreamSource, RefusedRtspConnectionFailsToOpen) {
+  SourceOptions options;
+  options.open_timeout_ms = 3000;
+  // Port 1 on the loopback: nothing listens, the connection is refused at once.
+  expect_open_fails("rtsp://127.0.0.1:1/stream", "rtsp://127.0.0.1:1/stream", options);
 }
 
 TEST(TestSource, DeliversFramesOfTheRequestedSizeThenEnds) {
