@@ -15,8 +15,13 @@ constexpr float kSizeNoise = 0.02F;
 constexpr float kInitialSpread = 0.05F;
 // How much a new velocity measurement counts against the running estimate.
 constexpr float kVelocityGain = 0.5F;
-// Keeps weights positive when a particle does not overlap the observation at all.
-constexpr float kWeightFloor = 1e-6F;
+// Likelihood of a particle: exp(-(1 - IoU) / width). IoU itself as the weight is too flat (a
+// cloud a few percent wide scores 0.8..0.9 everywhere) to pull the estimate onto the detection.
+// 0.01 was the best of 0.005..0.3 on MOT15-train (MOTA 37.5 with IoU association; 21.6 with raw
+// IoU weights).
+constexpr float kLikelihoodWidth = 0.01F;
+// Below this total the cloud has lost the object.
+constexpr float kWeightFloor = 1e-12F;
 
 // SplitMix64 finaliser: decorrelates the streams of tracks whose ids differ by one.
 std::uint64_t mix(std::uint64_t seed, std::uint64_t id) {
@@ -95,10 +100,11 @@ void ParticlePredictor::update(const Box& box) {
   double total = 0.0;
   for (int i = 0; i < storage_.count; ++i) {
     Particle& p = storage_.front[i];
-    p.weight = iou(to_box(p), box) + kWeightFloor;
+    const float overlap = iou(to_box(p), box);
+    p.weight = overlap > 0.F ? std::exp(-(1.F - overlap) / kLikelihoodWidth) : 0.F;
     total += p.weight;
   }
-  if (total <= kWeightFloor * storage_.count * 1.000001) {
+  if (total <= kWeightFloor) {
     // No particle overlaps the observation the tracker accepted: the cloud has lost the object.
     scatter_around(box);
   }
