@@ -96,13 +96,14 @@ void BM_ModelMot15(benchmark::State& state) {
                  std::string(to_string(config.affinity)));
   track_all(state, config);
 }
-BENCHMARK(BM_ModelMot15)
-    ->ArgsProduct({{static_cast<int>(PredictorKind::kalman),
-                    static_cast<int>(PredictorKind::stationary),
-                    static_cast<int>(PredictorKind::particle)},
-                   {static_cast<int>(AffinityKind::iou), static_cast<int>(AffinityKind::linear),
-                    static_cast<int>(AffinityKind::exponential)}})
-    ->Unit(benchmark::kMillisecond);
+// Every predictor with every affinity. (Apply rather than ArgsProduct: Ubuntu 20.04's
+// Google Benchmark 1.5.0, on JetPack 5 boards, predates ArgsProduct.)
+void every_model(benchmark::internal::Benchmark* bench) {
+  for (auto predictor : {PredictorKind::kalman, PredictorKind::stationary, PredictorKind::particle})
+    for (auto affinity : {AffinityKind::iou, AffinityKind::linear, AffinityKind::exponential})
+      bench->Args({static_cast<int>(predictor), static_cast<int>(affinity)});
+}
+BENCHMARK(BM_ModelMot15)->Apply(every_model)->Unit(benchmark::kMillisecond);
 
 void BM_SortAllOptionsMot15(benchmark::State& state) {
   TrackerConfig config = TrackerConfig::sort_preset();
