@@ -41,11 +41,10 @@ class ParticlePredictor {
   void scatter_around(const Box& box);
   Box mean() const;
   void resample();
-  float normal() { return normal_(rng_); }
+  float normal();
 
   ParticleStorage storage_;
   std::mt19937_64 rng_;
-  std::normal_distribution<float> normal_{0.F, 1.F};
   Box estimate_;
   Box last_observation_;
   float velocity_x_{0.F};  // centre motion per nominal frame
