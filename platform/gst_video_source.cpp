@@ -200,7 +200,8 @@ ReadStatus GstVideoSource::read(cv::Mat& bgr, FrameInfo& info) {
     sample = std::move(first_sample_);
     capture_ns = first_capture_ns_;
   } else {
-    sample = pull_sample(options_.read_timeout_ms);
+    // A file's decoder is slow or done, never "stalled": only live sources time out.
+    sample = pull_sample(info_.live ? options_.read_timeout_ms : 0);
     capture_ns = steady_now_ns();
   }
   if (!sample) {

@@ -41,7 +41,8 @@ struct SourceOptions {
   int height{0};
   double fps{0.0};
   int open_timeout_ms{5000};
-  // read() reports `error` when no frame came for this long; 0 = wait forever.
+  // A live source's read() reports `error` when no frame came for this long; 0 = wait forever.
+  // Files and non-live test:// sources always wait (decoding is slow or done, never stalled).
   int read_timeout_ms{5000};
   int rtsp_latency_ms{200};  // rtspsrc jitter buffer
 };

@@ -190,11 +190,11 @@ TEST(TestSource, ShortStallDelaysButLosesNothing) {
   EXPECT_EQ(read_to_end(*source).first, ReadStatus::end_of_stream);
 }
 
-TEST(TestSource, StallLongerThanTheReadTimeoutIsAnError) {
+TEST(LiveTestSource, StallLongerThanTheReadTimeoutIsAnError) {
   SourceOptions options;
   options.read_timeout_ms = 200;
-  const auto source =
-      open_video_source("test://?width=32&height=32&stall-after=1&stall-ms=60000", options);
+  const auto source = open_video_source(
+      "test://?width=32&height=32&is-live=true&stall-after=1&stall-ms=60000", options);
   const auto [status, frames] = read_to_end(*source);
   EXPECT_EQ(status, ReadStatus::error);
   EXPECT_EQ(frames, 1);

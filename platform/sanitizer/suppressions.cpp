@@ -1,0 +1,33 @@
+// Sanitizer runtimes read default suppressions from these functions in the executable. They cover
+// only third-party libraries that GStreamer brings in, for reasons outside our code:
+//
+// LeakSanitizer: GLib never frees some blocks on purpose. Its quark table (16 KiB, first allocated
+// by GLib's own initialiser) is replaced when it grows, and the old block is left for lock-free
+// readers; GStreamer's plugin loading grows it. GLib has no frame pointers, so with ASan's default
+// (fast) unwinder such a stack ends at g_malloc: the suppression has to cover allocations made
+// inside GLib. Our GStreamer objects are held by RAII handles (platform/gst_ptr.hpp); leaks of
+// memory we allocate ourselves are still reported.
+//
+// ThreadSanitizer: GLib's mutexes and atomics (futex-based, in uninstrumented libraries) are
+// invisible to TSan, so it reports "races" and lock-order inversions inside GLib, GIO and GStreamer
+// and its plugins (libgst*, libav*). Reports involving only our code are still made.
+extern "C" const char* __lsan_default_suppressions() {
+  return "leak:_dl_init\n"
+         "leak:libglib-2.0.so\n";
+}
+
+extern "C" const char* __tsan_default_suppressions() {
+  return "called_from_lib:libglib-2.0.so\n"
+         "called_from_lib:libgobject-2.0.so\n"
+         "called_from_lib:libgio-2.0.so\n"
+         "race:libglib-2.0.so\n"
+         "race:libgobject-2.0.so\n"
+         "race:libgio-2.0.so\n"
+         "race:libgst\n"
+         "race:libav\n"
+         "race:libswscale\n"
+         "deadlock:libglib-2.0.so\n"
+         "deadlock:libgst\n"
+         "mutex:libglib-2.0.so\n"
+         "mutex:libgst\n";
+}
