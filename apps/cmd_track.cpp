@@ -47,7 +47,7 @@ struct TrackCommandOptions {
 
 template <typename Value>
 Value parsed(const std::optional<Value>& value, const char* option, const std::string& text) {
-  if (!value) throw InputError("", 0, option, "unknown value '" + text + "'", ExitCode::usage);
+  if (!value) throw InputError("command line", 0, option, "unknown value '" + text + "'", ExitCode::usage);
   return *value;
 }
 
@@ -55,7 +55,7 @@ Value parsed(const std::optional<Value>& value, const char* option, const std::s
 tracker::TrackerConfig make_config(const TrackCommandOptions& options) {
   const auto preset = mot::find_preset(options.preset);
   if (!preset) {
-    throw InputError("", 0, "--preset",
+    throw InputError("command line", 0, "--preset",
                      "unknown preset '" + options.preset + "' (known: " + mot::preset_names() + ")",
                      ExitCode::usage);
   }
