@@ -1,0 +1,30 @@
+#pragma once
+// The bad-input catalogue: every way a user can hand rtmot something wrong, what rtmot must answer
+// (exit code, one error line naming file/line/field) and what it must leave behind. The table in
+// catalogue_cases.cpp is the specification; docs/reliability.md lists it for humans.
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "common/exit_codes.hpp"
+#include "workspace.hpp"
+
+namespace rtmot::test {
+
+using Vars = std::map<std::string, std::string>;  // {name} placeholders in the arguments
+
+struct CatalogueCase {
+  std::string name;  // a GTest name: letters, digits, underscores
+  std::string what;  // the bad input, in words (for the docs)
+  std::function<void(Workspace&, Vars&)> setup;
+  std::vector<std::string> args;  // after `rtmot`; {dir} is the workspace, {port} a busy port, ...
+  ExitCode expected;
+  std::vector<std::string> mentions;  // the error line names these (file, line, field); {vars} ok
+  /// Optional: checks the outputs written before the error are complete and valid.
+  std::function<void(const Workspace&)> check_outputs{};
+};
+
+const std::vector<CatalogueCase>& catalogue();
+
+}  // namespace rtmot::test
