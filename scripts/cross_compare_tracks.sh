@@ -6,14 +6,14 @@
 # there and AVX here, so floats differ in their last bits; a real porting bug (endianness, alignment,
 # char signedness, a different decoder) moves boxes by pixels or changes ids.
 # Usage: scripts/cross_compare_tracks.sh X86_RTMOT AARCH64_RTMOT
-# Environment: MAX_FRAMES (default 15; about 5 s per frame under qemu), RTMOT_SYSROOT, BOX_TOLERANCE_PX
+# Environment: MAX_FRAMES (default 10; about 5 s per frame under qemu), RTMOT_SYSROOT, BOX_TOLERANCE_PX
 # (default 0.5), SCORE_TOLERANCE (default 0.001), KEEP_DIR (keep the configs and outputs there).
 set -euo pipefail
 
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 native="${1:?usage: cross_compare_tracks.sh X86_RTMOT AARCH64_RTMOT}"
 cross="${2:?usage: cross_compare_tracks.sh X86_RTMOT AARCH64_RTMOT}"
-max_frames="${MAX_FRAMES:-15}"
+max_frames="${MAX_FRAMES:-10}"
 video="$root/data/vtest.avi"
 model="$root/models/ssdlite_mobilenet_v2_coco.onnx"
 anchors="$root/models/ssdlite_mobilenet_v2_coco.anchors.csv"
