@@ -10,7 +10,8 @@
 //
 // ThreadSanitizer: GLib's mutexes and atomics (futex-based, in uninstrumented libraries) are
 // invisible to TSan, so it reports "races" and lock-order inversions inside GLib, GIO and GStreamer
-// and its plugins (libgst*, libav*). Reports involving only our code are still made.
+// and its plugins (libgst*, libav*, libproxy under rtspsrc). Reports involving only our code are
+// still made.
 extern "C" const char* __lsan_default_suppressions() {
   return "leak:_dl_init\n"
          "leak:libglib-2.0.so\n";
@@ -26,6 +27,7 @@ extern "C" const char* __tsan_default_suppressions() {
          "race:libgst\n"
          "race:libav\n"
          "race:libswscale\n"
+         "race:libproxy\n"
          "deadlock:libglib-2.0.so\n"
          "deadlock:libgst\n"
          "mutex:libglib-2.0.so\n"
