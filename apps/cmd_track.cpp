@@ -47,7 +47,8 @@ struct TrackCommandOptions {
 
 template <typename Value>
 Value parsed(const std::optional<Value>& value, const char* option, const std::string& text) {
-  if (!value) throw InputError("command line", 0, option, "unknown value '" + text + "'", ExitCode::usage);
+  if (!value)
+    throw InputError("command line", 0, option, "unknown value '" + text + "'", ExitCode::usage);
   return *value;
 }
 

@@ -82,7 +82,8 @@ std::string format_table(const EvaluationReport& report) {
     return std::string(width > text.size() ? width - text.size() : 0, ' ') + text;
   };
   std::string out = "Sequence" + std::string(name_width - 8, ' ');
-  for (std::size_t c = 0; c < columns().size(); ++c) out += " " + pad_left(columns()[c].name, widths[c]);
+  for (std::size_t c = 0; c < columns().size(); ++c)
+    out += " " + pad_left(columns()[c].name, widths[c]);
   out += "\n";
   for (const auto* line : all) {
     out += line->name + std::string(name_width - line->name.size(), ' ');
@@ -133,7 +134,8 @@ std::string format_json(const EvaluationReport& report) {
 
 void write_text_file(const std::filesystem::path& path, const std::string& text) {
   std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  if (!out) throw InputError(path.string(), 0, "", std::string("cannot create: ") + std::strerror(errno));
+  if (!out)
+    throw InputError(path.string(), 0, "", std::string("cannot create: ") + std::strerror(errno));
   out << text;
   out.flush();
   if (!out) throw InputError(path.string(), 0, "", "write error");

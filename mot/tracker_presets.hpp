@@ -17,6 +17,9 @@ struct TrackerPreset {
 
 const std::vector<TrackerPreset>& tracker_presets();
 std::optional<tracker::TrackerConfig> find_preset(std::string_view name);
+/// The preset `rtmot track` and `rtmot run` start from: the best configuration `rtmot study`
+/// measured on MOT15-train ("rtmot"; "sort" stays available as exact SORT).
+std::string_view default_preset_name();
 /// "sort, ..." for help texts and error messages.
 std::string preset_names();
 

@@ -1,0 +1,69 @@
+#include "mot/study_dataset.hpp"
+
+#include "mot/evaluation.hpp"
+#include "mot/prepared_sequence.hpp"
+#include "mot/scorer.hpp"
+#include "mot/track_runner.hpp"
+#include "tracker/tracker.hpp"
+
+namespace rtmot::mot {
+
+namespace fs = std::filesystem;
+
+std::string_view to_string(StudyInput input) {
+  return input == StudyInput::detections ? "det" : "gt";
+}
+
+std::vector<LoadedSequence> load_study_dataset(const fs::path& dataset) {
+  std::vector<LoadedSequence> sequences;
+  for (const fs::path& dir : find_sequence_dirs(dataset)) {
+    LoadedSequence sequence;
+    sequence.info = read_seqinfo(dir / "seqinfo.ini");
+    const fs::path gt_file = dir / "gt" / "gt.txt";
+    sequence.gt_rows = read_mot_file(gt_file, MotFileKind::ground_truth, sequence.info.length);
+    sequence.detections = load_detections(dir / "det" / "det.txt", sequence.info);
+    sequence.gt_detections = load_detections(gt_file, sequence.info);
+    sequences.push_back(std::move(sequence));
+  }
+  return sequences;
+}
+
+SequenceCounts track_and_count(const LoadedSequence& sequence, StudyInput input,
+                               const tracker::TrackerConfig& config, int interval) {
+  tracker::TrackerConfig sequence_config = config;
+  sequence_config.frame_rate = sequence.info.frame_rate;
+  sequence_config.image_width = static_cast<float>(sequence.info.width);
+  sequence_config.image_height = static_cast<float>(sequence.info.height);
+  tracker::Tracker tracker(sequence_config);
+  const auto& detections =
+      input == StudyInput::detections ? sequence.detections : sequence.gt_detections;
+
+  std::vector<MotRow> results;
+  for (int frame = 1; frame <= sequence.info.length; frame += interval) {
+    const double time = (frame - 1) / sequence.info.frame_rate;
+    for (const auto& report :
+         tracker.update(detections[static_cast<std::size_t>(frame - 1)], time)) {
+      MotRow row;
+      row.frame = frame;
+      row.id = report.id;
+      row.box = report.box;
+      row.conf = report.score;
+      results.push_back(row);
+    }
+  }
+  PrepareOptions prepare;
+  prepare.interval = interval;
+  prepare.sequence_length = sequence.info.length;
+  prepare.gt_file = sequence.info.name + "/gt/gt.txt";
+  prepare.results_file = sequence.info.name + " (tracked in memory)";
+  return count_all(prepare_sequence(sequence.gt_rows, results, prepare));
+}
+
+Metrics track_and_score(const std::vector<LoadedSequence>& dataset, StudyInput input,
+                        const tracker::TrackerConfig& config, int interval) {
+  SequenceCounts total;
+  for (const auto& sequence : dataset) total += track_and_count(sequence, input, config, interval);
+  return summarize(total);
+}
+
+}  // namespace rtmot::mot

@@ -1,0 +1,80 @@
+#include "mot/study_plan.hpp"
+
+#include <utility>
+
+#include "mot/tracker_presets.hpp"
+
+namespace rtmot::mot {
+namespace {
+
+using tracker::AffinityKind;
+using tracker::PredictorKind;
+using tracker::TimeStep;
+using tracker::TrackerConfig;
+
+// SORT's track life with the predictors advancing by the real time between processed frames:
+// the fair baseline for every predictor and affinity at reduced rates.
+TrackerConfig grid_config(PredictorKind predictor, AffinityKind affinity) {
+  TrackerConfig config = TrackerConfig::sort_preset();
+  config.predictor = predictor;
+  config.affinity = affinity;
+  config.affinity_threshold = tracker::default_threshold(affinity);
+  config.time_step = TimeStep::elapsed;
+  return config;
+}
+
+std::string grid_name(PredictorKind predictor, AffinityKind affinity) {
+  return std::string(tracker::to_string(predictor)) + "-" + std::string(tracker::to_string(affinity));
+}
+
+template <typename Change>
+StudyConfiguration option(const std::string& suffix, Change change) {
+  TrackerConfig config = grid_config(PredictorKind::kalman, AffinityKind::iou);
+  change(config);
+  return {"kalman-iou+" + suffix, "options", config};
+}
+
+std::vector<StudyConfiguration> option_configurations() {
+  return {
+      option("second-round", [](TrackerConfig& c) {
+        c.second_round = true;  // det.txt scores are 0.5..1: split the pool at 0.7
+        c.detection_threshold = 0.7F;
+        c.low_score = 0.5F;
+      }),
+      option("oru", [](TrackerConfig& c) { c.observation_centric_reupdate = true; }),
+      option("widened-gate", [](TrackerConfig& c) { c.time_widened_gate = true; }),
+      option("confirm-by-duration", [](TrackerConfig& c) { c.confirm_by_duration = true; }),
+      option("coast-1", [](TrackerConfig& c) { c.min_coast_updates = 1; }),
+      option("max-age-3", [](TrackerConfig& c) { c.max_age = 3; }),
+      option("max-age-10", [](TrackerConfig& c) { c.max_age = 10; }),
+      option("min-hits-1", [](TrackerConfig& c) { c.min_hits = 1; }),
+      option("det-0.7", [](TrackerConfig& c) { c.detection_threshold = 0.7F; }),
+  };
+}
+
+}  // namespace
+
+std::vector<StudyConfiguration> study_configurations(bool quick) {
+  std::vector<StudyConfiguration> configurations;
+  for (const auto predictor :
+       {PredictorKind::kalman, PredictorKind::stationary, PredictorKind::particle}) {
+    for (const auto affinity : {AffinityKind::iou, AffinityKind::linear, AffinityKind::exponential}) {
+      const bool keep = !quick || (predictor == PredictorKind::kalman && affinity == AffinityKind::iou);
+      if (keep) {
+        configurations.push_back(
+            {grid_name(predictor, affinity), "grid", grid_config(predictor, affinity)});
+      }
+    }
+  }
+  for (auto& configuration : option_configurations()) configurations.push_back(std::move(configuration));
+  for (const auto& preset : tracker_presets()) {
+    configurations.push_back({"preset-" + std::string(preset.name), "presets", preset.make()});
+  }
+  return configurations;
+}
+
+std::vector<int> default_study_intervals() {
+  return {1, 2, 3, 5, 10, 15, 30};
+}
+
+}  // namespace rtmot::mot

@@ -1,0 +1,24 @@
+#pragma once
+// What `rtmot study` measures: named tracker configurations, in groups that share a plot.
+#include <string>
+#include <vector>
+
+#include "tracker/tracker_config.hpp"
+
+namespace rtmot::mot {
+
+struct StudyConfiguration {
+  std::string name;   // file-name safe, e.g. "kalman-iou" or "kalman-iou+oru"
+  std::string group;  // "grid" (predictor x affinity), "options" (one change each), "presets"
+  tracker::TrackerConfig config;
+};
+
+/// The predictor x affinity grid (SORT's track life, elapsed time steps), each option of the
+/// tracker alone on top of kalman-iou, and the presets. `quick` keeps kalman-iou, the options
+/// and the presets only.
+std::vector<StudyConfiguration> study_configurations(bool quick);
+
+/// 1, 2, 3, 5, 10, 15, 30.
+std::vector<int> default_study_intervals();
+
+}  // namespace rtmot::mot
