@@ -24,7 +24,8 @@ TrackerConfig grid_config(PredictorKind predictor, AffinityKind affinity) {
 }
 
 std::string grid_name(PredictorKind predictor, AffinityKind affinity) {
-  return std::string(tracker::to_string(predictor)) + "-" + std::string(tracker::to_string(affinity));
+  return std::string(tracker::to_string(predictor)) + "-" +
+         std::string(tracker::to_string(affinity));
 }
 
 template <typename Change>
@@ -36,11 +37,12 @@ StudyConfiguration option(const std::string& suffix, Change change) {
 
 std::vector<StudyConfiguration> option_configurations() {
   return {
-      option("second-round", [](TrackerConfig& c) {
-        c.second_round = true;  // det.txt scores are 0.5..1: split the pool at 0.7
-        c.detection_threshold = 0.7F;
-        c.low_score = 0.5F;
-      }),
+      option("second-round",
+             [](TrackerConfig& c) {
+               c.second_round = true;  // det.txt scores are 0.5..1: split the pool at 0.7
+               c.detection_threshold = 0.7F;
+               c.low_score = 0.5F;
+             }),
       option("oru", [](TrackerConfig& c) { c.observation_centric_reupdate = true; }),
       option("widened-gate", [](TrackerConfig& c) { c.time_widened_gate = true; }),
       option("confirm-by-duration", [](TrackerConfig& c) { c.confirm_by_duration = true; }),
@@ -58,15 +60,18 @@ std::vector<StudyConfiguration> study_configurations(bool quick) {
   std::vector<StudyConfiguration> configurations;
   for (const auto predictor :
        {PredictorKind::kalman, PredictorKind::stationary, PredictorKind::particle}) {
-    for (const auto affinity : {AffinityKind::iou, AffinityKind::linear, AffinityKind::exponential}) {
-      const bool keep = !quick || (predictor == PredictorKind::kalman && affinity == AffinityKind::iou);
+    for (const auto affinity :
+         {AffinityKind::iou, AffinityKind::linear, AffinityKind::exponential}) {
+      const bool keep =
+          !quick || (predictor == PredictorKind::kalman && affinity == AffinityKind::iou);
       if (keep) {
         configurations.push_back(
             {grid_name(predictor, affinity), "grid", grid_config(predictor, affinity)});
       }
     }
   }
-  for (auto& configuration : option_configurations()) configurations.push_back(std::move(configuration));
+  for (auto& configuration : option_configurations())
+    configurations.push_back(std::move(configuration));
   for (const auto& preset : tracker_presets()) {
     configurations.push_back({"preset-" + std::string(preset.name), "presets", preset.make()});
   }

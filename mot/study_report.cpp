@@ -14,27 +14,20 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr const char* kColumns[] = {"interval", "Rcll", "Prcn", "FAR", "GT",  "MT",  "PT",   "ML",
-                                    "FP",       "FN",   "IDs",  "FM",  "MOTA", "MOTP", "IDF1", "HOTA"};
+constexpr const char* kColumns[] = {"interval", "Rcll", "Prcn", "FAR", "GT",  "MT",
+                                    "PT",       "ML",   "FP",   "FN",  "IDs", "FM",
+                                    "MOTA",     "MOTP", "IDF1", "HOTA"};
 
 std::vector<std::string> cells(const StudyRow& row) {
   const Metrics& m = row.metrics;
-  return {std::to_string(row.interval),
-          fmt::format("{:.1f}", m.recall),
-          fmt::format("{:.1f}", m.precision),
-          fmt::format("{:.2f}", m.false_alarms_per_frame),
-          std::to_string(m.gt_tracks),
-          std::to_string(m.mostly_tracked),
-          std::to_string(m.partly_tracked),
-          std::to_string(m.mostly_lost),
-          std::to_string(m.false_positives),
-          std::to_string(m.false_negatives),
-          std::to_string(m.id_switches),
-          std::to_string(m.fragmentations),
-          fmt::format("{:.1f}", m.mota),
-          fmt::format("{:.1f}", m.motp),
-          fmt::format("{:.1f}", m.idf1),
-          fmt::format("{:.1f}", m.hota)};
+  return {std::to_string(row.interval),       fmt::format("{:.1f}", m.recall),
+          fmt::format("{:.1f}", m.precision), fmt::format("{:.2f}", m.false_alarms_per_frame),
+          std::to_string(m.gt_tracks),        std::to_string(m.mostly_tracked),
+          std::to_string(m.partly_tracked),   std::to_string(m.mostly_lost),
+          std::to_string(m.false_positives),  std::to_string(m.false_negatives),
+          std::to_string(m.id_switches),      std::to_string(m.fragmentations),
+          fmt::format("{:.1f}", m.mota),      fmt::format("{:.1f}", m.motp),
+          fmt::format("{:.1f}", m.idf1),      fmt::format("{:.1f}", m.hota)};
 }
 
 std::string joined(const std::vector<std::string>& parts, const std::string& separator) {
@@ -68,8 +61,8 @@ const PlottedMetric kPlottedMetrics[] = {
 
 double not_mostly_lost_percent(const Metrics& metrics) {
   if (metrics.gt_tracks == 0) return 0.0;
-  return 100.0 * (1.0 - static_cast<double>(metrics.mostly_lost) /
-                            static_cast<double>(metrics.gt_tracks));
+  return 100.0 *
+         (1.0 - static_cast<double>(metrics.mostly_lost) / static_cast<double>(metrics.gt_tracks));
 }
 
 std::string format_study_csv(const StudyTable& table) {
@@ -92,7 +85,8 @@ std::vector<fs::path> write_study(const fs::path& out_dir, const std::vector<Stu
   const auto write = [&written](const fs::path& path, const std::string& text) {
     std::error_code error;
     fs::create_directories(path.parent_path(), error);
-    if (error) throw InputError(path.parent_path().string(), 0, "", "cannot create: " + error.message());
+    if (error)
+      throw InputError(path.parent_path().string(), 0, "", "cannot create: " + error.message());
     write_text_file(path, text);
     written.push_back(path);
   };
@@ -130,10 +124,12 @@ std::vector<fs::path> write_study(const fs::path& out_dir, const std::vector<Stu
       if (group != "presets") {
         // Every plot also shows the presets, as the yardstick.
         for (const auto& table : tables) {
-          if (table.configuration.group != "presets" || std::string(to_string(table.input)) != input)
+          if (table.configuration.group != "presets" ||
+              std::string(to_string(table.input)) != input)
             continue;
           LineSeries series{table.configuration.name, {}, true};
-          for (const auto& row : table.rows) series.points.emplace_back(row.interval, metric.value(row.metrics));
+          for (const auto& row : table.rows)
+            series.points.emplace_back(row.interval, metric.value(row.metrics));
           plot.series.push_back(std::move(series));
         }
       }

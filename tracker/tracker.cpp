@@ -24,6 +24,7 @@ struct Track {
   std::int32_t age{0};
   std::int32_t steps_since_update{0};  // sort.py's time_since_update, in calls
   double frames_since_update{0.0};     // the same in nominal frames (equal with per_update)
+  double streak_frames{0.0};           // nominal frames covered by the current hit streak
   float score{0.F};
   std::int32_t class_id{0};
   bool matched{false};
@@ -44,8 +45,8 @@ const TrackerConfig& validated(const TrackerConfig& config) {
     throw std::invalid_argument("tracker: max_tracks and max_detections must be >= 1");
   if (config.predictor == PredictorKind::particle && config.particle_count < 1)
     throw std::invalid_argument("tracker: particle_count must be >= 1");
-  if (config.max_age < 0 || config.min_hits < 0)
-    throw std::invalid_argument("tracker: max_age and min_hits must be >= 0");
+  if (config.max_age < 0 || config.min_hits < 0 || config.min_coast_updates < 0)
+    throw std::invalid_argument("tracker: max_age, min_hits and min_coast_updates must be >= 0");
   if (config.time_step == TimeStep::elapsed && !(config.frame_rate > 0.0))
     throw std::invalid_argument("tracker: frame_rate must be > 0 with elapsed time steps");
   if (!std::isfinite(config.affinity_threshold))
@@ -92,6 +93,7 @@ struct Tracker::State {
     for (int s = config.max_tracks - 1; s >= 0; --s) free_slots.push_back(s);
     next_id = 1;
     frame_count = 0;
+    elapsed_frames = 0.0;
     has_previous_time = false;
     reports.clear();
   }
@@ -124,7 +126,11 @@ struct Tracker::State {
       Track& track = slots[slot];
       track.predicted = advance(track.predictor, dt);
       ++track.age;
-      if (track.steps_since_update > 0) track.hit_streak = 0;
+      if (track.steps_since_update > 0) {
+        track.hit_streak = 0;
+        track.streak_frames = 0.0;
+      }
+      track.streak_frames += dt;
       ++track.steps_since_update;
       track.frames_since_update += dt;
       track.matched = false;
@@ -209,6 +215,7 @@ struct Tracker::State {
     track.last_observation = detection.box;
     track.predicted = detection.box;
     track.hit_streak = 0;
+    track.streak_frames = 0.0;
     track.age = 0;
     track.steps_since_update = 0;
     track.frames_since_update = 0.0;
@@ -227,6 +234,7 @@ struct Tracker::State {
                                          double time_seconds) {
     ++frame_count;
     const double dt = step_length(time_seconds);
+    if (frame_count > 1) elapsed_frames += dt;
     split_detections(detections);
     predict_all(dt);
 
@@ -261,17 +269,26 @@ struct Tracker::State {
     return reports;
   }
 
+  bool confirmed(const Track& track) const {
+    if (track.hit_streak >= config.min_hits || frame_count <= config.min_hits) return true;
+    if (!config.confirm_by_duration) return false;
+    // The streak's first frame is the birth (or re-match) itself, hence the one frame less than
+    // hits; at full rate this is exactly the hit count.
+    return track.hit_streak >= 1 && (track.streak_frames + kFrameTolerance >= config.min_hits ||
+                                     elapsed_frames + kFrameTolerance < config.min_hits);
+  }
+
   void report_and_retire() {
     reports.clear();
     std::size_t kept = 0;
     for (const int slot : order) {
       const Track& track = slots[slot];
-      if (track.matched &&
-          (track.hit_streak >= config.min_hits || frame_count <= config.min_hits)) {
+      if (track.matched && confirmed(track)) {
         reports.push_back(TrackReport{track.id, current_box(track.predictor), track.score,
                                       track.class_id, track.hit_streak, track.age});
       }
-      if (track.frames_since_update > config.max_age + kFrameTolerance) {
+      if (track.frames_since_update > config.max_age + kFrameTolerance &&
+          track.steps_since_update > config.min_coast_updates) {
         release(slot);
       } else {
         order[kept++] = slot;
@@ -297,6 +314,7 @@ struct Tracker::State {
   Associator associator;
   std::int32_t next_id{1};
   int frame_count{0};
+  double elapsed_frames{0.0};  // nominal frames since the first update
   double previous_time{0.0};
   bool has_previous_time{false};
 };

@@ -36,7 +36,8 @@ struct TrackerConfig {
   float image_height{1080.F};
 
   // --- what SORT's descendants learned (options measured by `rtmot study`) ---
-  /// ByteTrack: a second association round for detections scoring in [low_score, detection_threshold).
+  /// ByteTrack: a second association round for detections scoring in [low_score,
+  /// detection_threshold).
   bool second_round{false};
   float low_score{0.1F};
   /// OC-SORT: when a lost track is found again, re-update it from a virtual trajectory between its
@@ -45,11 +46,21 @@ struct TrackerConfig {
   /// Widen the association gate with the time since the track's last match.
   bool time_widened_gate{false};
 
+  // --- the same meaning at every frame rate (processed frames may be several nominal ones apart)
+  // ---
+  /// A track is also reported once its current run of matches has lasted `min_hits` nominal frames
+  /// (at full rate this is the same as `min_hits` matches; at 1/10 rate one match suffices).
+  bool confirm_by_duration{false};
+  /// A track also survives this many processed frames without a match, whatever `max_age` says
+  /// (with max_age 1, a track at 1/10 rate could otherwise never coast over one missed frame).
+  int min_coast_updates{0};
+
   // --- particle filter ---
   int particle_count{100};
   std::uint64_t seed{1};
 
-  // --- capacity: the tracker preallocates for this many; beyond it, extra detections are ignored ---
+  // --- capacity: the tracker preallocates for this many; beyond it, extra detections are ignored
+  // ---
   int max_tracks{1024};
   int max_detections{1024};
 

@@ -1,0 +1,100 @@
+// `rtmot study`: the frame-rate study. Tracks every configuration of mot/study_plan.hpp on both
+// inputs at every interval, scores each run with the `rtmot eval` scorer on the processed frames,
+// and writes tables and plots (docs/study/ is made by scripts/study.sh with this command).
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <chrono>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "apps/subcommand.hpp"
+#include "common/exit_codes.hpp"
+#include "common/input_error.hpp"
+#include "mot/study_dataset.hpp"
+#include "mot/study_plan.hpp"
+#include "mot/study_report.hpp"
+#include "mot/study_runner.hpp"
+
+namespace rtmot::app {
+namespace {
+
+struct StudyCommandOptions {
+  std::string dataset;
+  std::string out_dir;
+  int jobs{2};
+  std::vector<int> intervals{mot::default_study_intervals()};
+  bool quick{false};
+  std::string only;
+  std::string link_prefix;
+};
+
+int run_study_command(const StudyCommandOptions& options) {
+  using Clock = std::chrono::steady_clock;
+  const auto start = Clock::now();
+  const auto dataset = mot::load_study_dataset(options.dataset);
+  auto configurations = mot::study_configurations(options.quick);
+  if (!options.only.empty()) {
+    configurations.erase(std::remove_if(configurations.begin(), configurations.end(),
+                                        [&](const auto& c) {
+                                          return c.name.find(options.only) == std::string::npos;
+                                        }),
+                         configurations.end());
+    if (configurations.empty()) {
+      throw InputError("", 0, "--only", "no configuration name contains '" + options.only + "'",
+                       ExitCode::usage);
+    }
+  }
+  const std::vector<mot::StudyInput> inputs = {mot::StudyInput::detections,
+                                               mot::StudyInput::ground_truth};
+  spdlog::info("study: {} sequences, {} configurations x {} inputs x {} intervals on {} threads",
+               dataset.size(), configurations.size(), inputs.size(), options.intervals.size(),
+               options.jobs);
+  const auto progress = [](int done, int total, const mot::StudyTable& table, int interval) {
+    for (const auto& row : table.rows) {
+      if (row.interval == interval) {
+        spdlog::info("[{}/{}] {} on {} interval {}: MOTA {:.1f} IDF1 {:.1f}", done, total,
+                     table.configuration.name, mot::to_string(table.input), interval,
+                     row.metrics.mota, row.metrics.idf1);
+        return;
+      }
+    }
+  };
+  const auto tables =
+      mot::run_study(dataset, configurations, inputs, options.intervals, options.jobs, progress);
+  const auto files = mot::write_study(options.out_dir, tables, options.link_prefix);
+  spdlog::info("study: wrote {} files under {} in {:.0f} s", files.size(), options.out_dir,
+               std::chrono::duration<double>(Clock::now() - start).count());
+  return to_int(ExitCode::ok);
+}
+
+}  // namespace
+
+Subcommand add_study_command(CLI::App& parent) {
+  auto options = std::make_shared<StudyCommandOptions>();
+  CLI::App* cli = parent.add_subcommand(
+      "study",
+      "Frame-rate study: every predictor x affinity, tracker option and preset at several frame "
+      "intervals, on det/det.txt and on gt/gt.txt as a perfect detector; tables and SVG plots");
+  cli->add_option("--dataset", options->dataset,
+                  "a sequence folder (with seqinfo.ini) or a folder of them")
+      ->required();
+  cli->add_option("--out", options->out_dir, "folder for tables/, plots/ and summary.md")
+      ->required();
+  cli->add_option("--jobs", options->jobs, "worker threads")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cli->add_option("--intervals", options->intervals, "frame intervals, e.g. 1,2,3,5,10,15,30")
+      ->delimiter(',')
+      ->check(CLI::PositiveNumber);
+  cli->add_flag("--quick", options->quick,
+                "kalman-iou, the options and the presets only (no predictor x affinity grid)");
+  cli->add_option("--only", options->only, "only configurations whose name contains this");
+  cli->add_option("--link-prefix", options->link_prefix,
+                  "prefix of the plot links in summary.md (e.g. study/ when it is included from "
+                  "docs/study.md)");
+  return {cli, [options] { return run_study_command(*options); }};
+}
+
+}  // namespace rtmot::app

@@ -1,0 +1,82 @@
+// End to end on MOT15-train's public detections, scored by the mot scorer: the rtmot preset
+// (the study's best) against the exact SORT preset, at full rate and when only every 5th or
+// 10th frame is processed. The figures are in docs/results.md.
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <string>
+
+#include "mot/study_dataset.hpp"
+#include "mot/tracker_presets.hpp"
+#include "shared_data.hpp"
+
+namespace rtmot::mot {
+namespace {
+
+class PresetVsSort : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    const auto dataset = test::shared_path("data/mot15-train");
+    if (!std::filesystem::exists(dataset)) return;  // each test fails naming it
+    dataset_ = std::make_unique<std::vector<LoadedSequence>>(load_study_dataset(dataset));
+  }
+  static void TearDownTestSuite() { dataset_.reset(); }
+
+  static Metrics score(const std::string& preset, int interval) {
+    const auto config = find_preset(preset);
+    EXPECT_TRUE(config.has_value()) << preset;
+    return track_and_score(*dataset_, StudyInput::detections, *config, interval);
+  }
+
+  static std::unique_ptr<std::vector<LoadedSequence>>
+      dataset_;  // read once: loading is most of a run's time
+};
+std::unique_ptr<std::vector<LoadedSequence>> PresetVsSort::dataset_;
+
+#define REQUIRE_DATASET()                                      \
+  do {                                                         \
+    RTMOT_REQUIRE_FILE(test::shared_path("data/mot15-train")); \
+    ASSERT_NE(dataset_, nullptr);                              \
+    ASSERT_EQ(dataset_->size(), 11U);                          \
+  } while (0)
+
+TEST_F(PresetVsSort, DefaultPresetIsTheStudysBest) {
+  EXPECT_EQ(default_preset_name(), "rtmot");
+  EXPECT_TRUE(find_preset(default_preset_name()).has_value());
+}
+
+TEST_F(PresetVsSort, BeatsSortAtFullRate) {
+  REQUIRE_DATASET();
+  const Metrics sort = score("sort", 1);
+  const Metrics best = score(std::string(default_preset_name()), 1);
+  RecordProperty("sort_MOTA", std::to_string(sort.mota));
+  RecordProperty("sort_IDF1", std::to_string(sort.idf1));
+  RecordProperty("rtmot_MOTA", std::to_string(best.mota));
+  RecordProperty("rtmot_IDF1", std::to_string(best.idf1));
+  EXPECT_NEAR(sort.mota, 39.9, 0.05);  // the SORT preset stays exactly SORT
+  EXPECT_NEAR(sort.idf1, 45.9, 0.05);
+  EXPECT_GE(best.mota, 42.0);
+  EXPECT_GE(best.idf1, 50.0);
+}
+
+class PresetVsSortAtInterval : public PresetVsSort, public ::testing::WithParamInterface<int> {};
+
+TEST_P(PresetVsSortAtInterval, ThirtyPercentBetterThanSort) {
+  REQUIRE_DATASET();
+  const int interval = GetParam();
+  const Metrics sort = score("sort", interval);
+  const Metrics best = score(std::string(default_preset_name()), interval);
+  RecordProperty("sort_MOTA", std::to_string(sort.mota));
+  RecordProperty("sort_IDF1", std::to_string(sort.idf1));
+  RecordProperty("rtmot_MOTA", std::to_string(best.mota));
+  RecordProperty("rtmot_IDF1", std::to_string(best.idf1));
+  ASSERT_GT(sort.mota, 0.0);
+  ASSERT_GT(sort.idf1, 0.0);
+  EXPECT_GE(best.mota, 1.3 * sort.mota) << "interval " << interval;
+  EXPECT_GE(best.idf1, 1.3 * sort.idf1) << "interval " << interval;
+}
+
+INSTANTIATE_TEST_SUITE_P(ReducedRates, PresetVsSortAtInterval, ::testing::Values(5, 10));
+
+}  // namespace
+}  // namespace rtmot::mot
