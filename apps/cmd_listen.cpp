@@ -84,15 +84,16 @@ void print_stats_line(const ListenerStats& stats, double elapsed_s) {
   std::fflush(stdout);
 }
 
+/// `elapsed_s` < 0: not a timed run (a file).
 void print_summary(const ListenerStats& stats, double elapsed_s) {
-  fmt::print("summary after {:.1f} s: {} messages, {} corrupt, {} streams\n", elapsed_s,
+  fmt::print("summary{}: {} messages, {} corrupt, {} streams\n",
+             elapsed_s >= 0 ? fmt::format(" after {:.1f} s", elapsed_s) : std::string(),
              stats.received(), stats.corrupt(), stats.streams().size());
   for (const auto& [id, stream] : stats.streams()) {
     const auto& seq = stream.sequences;
     fmt::print(
-        "  stream {}: received {}, lost {}, reordered {}, duplicated {}, restarts {}, truncated "
-        "{}; "
-        "latency min/mean/max {:.2f}/{:.2f}/{:.2f} ms; sender dropped {} frames\n",
+        "  stream {}: received {}, lost {}, reordered {}, duplicated {}, restarts {}, "
+        "truncated {}; latency min/mean/max {:.2f}/{:.2f}/{:.2f} ms; sender dropped {} frames\n",
         id, seq.received(), seq.lost(), seq.reordered(), seq.duplicated(), seq.restarts(),
         stream.truncated, to_ms(static_cast<double>(stream.latency_min_ns)),
         to_ms(stream.latency_mean_ns()), to_ms(static_cast<double>(stream.latency_max_ns)),
@@ -121,13 +122,17 @@ class MessageHandler {
   void handle(const std::uint8_t* data, std::size_t size) {
     const DecodeError error = pipeline::decode_message(data, size, decoded_);
     if (error != DecodeError::none) {
-      stats_.record_corrupt(error);
-      if (!quiet_) print_corrupt(error, size);
+      handle_corrupt(error, size);
       return;
     }
     const Arrival arrival = stats_.record(decoded_);
     if (!quiet_) print_message(decoded_, arrival);
     if (jsonl_) jsonl_->write(decoded_);
+  }
+
+  void handle_corrupt(DecodeError reason, std::size_t size) {
+    stats_.record_corrupt(reason);
+    if (!quiet_) print_corrupt(reason, size);
   }
 
   void flush() {
@@ -169,8 +174,11 @@ int listen_udp(const ListenOptions& options) {
         receiver.receive(datagram.data(), datagram.size(), poll_interval_ms, size, cut);
     if (status != platform::ReceiveStatus::datagram) continue;
     ++datagrams;
-    handler.handle(datagram.data(),
-                   size);  // a cut datagram fails its length check: counted corrupt
+    if (cut) {
+      handler.handle_corrupt(DecodeError::length_mismatch, size);  // longer than any message
+    } else {
+      handler.handle(datagram.data(), size);
+    }
   }
   handler.flush();
   print_summary(handler.stats(), elapsed_s());
@@ -188,7 +196,7 @@ int read_file(const ListenOptions& options) {
     handler.handle(record.data(), record.size());
   }
   handler.flush();
-  print_summary(handler.stats(), 0.0);
+  print_summary(handler.stats(), -1.0);
   if (status == pipeline::FileReadStatus::broken_framing) {
     // Everything before the break was read and reported; the file itself is malformed.
     throw InputError(options.read_path, 0, "", reader.problem());

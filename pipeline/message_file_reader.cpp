@@ -37,8 +37,8 @@ FileReadStatus MessageFileReader::next(std::vector<std::uint8_t>& bytes) {
 }
 
 FileReadStatus MessageFileReader::broken(const std::string& what) {
-  problem_ = path_.string() + ": record " + std::to_string(records_ + 1) + " at byte " +
-             std::to_string(offset_) + ": " + what;
+  problem_ = "record " + std::to_string(records_ + 1) + " at byte " + std::to_string(offset_) +
+             ": " + what;
   return FileReadStatus::broken_framing;
 }
 

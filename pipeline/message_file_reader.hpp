@@ -20,7 +20,7 @@ class MessageFileReader {
   explicit MessageFileReader(const std::filesystem::path& path);
 
   FileReadStatus next(std::vector<std::uint8_t>& bytes);
-  /// Why framing broke, naming the file, the record and its byte offset.
+  /// Why framing broke, naming the record and its byte offset (the caller names the file).
   const std::string& problem() const { return problem_; }
   std::uint64_t records_read() const { return records_; }
 
