@@ -58,8 +58,7 @@ bool make_realtime(const std::string& name, int priority) {
 ThreadSetup configure_current_thread(const ThreadSettings& settings) {
   ThreadSetup setup;
   if (!settings.name.empty()) setup.named = set_name(settings.name);
-  if (settings.cpu >= 0 || settings.cpu < -1)
-    setup.pinned = pin_to_cpu(settings.name, settings.cpu);
+  if (settings.cpu != -1) setup.pinned = pin_to_cpu(settings.name, settings.cpu);
   if (settings.fifo_priority != 0) {
     setup.realtime = make_realtime(settings.name, settings.fifo_priority);
   }
