@@ -28,7 +28,7 @@ constexpr double kProgressEverySeconds = 3.0;
 struct TrackCommandOptions {
   std::string dataset;
   std::string out_dir;
-  std::string preset{"sort"};
+  std::string preset{mot::default_preset_name()};
   std::string predictor;
   std::string affinity;
   std::string time_step;
