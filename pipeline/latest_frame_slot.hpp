@@ -37,19 +37,24 @@ class LatestFrameSlot {
   /// The buffer the producer fills next. Only the producer touches it until publish().
   FrameSlotItem& back() { return buffers_[back_]; }
 
-  /// Hands the back buffer to the consumer. In every_frame mode first waits until the consumer took
-  /// the previous frame, or until `abort` becomes true (then returns false, nothing published).
-  /// Returns true when the frame was published.
-  bool publish(const std::atomic<bool>& abort) {
-    if (mode_ == SlotMode::every_frame) {
-      Backoff backoff;
-      // acquire: pairs with the consumer's acq_rel exchange that cleared the fresh bit, so that its
-      // reads of the buffer it gave back happen before we write into that buffer later.
-      while ((middle_.load(std::memory_order_acquire) & fresh_bit) != 0) {
-        if (abort.load(std::memory_order_relaxed)) return false;
-        backoff.pause();
-      }
+  /// every_frame mode: waits until the consumer took the previous frame, so that publish() will not
+  /// overwrite it. False if `abort` became true first. Returns at once in latest mode.
+  bool wait_for_room(const std::atomic<bool>& abort) {
+    if (mode_ != SlotMode::every_frame) return true;
+    Backoff backoff;
+    // acquire: pairs with the consumer's acq_rel exchange that cleared the fresh bit, so that its
+    // reads of the buffer it gave back happen before we write into that buffer later.
+    while ((middle_.load(std::memory_order_acquire) & fresh_bit) != 0) {
+      if (abort.load(std::memory_order_relaxed)) return false;
+      backoff.pause();
     }
+    return true;
+  }
+
+  /// Hands the back buffer to the consumer (in every_frame mode after wait_for_room()). Returns
+  /// false, publishing nothing, only if that wait was aborted.
+  bool publish(const std::atomic<bool>& abort) {
+    if (!wait_for_room(abort)) return false;
     // acq_rel: release publishes our writes to the back buffer to the consumer who will acquire
     // this middle; acquire makes the consumer's last reads of the buffer we get back (it may have
     // just returned it as its old front) happen before our next writes into it.

@@ -140,6 +140,9 @@ struct Pipeline::Stages {
 
   // Hands `item` to the detector: swaps image buffers with the slot's back buffer (no copy).
   bool publish(FrameSlotItem& item) {
+    // every-frame/simulated: wait for the detector before stamping, so that the time the capture
+    // thread spends blocked is not counted as the frame's latency.
+    if (!slot.wait_for_room(abort)) return false;
     if (!live) {
       // Recordings: the frame enters the pipeline now, not when the decoder produced it ahead of
       // time; live sources keep the time the frame reached us.
