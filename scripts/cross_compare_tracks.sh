@@ -7,7 +7,7 @@
 # char signedness, a different decoder) moves boxes by pixels or changes ids.
 # Usage: scripts/cross_compare_tracks.sh X86_RTMOT AARCH64_RTMOT
 # Environment: MAX_FRAMES (default 10; about 5 s per frame under qemu), RTMOT_SYSROOT, BOX_TOLERANCE_PX
-# (default 0.5), SCORE_TOLERANCE (default 0.001), KEEP_DIR (keep the configs and outputs there).
+# (default 0.5), SCORE_TOLERANCE (default 0.005), KEEP_DIR (keep the configs and outputs there).
 set -euo pipefail
 
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -61,7 +61,7 @@ start=$SECONDS
 )
 echo "cross_compare_tracks: aarch64 run under qemu took $((SECONDS - start)) s"
 
-python3 - "$work/x86.jsonl" "$work/aarch64.jsonl" "${BOX_TOLERANCE_PX:-0.5}" "${SCORE_TOLERANCE:-0.001}" \
+python3 - "$work/x86.jsonl" "$work/aarch64.jsonl" "${BOX_TOLERANCE_PX:-0.5}" "${SCORE_TOLERANCE:-0.005}" \
   "$max_frames" <<'PY'
 import json
 import sys
