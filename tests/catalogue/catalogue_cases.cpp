@@ -258,6 +258,12 @@ const std::vector<CatalogueCase>& catalogue() {
        run_yaml,
        ExitCode::bad_input,
        {"run.yaml:", "score_threshold"}},
+      {"run_config_complex_key",
+       "a YAML key that is not a name ('? [a]'; found by fuzz_run_config)",
+       config_file("? [a]\n: 1\n"),
+       run_yaml,
+       ExitCode::bad_input,
+       {"run.yaml:1"}},
       {"run_model_missing",
        "SSD model file does not exist",
        config_file("source:\n  uri: test://ball?num-buffers=5\ndetector:\n  kind: ssd\n"

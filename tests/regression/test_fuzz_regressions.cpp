@@ -1,0 +1,37 @@
+// Inputs the fuzzers (tests/fuzz) found to crash a parser, kept as bytes so they never come back.
+// Each must now be refused with rtmot::InputError naming the file and line, never anything else.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "common/input_error.hpp"
+#include "pipeline/run_config.hpp"
+
+namespace rtmot {
+namespace {
+
+// fuzz_run_config, 2026-11-22: a YAML map key that is not a plain scalar (a "? [a]" complex key)
+// made Section::find/check_known call as<std::string>() on it: YAML::TypedBadConversion escaped as
+// an internal error (exit 1) instead of a bad-input error. Fix: pipeline/run_config.cpp.
+TEST(FuzzRegression, RunConfigComplexKeyIsABadInputError) {
+  const std::string inputs[] = {
+      "? [a]\n: 1\n",                    // at the top level
+      "source:\n  ? {uri: x}\n  : 1\n",  // inside a section
+  };
+  for (const auto& text : inputs) {
+    try {
+      pipeline::parse_run_config(text, "fuzz.yaml");
+      ADD_FAILURE() << "accepted: " << text;
+    } catch (const InputError& error) {
+      EXPECT_EQ(error.exit_code(), ExitCode::bad_input) << error.what();
+      EXPECT_EQ(error.file(), "fuzz.yaml");
+      EXPECT_GT(error.line(), 0) << error.what();
+    } catch (const std::exception& error) {
+      ADD_FAILURE() << "escaped as " << typeid(error).name() << ": " << error.what()
+                    << "\ninput: " << text;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace rtmot
