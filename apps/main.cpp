@@ -40,6 +40,7 @@ int main(int argc, char** argv) {
       add_listen_command(app),
       add_run_command(app),
       add_soak_command(app),
+      add_study_command(app),
       add_track_command(app),
   };
 

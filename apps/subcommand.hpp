@@ -18,5 +18,6 @@ Subcommand add_eval_command(CLI::App& parent);
 Subcommand add_listen_command(CLI::App& parent);
 Subcommand add_run_command(CLI::App& parent);
 Subcommand add_soak_command(CLI::App& parent);
+Subcommand add_study_command(CLI::App& parent);
 Subcommand add_track_command(CLI::App& parent);
 }  // namespace rtmot::app

@@ -45,6 +45,7 @@ std::vector<StudyConfiguration> option_configurations() {
              }),
       option("oru", [](TrackerConfig& c) { c.observation_centric_reupdate = true; }),
       option("widened-gate", [](TrackerConfig& c) { c.time_widened_gate = true; }),
+      option("cascade", [](TrackerConfig& c) { c.recent_tracks_first = true; }),
       option("confirm-by-duration", [](TrackerConfig& c) { c.confirm_by_duration = true; }),
       option("coast-1", [](TrackerConfig& c) { c.min_coast_updates = 1; }),
       option("max-age-3", [](TrackerConfig& c) { c.max_age = 3; }),

@@ -77,6 +77,8 @@ struct Tracker::State {
     }
     high.reserve(detections);
     low.reserve(detections);
+    rest.reserve(detections);
+    rest_index.reserve(detections);
     reports.reserve(tracks);
     matches.reserve(std::min(tracks, detections));
     detection_matched.reserve(detections);
@@ -240,10 +242,14 @@ struct Tracker::State {
 
     matches.clear();
     unmatched_tracks.clear();
-    for (int t = 0; t < static_cast<int>(order.size()); ++t) unmatched_tracks.push_back(t);
+    for (int t = 0; t < static_cast<int>(order.size()); ++t) {
+      if (!config.recent_tracks_first || slots[order[t]].steps_since_update == 1)
+        unmatched_tracks.push_back(t);
+    }
     associate_round(high, unmatched_tracks);
     detection_matched.assign(high.size(), 0);
     track_matched.assign(order.size(), 0);
+    if (config.recent_tracks_first) associate_older_tracks();
     for (const Match& match : matches) {
       detection_matched[match.detection] = 1;
       track_matched[match.track] = 1;
@@ -278,6 +284,31 @@ struct Tracker::State {
                                      elapsed_frames + kFrameTolerance < config.min_hits);
   }
 
+  // DeepSORT's matching cascade in two levels: the tracks lost for a while (whose gate is wide and
+  // whose prediction is poor) only get the detections the recently matched tracks left over.
+  void associate_older_tracks() {
+    for (const Match& match : matches) {
+      detection_matched[match.detection] = 1;
+      track_matched[match.track] = 1;
+    }
+    rest.clear();
+    rest_index.clear();
+    for (std::size_t d = 0; d < high.size(); ++d) {
+      if (detection_matched[d]) continue;
+      rest.push_back(high[d]);
+      rest_index.push_back(static_cast<int>(d));
+    }
+    unmatched_tracks.clear();
+    for (int t = 0; t < static_cast<int>(order.size()); ++t) {
+      if (!track_matched[t]) unmatched_tracks.push_back(t);
+    }
+    const std::size_t first_round = matches.size();
+    associate_round(rest, unmatched_tracks);
+    for (std::size_t m = first_round; m < matches.size(); ++m) {
+      matches[m].detection = rest_index[static_cast<std::size_t>(matches[m].detection)];
+    }
+  }
+
   void report_and_retire() {
     reports.clear();
     std::size_t kept = 0;
@@ -304,6 +335,8 @@ struct Tracker::State {
   std::vector<Particle> particles;
   std::vector<Detection> high;
   std::vector<Detection> low;
+  std::vector<Detection> rest;  // the cascade's second level: detections left by the first
+  std::vector<int> rest_index;  // their index in `high`
   std::vector<AssociationCandidate> candidates;
   std::vector<AssociationMatch> round_matches;
   std::vector<Match> matches;

@@ -45,6 +45,9 @@ struct TrackerConfig {
   bool observation_centric_reupdate{false};
   /// Widen the association gate with the time since the track's last match.
   bool time_widened_gate{false};
+  /// DeepSORT's matching cascade (two levels): tracks matched in the previous processed frame
+  /// are associated first; the tracks lost longer only get the detections left over.
+  bool recent_tracks_first{false};
 
   // --- the same meaning at every frame rate (processed frames may be several nominal ones apart)
   // ---

@@ -59,6 +59,9 @@ TEST_P(SteadyState, AllocatesNothingAfterWarmUp) {
   config.low_score = 0.3F;
   config.observation_centric_reupdate = true;
   config.time_widened_gate = true;
+  config.recent_tracks_first = true;
+  config.confirm_by_duration = true;
+  config.min_coast_updates = 1;
   config.max_age = 3;
   Tracker tracker(config);
 

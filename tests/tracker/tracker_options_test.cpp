@@ -171,5 +171,103 @@ TEST(TimeWidenedGate, LeavesTracksMatchedLastFrameAlone) {
   EXPECT_EQ(tracker.live_tracks(), 2);
 }
 
+// --- the same meaning at every frame rate --------------------------------------------------------
+
+namespace rate_invariance {
+
+// A walker seen every `interval`-th frame of a 30 fps source, for `frames` nominal frames.
+std::vector<std::vector<TrackReport>> run_walker(const TrackerConfig& base, int interval,
+                                                 int frames, int missing_from = -1,
+                                                 int missing_to = -1) {
+  TrackerConfig config = base;
+  config.time_step = TimeStep::elapsed;
+  config.frame_rate = 30.0;
+  Tracker tracker(config);
+  std::vector<std::vector<TrackReport>> history;
+  for (int f = 1; f <= frames; f += interval) {
+    std::vector<Detection> detections;
+    if (f < missing_from || f > missing_to) detections.push_back(detection(100.F + f, 200.F));
+    history.push_back(tracker.update(detections, (f - 1) / 30.0));
+  }
+  return history;
+}
+
+TEST(ConfirmByDuration, AtFullRateItIsTheHitCount) {
+  TrackerConfig by_hits = TrackerConfig::sort_preset();
+  TrackerConfig by_time = by_hits;
+  by_time.confirm_by_duration = true;
+  const auto hits = run_walker(by_hits, 1, 12, 5, 5);
+  const auto time = run_walker(by_time, 1, 12, 5, 5);
+  for (std::size_t f = 0; f < hits.size(); ++f) {
+    EXPECT_EQ(hits[f].size(), time[f].size()) << "frame " << f + 1;
+  }
+}
+
+TEST(ConfirmByDuration, AtATenthOfTheRateOneMatchCoversMinHitsFrames) {
+  TrackerConfig by_hits = TrackerConfig::sort_preset();
+  by_hits.max_age = 10;
+  TrackerConfig by_time = by_hits;
+  by_time.confirm_by_duration = true;
+  // Processed frames 1, 11, ..., 81; the walker is absent until frame 41, after SORT's start-up
+  // rule (report everything in the first min_hits frames) has ended.
+  const auto hits = run_walker(by_hits, 10, 81, 1, 40);
+  const auto time = run_walker(by_time, 10, 81, 1, 40);
+  ASSERT_EQ(hits.size(), 9U);
+  // Born at 41. By hits it takes three more matches (frame 71); by time one match (frame 51)
+  // spans 10 >= 3 nominal frames.
+  EXPECT_TRUE(hits[5].empty());
+  EXPECT_TRUE(hits[6].empty());
+  EXPECT_TRUE(reports_id(hits[7], 1));
+  EXPECT_TRUE(time[4].empty());  // a single detection is never enough
+  EXPECT_TRUE(reports_id(time[5], 1));
+  EXPECT_TRUE(reports_id(time[6], 1));
+}
+
+TEST(MinCoastUpdates, LetsATrackSurviveOneMissedProcessedFrameAtLowRate) {
+  TrackerConfig config = TrackerConfig::sort_preset();
+  config.confirm_by_duration = true;
+  // Frame 21 has no detection: 10 nominal frames > max_age 1 would end the track.
+  const auto strict = run_walker(config, 10, 51, 21, 21);
+  config.min_coast_updates = 1;
+  const auto coasting = run_walker(config, 10, 51, 21, 21);
+  EXPECT_TRUE(reports_id(strict[1], 1));
+  EXPECT_FALSE(reports_id(strict[3], 1));  // a new identity after the gap
+  EXPECT_TRUE(reports_id(coasting[3], 1));
+  EXPECT_TRUE(reports_id(coasting[4], 1));
+}
+
+}  // namespace rate_invariance
+
+// --- DeepSORT's matching cascade -----------------------------------------------------------------
+
+TEST(RecentTracksFirst, AnOldLostTrackCannotStealTheDetectionOfATrackMatchedLastFrame) {
+  // Track A walks right and is seen every frame. Track B, lost for 5 frames with a widened gate,
+  // was last seen just ahead of where A now is. Jointly, the detection fits B's wide gate better
+  // than A's; the cascade gives it to A, which was matched in the previous frame.
+  TrackerConfig config = TrackerConfig::sort_preset();
+  config.max_age = 10;
+  config.min_hits = 1;
+  config.time_widened_gate = true;
+  for (const bool cascade : {false, true}) {
+    config.recent_tracks_first = cascade;
+    Tracker tracker(config);
+    int a_id = 0;
+    for (int f = 1; f <= 12; ++f) {
+      std::vector<Detection> detections = {detection(100.F + 4.F * f, 200.F)};
+      if (f <= 5) detections.push_back(detection(150.F, 200.F));  // B, then unseen
+      const auto& reports = tracker.update(detections, f / 30.0);
+      if (f == 3) {
+        for (const auto& r : reports) {
+          if (r.box.x < 125.F) a_id = r.id;
+        }
+      }
+      if (f == 12) {
+        EXPECT_EQ(reports_id(reports, a_id), cascade) << "cascade " << cascade;
+      }
+    }
+    EXPECT_NE(a_id, 0);
+  }
+}
+
 }  // namespace
 }  // namespace rtmot::tracker
