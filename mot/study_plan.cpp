@@ -55,6 +55,37 @@ std::vector<StudyConfiguration> option_configurations() {
   };
 }
 
+template <typename Change>
+StudyConfiguration ablation(const std::string& suffix, Change change) {
+  TrackerConfig config = *find_preset(default_preset_name());
+  change(config);
+  return {std::string(default_preset_name()) + suffix, "ablation", config};
+}
+
+// The default preset with one of its parts taken back to SORT's, or one more option added: what
+// each part is worth where it is used.
+std::vector<StudyConfiguration> ablation_configurations() {
+  const TrackerConfig sort = TrackerConfig::sort_preset();
+  return {
+      ablation("-per-update", [&](TrackerConfig& c) { c.time_step = sort.time_step; }),
+      ablation("-threshold",
+               [&](TrackerConfig& c) { c.affinity_threshold = sort.affinity_threshold; }),
+      ablation("-det", [&](TrackerConfig& c) { c.detection_threshold = sort.detection_threshold; }),
+      ablation("-max-age", [&](TrackerConfig& c) { c.max_age = sort.max_age; }),
+      ablation("-min-hits", [&](TrackerConfig& c) { c.min_hits = sort.min_hits; }),
+      ablation("-duration", [](TrackerConfig& c) { c.confirm_by_duration = false; }),
+      ablation("-coast", [](TrackerConfig& c) { c.min_coast_updates = 0; }),
+      ablation("-gate", [](TrackerConfig& c) { c.time_widened_gate = false; }),
+      ablation("+oru", [](TrackerConfig& c) { c.observation_centric_reupdate = true; }),
+      ablation("+second-round",
+               [](TrackerConfig& c) {
+                 c.second_round = true;
+                 c.low_score = 0.5F;
+               }),
+      ablation("+cascade", [](TrackerConfig& c) { c.recent_tracks_first = true; }),
+  };
+}
+
 }  // namespace
 
 std::vector<StudyConfiguration> study_configurations(bool quick) {
@@ -73,6 +104,9 @@ std::vector<StudyConfiguration> study_configurations(bool quick) {
   }
   for (auto& configuration : option_configurations())
     configurations.push_back(std::move(configuration));
+  for (auto& configuration : ablation_configurations()) {
+    configurations.push_back(std::move(configuration));
+  }
   for (const auto& preset : tracker_presets()) {
     configurations.push_back({"preset-" + std::string(preset.name), "presets", preset.make()});
   }

@@ -8,13 +8,15 @@
 namespace rtmot::mot {
 
 struct StudyConfiguration {
-  std::string name;   // file-name safe, e.g. "kalman-iou" or "kalman-iou+oru"
-  std::string group;  // "grid" (predictor x affinity), "options" (one change each), "presets"
+  std::string name;  // file-name safe, e.g. "kalman-iou" or "kalman-iou+oru"
+  std::string
+      group;  // "grid" (predictor x affinity), "options" (one change each), "ablation", "presets"
   tracker::TrackerConfig config;
 };
 
 /// The predictor x affinity grid (SORT's track life, elapsed time steps), each option of the
-/// tracker alone on top of kalman-iou, and the presets. `quick` keeps kalman-iou, the options
+/// tracker alone on top of kalman-iou, the default preset with each of its parts undone or one
+/// more option added ("ablation"), and the presets. `quick` keeps kalman-iou, the options
 /// and the presets only.
 std::vector<StudyConfiguration> study_configurations(bool quick);
 
