@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "mot/mot_files.hpp"
+#include "mot/tracker_presets.hpp"
 #include "tracker/linear_assignment.hpp"
 #include "tracker/tracker.hpp"
 
@@ -112,11 +113,20 @@ void BM_SortAllOptionsMot15(benchmark::State& state) {
   config.low_score = 0.3F;
   config.observation_centric_reupdate = true;
   config.time_widened_gate = true;
+  config.recent_tracks_first = true;
+  config.confirm_by_duration = true;
+  config.min_coast_updates = 1;
   config.max_age = 3;
   config.time_step = rtmot::tracker::TimeStep::elapsed;
   track_all(state, config);
 }
 BENCHMARK(BM_SortAllOptionsMot15)->Unit(benchmark::kMillisecond);
+
+// The default preset: what `rtmot track` and `rtmot run` pay per frame.
+void BM_DefaultPresetMot15(benchmark::State& state) {
+  track_all(state, *rtmot::mot::find_preset(rtmot::mot::default_preset_name()));
+}
+BENCHMARK(BM_DefaultPresetMot15)->Unit(benchmark::kMillisecond);
 
 // The assignment alone on a dense square matrix of the given size.
 void BM_LinearAssignment(benchmark::State& state) {
