@@ -33,6 +33,10 @@ struct StudyCommandOptions {
 int run_study_command(const StudyCommandOptions& options) {
   using Clock = std::chrono::steady_clock;
   const auto start = Clock::now();
+  // Ascending and unique: rows and plot axes follow the interval.
+  std::vector<int> intervals = options.intervals;
+  std::sort(intervals.begin(), intervals.end());
+  intervals.erase(std::unique(intervals.begin(), intervals.end()), intervals.end());
   const auto dataset = mot::load_study_dataset(options.dataset);
   auto configurations = mot::study_configurations(options.quick);
   if (!options.only.empty()) {
@@ -49,7 +53,7 @@ int run_study_command(const StudyCommandOptions& options) {
   const std::vector<mot::StudyInput> inputs = {mot::StudyInput::detections,
                                                mot::StudyInput::ground_truth};
   spdlog::info("study: {} sequences, {} configurations x {} inputs x {} intervals on {} threads",
-               dataset.size(), configurations.size(), inputs.size(), options.intervals.size(),
+               dataset.size(), configurations.size(), inputs.size(), intervals.size(),
                options.jobs);
   const auto progress = [](int done, int total, const mot::StudyTable& table, int interval) {
     for (const auto& row : table.rows) {
@@ -62,7 +66,7 @@ int run_study_command(const StudyCommandOptions& options) {
     }
   };
   const auto tables =
-      mot::run_study(dataset, configurations, inputs, options.intervals, options.jobs, progress);
+      mot::run_study(dataset, configurations, inputs, intervals, options.jobs, progress);
   const auto files = mot::write_study(options.out_dir, tables, options.link_prefix);
   spdlog::info("study: wrote {} files under {} in {:.0f} s", files.size(), options.out_dir,
                std::chrono::duration<double>(Clock::now() - start).count());
@@ -88,8 +92,9 @@ Subcommand add_study_command(CLI::App& parent) {
   cli->add_option("--intervals", options->intervals, "frame intervals, e.g. 1,2,3,5,10,15,30")
       ->delimiter(',')
       ->check(CLI::PositiveNumber);
-  cli->add_flag("--quick", options->quick,
-                "kalman-iou, the options and the presets only (no predictor x affinity grid)");
+  cli->add_flag(
+      "--quick", options->quick,
+      "kalman-iou, the options, the ablation and the presets only (no predictor x affinity grid)");
   cli->add_option("--only", options->only, "only configurations whose name contains this");
   cli->add_option("--link-prefix", options->link_prefix,
                   "prefix of the plot links in summary.md (e.g. study/ when it is included from "
