@@ -1,7 +1,9 @@
 // rtmot: one executable, one subcommand per job (`rtmot --help` lists them).
+#include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
 #include <exception>
+#include <string_view>
 #include <vector>
 
 #include "apps/subcommand.hpp"
@@ -23,9 +25,22 @@ int run_reporting_errors(const std::function<int()>& run) {
   }
 }
 
+// CLI11 reports a mistyped subcommand as "a subcommand is required"; name the word instead.
+bool is_unknown_subcommand(const CLI::App& app, int argc, char** argv) {
+  if (argc < 2 || argv[1][0] == '-') return false;
+  const std::string_view word = argv[1];
+  for (const CLI::App* sub : app.get_subcommands({})) {
+    if (sub->get_name() == word) return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
+  // Logs and errors go to stderr (the journal on a board); stdout carries only command output.
+  spdlog::set_default_logger(spdlog::stderr_color_mt("rtmot"));
+
   CLI::App app{"rtmot: real-time multiple-object tracking (SSD detector + SORT tracker)"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "rtmot " RTMOT_VERSION);
@@ -47,6 +62,10 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
+    if (is_unknown_subcommand(app, argc, argv)) {
+      spdlog::error("unknown subcommand '{}' (rtmot --help lists them)", argv[1]);
+      return rtmot::to_int(rtmot::ExitCode::usage);
+    }
     const int code = app.exit(error);
     return code == 0 ? 0 : rtmot::to_int(rtmot::ExitCode::usage);
   }

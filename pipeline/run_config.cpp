@@ -90,11 +90,18 @@ class Section {
     return prefix_.empty() ? key : key.empty() ? prefix_ : prefix_ + "." + key;
   }
 
+  /// A map key as text. YAML allows sequences and maps as keys ("? [a]"); a config never needs
+  /// them, and as<std::string>() would throw a YAML exception that escapes as an internal error.
+  std::string key_text(const YAML::Node& key) const {
+    if (!key.IsScalar()) fail(key, "", "a key must be a plain name, not a list or a map");
+    return key.Scalar();
+  }
+
   /// Throws for the first key that no read() or child() asked for.
   void reject_unknown() const {
     if (!node_.IsMap()) return;
     for (const auto& entry : node_) {
-      const auto key = entry.first.as<std::string>();
+      const auto key = key_text(entry.first);
       if (known_.count(key) == 0) fail(entry.first, key, "unknown key");
     }
   }
@@ -103,7 +110,7 @@ class Section {
   std::optional<YAML::Node> find(const std::string& key) const {
     if (!node_.IsMap()) return std::nullopt;
     for (const auto& entry : node_) {
-      if (entry.first.as<std::string>() == key) return entry.second;
+      if (key_text(entry.first) == key) return entry.second;
     }
     return std::nullopt;
   }
@@ -111,7 +118,7 @@ class Section {
   // The key itself: where an empty value is reported (an empty value has no position of its own).
   YAML::Node find_key(const std::string& key) const {
     for (const auto& entry : node_) {
-      if (entry.first.as<std::string>() == key) return entry.first;
+      if (key_text(entry.first) == key) return entry.first;
     }
     return node_;
   }
@@ -213,17 +220,20 @@ bool read_enum(Section& section, const std::string& key, Parse parse,
 }
 
 void read_tracker(Section section, tracker::TrackerConfig& config) {
-  std::string preset;
-  if (section.read("preset", preset)) {
-    const auto found = mot::find_preset(preset);
-    if (!found) {
-      section.fail(*section.find("preset"), "preset", "expected one of: " + mot::preset_names());
-    }
-    config = *found;
-    config.frame_rate = 0.0;  // still "from the source" unless set below
-    config.image_width = 0.F;
-    config.image_height = 0.F;
+  // Without a preset the pipeline starts from the default (best measured) one, as `rtmot track`.
+  std::string preset{mot::default_preset_name()};
+  section.read("preset", preset);
+  const auto found = mot::find_preset(preset);
+  if (!found) {
+    section.fail(*section.find("preset"), "preset", "expected one of: " + mot::preset_names());
   }
+  config = *found;
+  config.frame_rate = 0.0;  // still "from the source" unless set below
+  config.image_width = 0.F;
+  config.image_height = 0.F;
+  // A preset's detection_threshold was tuned on MOTChallenge detection scores (Faster R-CNN); in the
+  // pipeline the detector's own score_threshold is the one confidence cut unless this is set below.
+  config.detection_threshold = 0.F;
   read_enum(section, "predictor", tracker::parse_predictor, "kalman, stationary or particle",
             config.predictor);
   const bool affinity_given = read_enum(section, "affinity", tracker::parse_affinity,

