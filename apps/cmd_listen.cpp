@@ -212,8 +212,9 @@ Subcommand add_listen_command(CLI::App& parent) {
       "listen",
       "Receive track messages over UDP (or read a binary message file), print them and count "
       "lost, reordered, duplicated and corrupt messages per stream");
-  auto* port = cli->add_option("--port,-p", options->port, "UDP port to listen on")
-                   ->check(CLI::Range(1, 65535));
+  auto* port = cli->add_option("--port,-p", options->port,
+                               "UDP port to listen on (0: any free port, logged at start)")
+                   ->check(CLI::Range(0, 65535));
   auto* bind =
       cli->add_option("--bind", options->bind_address, "local address to bind (IPv4 or IPv6)")
           ->capture_default_str();

@@ -1,7 +1,5 @@
 #include "detector/ssd_detector.hpp"
 
-#include <spdlog/spdlog.h>
-
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 #include <sstream>
@@ -95,7 +93,7 @@ SsdDetector::SsdDetector(SsdConfig config)
                       "the model's outputs do not match " + std::to_string(anchors) +
                           " anchors x (4 box codes, 91 classes): wrong model or anchors file");
   }
-  spdlog::info("detector: {}", describe());
+  // The choice and its reason are logged by whoever builds the pipeline (describe()), once.
 }
 
 void SsdDetector::preprocess(const cv::Mat& bgr_image) {
