@@ -2,63 +2,14 @@
 // operator new in this executable (its own binary, so no other test is affected).
 #include <gtest/gtest.h>
 
-#include <atomic>
-#include <cstdlib>
-#include <new>
 #include <opencv2/videoio.hpp>
 #include <vector>
 
 #include "detector/replay_detector.hpp"
 #include "detector/ssd_detector.hpp"
 #include "detector/ssd_postprocess.hpp"
+#include "allocation_counter.hpp"
 #include "shared_data.hpp"
-
-namespace {
-
-std::atomic<bool> counting{false};
-std::atomic<long> allocations{0};
-std::atomic<std::size_t> largest{0};
-
-void* counted_alloc(std::size_t size) {
-  if (counting.load(std::memory_order_relaxed)) {
-    allocations.fetch_add(1, std::memory_order_relaxed);
-    std::size_t seen = largest.load(std::memory_order_relaxed);
-    while (size > seen && !largest.compare_exchange_weak(seen, size, std::memory_order_relaxed)) {
-    }
-  }
-  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
-  throw std::bad_alloc();
-}
-
-struct Counter {
-  Counter() {
-    allocations = 0;
-    largest = 0;
-    counting = true;
-  }
-  ~Counter() { counting = false; }
-};
-
-}  // namespace
-
-void* operator new(std::size_t size) {
-  return counted_alloc(size);
-}
-void* operator new[](std::size_t size) {
-  return counted_alloc(size);
-}
-void operator delete(void* p) noexcept {
-  std::free(p);
-}
-void operator delete[](void* p) noexcept {
-  std::free(p);
-}
-void operator delete(void* p, std::size_t) noexcept {
-  std::free(p);
-}
-void operator delete[](void* p, std::size_t) noexcept {
-  std::free(p);
-}
 
 namespace rtmot::detector {
 namespace {
@@ -75,9 +26,9 @@ TEST(DetectorAllocation, PostprocessingAllocatesNothingInSteadyState) {
   std::vector<tracker::Detection> out;
   post.run(boxes.data(), logits.data(), 640, 480, out);  // `out` grows once
   ASSERT_FALSE(out.empty());
-  Counter counter;
+  const test::CountingScope counting;
   for (int i = 0; i < 10; ++i) post.run(boxes.data(), logits.data(), 640, 480, out);
-  EXPECT_EQ(allocations.load(), 0);
+  EXPECT_EQ(counting.allocations(), 0);
 }
 
 TEST(DetectorAllocation, ReplayAllocatesNothingInSteadyState) {
@@ -86,9 +37,9 @@ TEST(DetectorAllocation, ReplayAllocatesNothingInSteadyState) {
   ReplayDetector replay(path);
   std::vector<tracker::Detection> out;
   out.reserve(256);
-  Counter counter;
+  const test::CountingScope counting;
   for (int frame = 1; frame <= replay.last_frame(); ++frame) replay.detect(cv::Mat(), frame, out);
-  EXPECT_EQ(allocations.load(), 0);
+  EXPECT_EQ(counting.allocations(), 0);
 }
 
 TEST(DetectorAllocation, SsdAllocatesNoImageBuffersPerFrame) {
@@ -109,19 +60,20 @@ TEST(DetectorAllocation, SsdAllocatesNoImageBuffersPerFrame) {
   std::vector<tracker::Detection> out;
   detector.detect(image, 1, out);
   long counts[2] = {0, 0};
+  std::size_t largest = 0;
   for (long& count : counts) {
-    Counter counter;
+    const test::CountingScope counting;
     detector.detect(image, 2, out);
-    counting = false;
-    count = allocations.load();
+    count = counting.allocations();
+    largest = counting.largest();
   }
   // operator new sees OpenCV's C++ containers, not cv::Mat data (cv::fastMalloc). What it sees:
   // forward()'s per-layer bookkeeping and cv::resize's tables, the same every frame and all
   // smaller than one 300x300 input image.
-  std::cout << "SsdDetector::detect: " << counts[1] << " allocations, largest " << largest.load()
+  std::cout << "SsdDetector::detect: " << counts[1] << " allocations, largest " << largest
             << " bytes\n";
   EXPECT_EQ(counts[0], counts[1]);
-  EXPECT_LT(largest.load(), 300U * 300U * 3U);
+  EXPECT_LT(largest, 300U * 300U * 3U);
 }
 
 }  // namespace

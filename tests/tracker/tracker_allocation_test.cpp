@@ -3,39 +3,12 @@
 // allocations over the second half, for every predictor and affinity.
 #include <gtest/gtest.h>
 
-#include <atomic>
-#include <cstdlib>
-#include <new>
+#include <memory>
 
+#include "allocation_counter.hpp"
 #include "mot_detections.hpp"
 #include "shared_data.hpp"
 #include "tracker/tracker.hpp"
-
-namespace {
-// Test instrumentation: the one place a global counter is the point.
-std::atomic<long> g_allocations{0};
-}  // namespace
-
-void* operator new(std::size_t size) {
-  g_allocations.fetch_add(1, std::memory_order_relaxed);
-  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
-  throw std::bad_alloc();
-}
-void* operator new[](std::size_t size) {
-  return operator new(size);
-}
-void operator delete(void* p) noexcept {
-  std::free(p);
-}
-void operator delete[](void* p) noexcept {
-  std::free(p);
-}
-void operator delete(void* p, std::size_t) noexcept {
-  std::free(p);
-}
-void operator delete[](void* p, std::size_t) noexcept {
-  std::free(p);
-}
 
 namespace rtmot::tracker {
 namespace {
@@ -68,18 +41,21 @@ TEST_P(SteadyState, AllocatesNothingAfterWarmUp) {
   const std::size_t half = sequence.frames.size() / 2;
   long reported = 0;
   for (std::size_t f = 0; f < half; ++f) tracker.update(sequence.frames[f], 0.0);
-  const long before = g_allocations.load();
-  for (std::size_t f = half; f < sequence.frames.size(); ++f)
-    reported += static_cast<long>(tracker.update(sequence.frames[f], 0.0).size());
-  const long during = g_allocations.load() - before;
+  long during = 0;
+  {
+    const test::CountingScope counting;
+    for (std::size_t f = half; f < sequence.frames.size(); ++f)
+      reported += static_cast<long>(tracker.update(sequence.frames[f], 0.0).size());
+    during = counting.allocations();
+  }
   EXPECT_EQ(during, 0) << "allocations over " << sequence.frames.size() - half << " frames";
   EXPECT_GT(reported, 0);  // it did track something
 }
 
 TEST(AllocationCounter, CountsAllocations) {
-  const long before = g_allocations.load();
+  const test::CountingScope counting;
   auto p = std::make_unique<int>(3);
-  EXPECT_EQ(g_allocations.load() - before, 1);
+  EXPECT_EQ(counting.allocations(), 1);
 }
 
 INSTANTIATE_TEST_SUITE_P(
