@@ -26,27 +26,5 @@ set(CMAKE_C_COMPILER aarch64-linux-gnu-gcc)
 set(CMAKE_CXX_COMPILER aarch64-linux-gnu-g++)
 set(CMAKE_SYSROOT "${RTMOT_SYSROOT}")
 
-# Search the sysroot for libraries, headers and CMake packages; the host only for programs (pkg-config,
-# protoc...). The sysroot keeps Debian's multiarch layout: CMake finds usr/lib/aarch64-linux-gnu and
-# usr/lib/aarch64-linux-gnu/cmake/<pkg> through CMAKE_LIBRARY_ARCHITECTURE, and usr/share/cmake,
-# usr/share/eigen3/cmake through the default prefixes below the root path.
-set(CMAKE_FIND_ROOT_PATH "${RTMOT_SYSROOT}")
-set(CMAKE_FIND_ROOT_PATH_MODE_PROGRAM NEVER)
-set(CMAKE_FIND_ROOT_PATH_MODE_LIBRARY ONLY)
-set(CMAKE_FIND_ROOT_PATH_MODE_INCLUDE ONLY)
-set(CMAKE_FIND_ROOT_PATH_MODE_PACKAGE ONLY)
-
-# pkg-config (GStreamer): only the sysroot's .pc files, with their paths prefixed by the sysroot.
-# FindPkgConfig reads these from the environment at configure time.
-set(ENV{PKG_CONFIG_DIR} "")
-set(ENV{PKG_CONFIG_LIBDIR}
-    "${RTMOT_SYSROOT}/usr/lib/aarch64-linux-gnu/pkgconfig:${RTMOT_SYSROOT}/usr/lib/pkgconfig:${RTMOT_SYSROOT}/usr/share/pkgconfig")
-set(ENV{PKG_CONFIG_SYSROOT_DIR} "${RTMOT_SYSROOT}")
-unset(ENV{PKG_CONFIG_PATH})
-
-# Run the arm64 test programs (CTest, gtest_discover_tests) through user-mode qemu, with the sysroot's
-# dynamic loader and libraries.
-find_program(RTMOT_QEMU_AARCH64 qemu-aarch64)
-if(RTMOT_QEMU_AARCH64)
-  set(CMAKE_CROSSCOMPILING_EMULATOR "${RTMOT_QEMU_AARCH64};-L;${RTMOT_SYSROOT}")
-endif()
+include("${CMAKE_CURRENT_LIST_DIR}/aarch64-sysroot.cmake")
+rtmot_use_aarch64_sysroot("${RTMOT_SYSROOT}")

@@ -41,20 +41,6 @@ set(CMAKE_CXX_FLAGS_INIT "${JETSON_ARCH_FLAGS}")
 set(CMAKE_EXE_LINKER_FLAGS_INIT
     "-Wl,-rpath-link,${JETSON_SYSROOT}/usr/lib/aarch64-linux-gnu/tegra -Wl,-rpath-link,${JETSON_SYSROOT}/usr/lib/aarch64-linux-gnu")
 
-set(CMAKE_FIND_ROOT_PATH "${JETSON_SYSROOT}")
-set(CMAKE_FIND_ROOT_PATH_MODE_PROGRAM NEVER)
-set(CMAKE_FIND_ROOT_PATH_MODE_LIBRARY ONLY)
-set(CMAKE_FIND_ROOT_PATH_MODE_INCLUDE ONLY)
-set(CMAKE_FIND_ROOT_PATH_MODE_PACKAGE ONLY)
-
-set(ENV{PKG_CONFIG_DIR} "")
-set(ENV{PKG_CONFIG_LIBDIR}
-    "${JETSON_SYSROOT}/usr/lib/aarch64-linux-gnu/pkgconfig:${JETSON_SYSROOT}/usr/lib/pkgconfig:${JETSON_SYSROOT}/usr/share/pkgconfig")
-set(ENV{PKG_CONFIG_SYSROOT_DIR} "${JETSON_SYSROOT}")
-unset(ENV{PKG_CONFIG_PATH})
-
-# Tests are meant to run on the board itself (ctest there, or scripts/deploy); qemu works too if present.
-find_program(JETSON_QEMU_AARCH64 qemu-aarch64)
-if(JETSON_QEMU_AARCH64)
-  set(CMAKE_CROSSCOMPILING_EMULATOR "${JETSON_QEMU_AARCH64};-L;${JETSON_SYSROOT}")
-endif()
+# Tests are meant to run on the board itself (ctest there); qemu works too if the host has it.
+include("${CMAKE_CURRENT_LIST_DIR}/aarch64-sysroot.cmake")
+rtmot_use_aarch64_sysroot("${JETSON_SYSROOT}")
