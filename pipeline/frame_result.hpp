@@ -22,6 +22,9 @@ struct FrameResult {
   std::int64_t frame_number{0};   // the source's 1-based frame number
   std::int64_t pts_ns{0};         // stream timestamp of the frame
   std::uint32_t frames_dropped{0};  // frames the source produced but nobody processed, so far
+  /// No picture: the live source is down and being reopened. The tracker still advanced (tracks
+  /// coast), so the ground station keeps hearing from us; `tracks` is then empty.
+  bool source_outage{false};
   FrameTimes times;
   std::vector<tracker::TrackReport> tracks;  // reserved once; never grows in steady state
 };

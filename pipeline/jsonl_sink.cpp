@@ -25,11 +25,11 @@ void append_json_line(const FrameResult& frame, std::uint32_t total_track_count,
   fmt::format_to(
       to,
       R"({{"stream":{},"sequence":{},"frame":{},"pts_ns":{},"captured_ns":{},"latency_ns":{},)"
-      R"("frames_dropped":{},"truncated":{},"total_tracks":{},"tracks":[)",
+      R"("frames_dropped":{},"source_outage":{},"truncated":{},"total_tracks":{},"tracks":[)",
       frame.stream_id, frame.sequence, frame.frame_number, frame.pts_ns, frame.times.captured_ns,
       static_cast<std::int64_t>(static_cast<std::uint64_t>(frame.times.sent_ns) -
                                 static_cast<std::uint64_t>(frame.times.captured_ns)),
-      frame.frames_dropped, truncated, total_track_count);
+      frame.frames_dropped, frame.source_outage, truncated, total_track_count);
   bool first = true;
   for (const auto& track : frame.tracks) {
     fmt::format_to(to, R"({}{{"id":{},"class":{},"score":)", first ? "" : ",", track.id,

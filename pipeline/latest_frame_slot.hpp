@@ -22,6 +22,7 @@ namespace rtmot::pipeline {
 struct FrameSlotItem {
   cv::Mat image;
   platform::FrameInfo info;
+  bool outage{false};  // no picture: a tick while the live source is reopened (see pipeline.cpp)
 };
 
 enum class SlotMode { latest, every_frame };

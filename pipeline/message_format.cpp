@@ -143,7 +143,9 @@ std::size_t MessageEncoder::encode(const FrameResult& result, std::uint8_t* buff
   std::uint8_t* const header = buffer;
   put<std::uint32_t>(header + offset::magic, message::magic);
   header[offset::version] = message::version;
-  header[offset::flags] = truncated ? message::flag_truncated : 0;
+  header[offset::flags] = static_cast<std::uint8_t>(
+      (truncated ? message::flag_truncated : 0) |
+      (result.source_outage ? message::flag_source_outage : 0));
   put<std::uint16_t>(header + offset::header_length,
                      static_cast<std::uint16_t>(message::header_size));
   put<std::uint32_t>(header + offset::stream_id, result.stream_id);
@@ -248,6 +250,7 @@ DecodeError decode_message(const std::uint8_t* data, std::size_t size, DecodedMe
   frame.sequence = get<std::uint64_t>(data + offset::sequence);
   frame.frame_number = get_i64(data + offset::frame_number);
   frame.pts_ns = get_i64(data + offset::pts_ns);
+  frame.source_outage = (out.flags & message::flag_source_outage) != 0;
   frame.times = FrameTimes{};
   frame.times.captured_ns = get_i64(data + offset::captured_ns);
   // Unsigned addition: a hostile latency must not be signed-overflow UB.

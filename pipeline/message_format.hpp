@@ -26,6 +26,7 @@ constexpr std::size_t max_track_count = 0xFFFF;
 /// Flag bits of byte 5. Bits not listed are 0 when sent and ignored when read.
 constexpr std::uint8_t flag_truncated =
     0x01;  // fewer tracks than the frame had: highest scores kept
+constexpr std::uint8_t flag_source_outage = 0x02;  // no picture: the source is being reopened
 
 /// The largest UDP payload we send by default: fits one unfragmented datagram on any IPv6 path
 /// (1280-byte minimum MTU - 40 IPv6 - 8 UDP = 1232) and through VPN/tunnel overheads; see the doc.

@@ -24,6 +24,7 @@ using platform::steady_now_ns;
 // detect -> track.
 struct DetectedFrame {
   platform::FrameInfo info;
+  bool outage{false};
   FrameTimes times;
   std::vector<tracker::Detection> detections;
   cv::Mat image;  // only when the annotated video is on
@@ -67,6 +68,11 @@ struct Pipeline::Stages {
   // join.
   std::atomic<std::int64_t> frames_captured{0};
   std::int64_t frames_lost{0};       // capture thread
+  std::int64_t outages{0};           // capture thread: times the live source went down
+  bool in_outage{false};             // capture thread
+  std::int64_t last_pts_ns{0};       // capture thread: the last real frame's
+  std::int64_t last_capture_ns{0};   // capture thread: the last real frame's
+  std::int64_t messages{0};          // track thread: frames and outage ticks
   std::int64_t first_capture_ns{0};  // capture thread
   std::string source_error;          // capture thread
   std::int64_t frames_processed{0};  // track thread
@@ -122,20 +128,51 @@ struct Pipeline::Stages {
 
   // ---------------- capture ----------------
 
-  // Reads the next frame into `item`; counts it and the source's gaps. False at the end.
-  bool read_frame(FrameSlotItem& item, const std::atomic<bool>& stop, std::int64_t& last_number) {
-    if (stop.load(std::memory_order_relaxed) || abort.load(std::memory_order_relaxed)) return false;
+  enum class Next { frame, outage_tick, end };
+
+  // Reads the next frame into `item`; counts it and the source's gaps.
+  Next read_frame(FrameSlotItem& item, const std::atomic<bool>& stop, std::int64_t& last_number) {
+    if (stop.load(std::memory_order_relaxed) || abort.load(std::memory_order_relaxed)) {
+      return Next::end;
+    }
     const auto captured = frames_captured.load(std::memory_order_relaxed);
-    if (options.max_frames > 0 && captured >= options.max_frames) return false;
+    if (options.max_frames > 0 && captured >= options.max_frames) return Next::end;
     const platform::ReadStatus status = source->read(item.image, item.info);
+    if (status == platform::ReadStatus::error && source->reconnecting()) {
+      return outage_tick(item, last_number);
+    }
     if (status == platform::ReadStatus::error) source_error = source->last_error();
-    if (status != platform::ReadStatus::frame) return false;
+    if (status != platform::ReadStatus::frame) return Next::end;
+    if (in_outage) {
+      spdlog::info("source is back after outage {}", outages);
+      in_outage = false;
+    }
     if (last_number > 0 && item.info.frame_number > last_number + 1) {
       frames_lost += item.info.frame_number - last_number - 1;
     }
     last_number = item.info.frame_number;
+    last_pts_ns = item.info.pts_ns;
+    last_capture_ns = item.info.capture_ns;
+    item.outage = false;
     frames_captured.store(captured + 1, std::memory_order_relaxed);
-    return true;
+    return Next::frame;
+  }
+
+  // The live source is down and being reopened (its read() returned promptly). Instead of ending,
+  // send a tick without a picture at the current time: the tracker advances (tracks coast) and the
+  // ground station keeps receiving messages, flagged source_outage, until the source is back.
+  Next outage_tick(FrameSlotItem& item, std::int64_t last_number) {
+    const std::int64_t now_ns = steady_now_ns();
+    if (!in_outage) {
+      in_outage = true;
+      ++outages;
+      spdlog::warn("source outage {}: {}", outages, source->last_error());
+    }
+    item.outage = true;
+    item.info.frame_number = last_number;  // no new frame: keeps the dropped-frame count honest
+    item.info.pts_ns = last_capture_ns > 0 ? last_pts_ns + (now_ns - last_capture_ns) : 0;
+    item.info.capture_ns = now_ns;
+    return Next::outage_tick;
   }
 
   // Hands `item` to the detector: swaps image buffers with the slot's back buffer (no copy).
@@ -143,7 +180,7 @@ struct Pipeline::Stages {
     // every-frame/simulated: wait for the detector before stamping, so that the time the capture
     // thread spends blocked is not counted as the frame's latency.
     if (!slot.wait_for_room(abort)) return false;
-    if (!live) {
+    if (!live && !item.outage) {
       // Recordings: the frame enters the pipeline now, not when the decoder produced it ahead of
       // time; live sources keep the time the frame reached us.
       item.info.capture_ns = steady_now_ns();
@@ -152,6 +189,7 @@ struct Pipeline::Stages {
     FrameSlotItem& back = slot.back();
     std::swap(back.image, item.image);
     back.info = item.info;
+    back.outage = item.outage;
     return slot.publish(abort);
   }
 
@@ -163,9 +201,10 @@ struct Pipeline::Stages {
       // simulated detector looks.
       SimulatedClock clock(static_cast<std::int64_t>(options.simulated_latency_ms * 1e6));
       FrameSlotItem next;
-      bool have_current = read_frame(current, stop, last_number);
+      // (Only recordings play simulated, and they have no outages.)
+      bool have_current = read_frame(current, stop, last_number) == Next::frame;
       while (have_current) {
-        const bool have_next = read_frame(next, stop, last_number);
+        const bool have_next = read_frame(next, stop, last_number) == Next::frame;
         const auto next_pts = have_next ? std::optional(next.info.pts_ns) : std::nullopt;
         if (clock.takes(current.info.pts_ns, next_pts) && !publish(current)) return;
         std::swap(current, next);
@@ -174,7 +213,8 @@ struct Pipeline::Stages {
       return;
     }
     std::int64_t wall_origin_ns = 0;  // realtime: the wall time of pts 0
-    while (read_frame(current, stop, last_number)) {
+    for (Next next = read_frame(current, stop, last_number); next != Next::end;
+         next = read_frame(current, stop, last_number)) {
       if (playback == PlaybackMode::realtime && !live) {
         if (wall_origin_ns == 0) wall_origin_ns = steady_now_ns() - current.info.pts_ns;
         const std::int64_t wait_ns = wall_origin_ns + current.info.pts_ns - steady_now_ns();
@@ -192,7 +232,13 @@ struct Pipeline::Stages {
       const std::int64_t taken_ns = steady_now_ns();
       DetectedFrame* out = detected.claim(abort);
       if (out == nullptr) return;
-      detector->detect(frame.image, frame.info.frame_number, out->detections);
+      // An outage tick has no picture: nothing to detect, the tracker will coast.
+      if (frame.outage) {
+        out->detections.clear();
+      } else {
+        detector->detect(frame.image, frame.info.frame_number, out->detections);
+      }
+      out->outage = frame.outage;
       out->times = FrameTimes{};
       out->times.captured_ns = frame.info.capture_ns;
       out->times.detect_start_ns = taken_ns;
@@ -214,7 +260,8 @@ struct Pipeline::Stages {
       FrameResult& result = out->result;
       result.tracks.assign(reports.begin(), reports.end());  // within the reserved capacity
       result.stream_id = options.stream_id;
-      result.sequence = static_cast<std::uint64_t>(frames_processed);
+      result.sequence = static_cast<std::uint64_t>(messages++);
+      result.source_outage = in->outage;
       result.frame_number = in->info.frame_number;
       result.pts_ns = in->info.pts_ns;
       // Every frame before this one that did not become a message was dropped somewhere.
@@ -223,7 +270,7 @@ struct Pipeline::Stages {
       result.times = in->times;
       result.times.tracked_ns = steady_now_ns();
       if (annotate) std::swap(out->image, in->image);
-      ++frames_processed;
+      if (!in->outage) ++frames_processed;
       detected.pop();
       tracked.publish();
     }
@@ -242,6 +289,10 @@ struct Pipeline::Stages {
       FrameResult& result = in->result;
       result.times.sent_ns = steady_now_ns();
       for (const auto& sink : sinks) sink->write(result);
+      if (result.source_outage) {  // a tick, not a processed frame: no latency, no video frame
+        tracked.pop();
+        continue;
+      }
       latency.record(result.times);
       interval_e2e.record(result.times.sent_ns - result.times.captured_ns);
       last_sent_ns = result.times.sent_ns;
@@ -292,6 +343,7 @@ struct Pipeline::Stages {
     report.frames_processed = latency.end_to_end.count();
     report.frames_dropped = report.frames_captured - report.frames_processed;
     report.frames_lost = frames_lost;
+    report.source_outages = outages;
     report.source_error = source_error;
     if (report.frames_processed > 0 && last_sent_ns > first_capture_ns) {
       report.wall_seconds = static_cast<double>(last_sent_ns - first_capture_ns) * 1e-9;

@@ -53,6 +53,7 @@ nlohmann::json to_json(const PipelineReport& report) {
             {"processed", report.frames_processed},
             {"dropped", report.frames_dropped},
             {"lost_by_source", report.frames_lost}}},
+          {"source_outages", report.source_outages},
           {"wall_seconds", report.wall_seconds},
           {"fps", report.fps},
           {"detector_fps", report.detector_fps},
@@ -67,10 +68,11 @@ nlohmann::json to_json(const PipelineReport& report) {
 std::string summary_line(const PipelineReport& report) {
   const auto& e2e = report.latency.end_to_end;
   return fmt::format(
-      "frames captured {} processed {} dropped {} lost {} | {:.2f} fps (detector {:.2f} fps) "
+      "frames captured {} processed {} dropped {} lost {} | source outages {} | {:.2f} fps "
+      "(detector {:.2f} fps) "
       "over {:.2f} s | capture->sent ms p50 {:.1f} p95 {:.1f} p99 {:.1f} max {:.1f}",
       report.frames_captured, report.frames_processed, report.frames_dropped, report.frames_lost,
-      report.fps, report.detector_fps, report.wall_seconds,
+      report.source_outages, report.fps, report.detector_fps, report.wall_seconds,
       to_ms(static_cast<double>(e2e.quantile_ns(0.5))),
       to_ms(static_cast<double>(e2e.quantile_ns(0.95))),
       to_ms(static_cast<double>(e2e.quantile_ns(0.99))), to_ms(static_cast<double>(e2e.max_ns())));

@@ -33,6 +33,7 @@ struct PipelineReport {
   double wall_seconds{0.0};          // first capture -> last sent
   double fps{0.0};                   // processed / wall_seconds
   double detector_fps{0.0};          // processed / time the detector spent detecting
+  std::int64_t source_outages{0};    // times a live source went down and was reopened
   std::string source_error;          // why the source ended with an error; empty = it did not
   StageLatencies latency;
 };

@@ -53,6 +53,7 @@ class ReconnectingSource final : public VideoSource {
 
   /// True between an outage and the next successful reopen.
   bool disconnected() const { return source_ == nullptr; }
+  bool reconnecting() const override { return disconnected(); }
   const ReconnectStats& stats() const { return stats_; }
   /// The delay before the next reopen attempt (for logs and tests).
   std::chrono::milliseconds current_delay() const { return delay_; }

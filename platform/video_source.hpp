@@ -34,6 +34,9 @@ class VideoSource {
   virtual const SourceInfo& info() const = 0;
   /// Human-readable reason of the last `error`.
   virtual std::string last_error() const = 0;
+  /// True while a live source is down and being reopened (platform/reconnecting_source.hpp): its
+  /// read() errors are then outages to ride out, not the end of the stream.
+  virtual bool reconnecting() const { return false; }
 };
 
 struct SourceOptions {
