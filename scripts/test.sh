@@ -2,7 +2,7 @@
 # THE test command (README, .ci/run). From a fresh Debian 12 machine, as root:
 #   1. dependencies, model, sample video   (installs only what is missing)
 #   2. native build, Release, -Werror, every test (CTest + GoogleTest + system tests)
-#   3. fuzzing: every libFuzzer target for FUZZ_SECONDS (default 20) each
+#   3. fuzzing: every libFuzzer target for FUZZ_SECONDS (default 10) each
 #   4. AddressSanitizer + UndefinedBehaviorSanitizer: the whole suite
 #   5. ThreadSanitizer: the pipeline's lock-free hand-offs and every threaded component
 #   6. aarch64: cross build in an isolated sysroot, the whole suite under qemu, tracks equal x86's
@@ -49,7 +49,7 @@ ctest --test-dir "$root/build" --output-on-failure -j"$(nproc)" --timeout 900
 [[ ${RTMOT_QUICK:-0} == 1 ]] && exit 0
 
 stage "fuzzing"
-bash scripts/fuzz.sh "${FUZZ_SECONDS:-20}"
+bash scripts/fuzz.sh "${FUZZ_SECONDS:-10}"
 stage "asan+ubsan: whole suite"
 bash scripts/sanitize.sh asan
 stage "tsan: threaded components"
