@@ -53,6 +53,25 @@ std::string errno_text(int error) {
   return std::strerror(error);
 }
 
+// Tries the resolved addresses in order: opens a UDP socket for each and asks `suits` whether it
+// will do (an empty string) or why not. Returns the first that suits; throws with the last reason.
+template <typename Suits>
+SocketHandle open_first(const AddrinfoList& list, const std::string& endpoint, Suits suits) {
+  std::string failure = "no address";
+  for (const addrinfo* candidate = list.get(); candidate != nullptr;
+       candidate = candidate->ai_next) {
+    SocketHandle socket(::socket(candidate->ai_family, candidate->ai_socktype | SOCK_CLOEXEC,
+                                 candidate->ai_protocol));
+    if (socket.get() < 0) {
+      failure = "cannot open socket: " + errno_text(errno);
+      continue;
+    }
+    failure = suits(socket, *candidate);
+    if (failure.empty()) return socket;
+  }
+  throw_network(endpoint, failure);
+}
+
 }  // namespace
 
 SocketHandle::~SocketHandle() {
@@ -78,21 +97,11 @@ UdpSender::UdpSender(const std::string& host, std::uint16_t port)
   if (host.empty()) throw_network(destination_, "empty host");
   if (port == 0) throw_network(destination_, "port 0 is not a destination");
   const AddrinfoList list = resolve(host, port, false, destination_);
-  std::string failure = "no address";
-  for (const addrinfo* candidate = list.get(); candidate != nullptr;
-       candidate = candidate->ai_next) {
-    SocketHandle socket(::socket(candidate->ai_family, candidate->ai_socktype | SOCK_CLOEXEC,
-                                 candidate->ai_protocol));
-    if (socket.get() < 0) {
-      failure = "cannot open socket: " + errno_text(errno);
-      continue;
-    }
-    socket_ = std::move(socket);
-    std::memcpy(address_, candidate->ai_addr, candidate->ai_addrlen);
-    address_length_ = static_cast<unsigned>(candidate->ai_addrlen);
-    return;
-  }
-  throw_network(destination_, failure);
+  socket_ = open_first(list, destination_, [this](const SocketHandle&, const addrinfo& candidate) {
+    std::memcpy(address_, candidate.ai_addr, candidate.ai_addrlen);
+    address_length_ = static_cast<unsigned>(candidate.ai_addrlen);
+    return std::string();
+  });
 }
 
 bool UdpSender::send(const std::uint8_t* data, std::size_t size) {
@@ -116,38 +125,28 @@ bool UdpSender::send(const std::uint8_t* data, std::size_t size) {
 UdpReceiver::UdpReceiver(const std::string& bind_address, std::uint16_t port)
     : local_address_(endpoint_name(bind_address, port)) {
   const AddrinfoList list = resolve(bind_address, port, true, local_address_);
-  std::string failure = "no address";
-  for (const addrinfo* candidate = list.get(); candidate != nullptr;
-       candidate = candidate->ai_next) {
-    SocketHandle socket(::socket(candidate->ai_family, candidate->ai_socktype | SOCK_CLOEXEC,
-                                 candidate->ai_protocol));
-    if (socket.get() < 0) {
-      failure = "cannot open socket: " + errno_text(errno);
-      continue;
-    }
-    if (::bind(socket.get(), candidate->ai_addr, candidate->ai_addrlen) != 0) {
-      const int error = errno;
-      failure = "cannot bind: " + errno_text(error);
-      if (error == EADDRINUSE) failure += " (is another listener running on this port?)";
-      continue;
-    }
-    sockaddr_storage bound{};
-    socklen_t bound_length = sizeof bound;
-    if (::getsockname(socket.get(), reinterpret_cast<sockaddr*>(&bound), &bound_length) != 0) {
-      failure = "getsockname: " + errno_text(errno);
-      continue;
-    }
-    const auto port_of = [&bound]() -> std::uint16_t {
-      if (bound.ss_family == AF_INET6)
-        return ntohs(reinterpret_cast<const sockaddr_in6*>(&bound)->sin6_port);
-      return ntohs(reinterpret_cast<const sockaddr_in*>(&bound)->sin_port);
-    };
-    port_ = port_of();
-    local_address_ = endpoint_name(bind_address, port_);
-    socket_ = std::move(socket);
-    return;
-  }
-  throw_network(local_address_, failure);
+  socket_ = open_first(
+      list, local_address_,
+      [&](const SocketHandle& socket, const addrinfo& candidate) -> std::string {
+        if (::bind(socket.get(), candidate.ai_addr, candidate.ai_addrlen) != 0) {
+          const int error = errno;
+          std::string failure = "cannot bind: " + errno_text(error);
+          if (error == EADDRINUSE) {
+            failure += " (is another listener running on this port?)";
+          }
+          return failure;
+        }
+        sockaddr_storage bound{};
+        socklen_t bound_length = sizeof bound;
+        if (::getsockname(socket.get(), reinterpret_cast<sockaddr*>(&bound), &bound_length) != 0) {
+          return "getsockname: " + errno_text(errno);
+        }
+        port_ = bound.ss_family == AF_INET6
+                    ? ntohs(reinterpret_cast<const sockaddr_in6*>(&bound)->sin6_port)
+                    : ntohs(reinterpret_cast<const sockaddr_in*>(&bound)->sin_port);
+        return std::string();
+      });
+  local_address_ = endpoint_name(bind_address, port_);
 }
 
 ReceiveStatus UdpReceiver::receive(std::uint8_t* buffer, std::size_t capacity, int timeout_ms,
