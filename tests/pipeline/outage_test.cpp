@@ -12,14 +12,16 @@
 namespace rtmot::pipeline {
 namespace {
 
-// One person walking right, on every frame that has a picture.
+// One person walking slowly right, on every frame that has a picture. Slow and large, so that even a
+// long outage (a loaded machine, qemu: reopens that back off for seconds) leaves the coasted box
+// overlapping the next detection: the test is about the outage, not about the predictor.
 class WalkerDetector : public detector::Detector {
  public:
   void detect(const cv::Mat& image, std::int64_t frame_number,
               std::vector<tracker::Detection>& out) override {
     EXPECT_FALSE(image.empty()) << "the detector must never see an outage tick";
     out.clear();
-    out.push_back({{10.F + 0.5F * static_cast<float>(frame_number), 10.F, 12.F, 24.F}, 0.9F, 1});
+    out.push_back({{10.F + 0.1F * static_cast<float>(frame_number), 10.F, 24.F, 48.F}, 0.9F, 1});
   }
   std::string describe() const override { return "walker"; }
 };
@@ -61,27 +63,26 @@ TEST(SourceOutage, LiveSourceIsReopenedWhileMessagesKeepFlowing) {
   EXPECT_EQ(report.frames_captured, 60);
 
   long ticks = 0;
-  long frames_after_first_outage = 0;
+  long reported_after_first_outage = 0;
   for (std::size_t i = 0; i < messages.size(); ++i) {
     const FrameResult& message = messages[i];
     EXPECT_EQ(message.sequence, i) << "one message per frame or tick, none missing";
     if (message.source_outage) {
       ++ticks;
       EXPECT_TRUE(message.tracks.empty());
-    } else if (ticks > 0) {
-      ++frames_after_first_outage;
+    } else if (ticks > 0 && !message.tracks.empty()) {
+      ++reported_after_first_outage;
     }
+    // The walker keeps its id through every outage (its track coasts): no second id, ever.
+    for (const tracker::TrackReport& track : message.tracks) EXPECT_EQ(track.id, 1) << "message " << i;
     if (i > 0) {
       EXPECT_GE(message.pts_ns, messages[i - 1].pts_ns) << "time never runs backwards";
     }
   }
   EXPECT_GT(ticks, 0) << "messages kept flowing during the outages";
-  EXPECT_GT(frames_after_first_outage, 0) << "frames flow again after a reopen";
-  // The walker is still tracked by the same id after the outages (tracks coasted through them).
-  const FrameResult& last = messages.back().source_outage ? messages[messages.size() - 2]
-                                                          : messages.back();
-  ASSERT_FALSE(last.tracks.empty());
-  EXPECT_EQ(last.tracks.front().id, 1);
+  // Not the last message: the run may end on the first frame after a reopen, which SORT does not
+  // report yet (min_hits counts again after a gap).
+  EXPECT_GT(reported_after_first_outage, 0) << "frames flow, and are tracked, after a reopen";
 }
 
 }  // namespace
