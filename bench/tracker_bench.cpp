@@ -107,16 +107,7 @@ void every_model(benchmark::internal::Benchmark* bench) {
 BENCHMARK(BM_ModelMot15)->Apply(every_model)->Unit(benchmark::kMillisecond);
 
 void BM_SortAllOptionsMot15(benchmark::State& state) {
-  TrackerConfig config = TrackerConfig::sort_preset();
-  config.second_round = true;
-  config.detection_threshold = 0.6F;
-  config.low_score = 0.3F;
-  config.observation_centric_reupdate = true;
-  config.time_widened_gate = true;
-  config.recent_tracks_first = true;
-  config.confirm_by_duration = true;
-  config.min_coast_updates = 1;
-  config.max_age = 3;
+  TrackerConfig config = rtmot::tracker::with_every_option(TrackerConfig::sort_preset());
   config.time_step = rtmot::tracker::TimeStep::elapsed;
   track_all(state, config);
 }

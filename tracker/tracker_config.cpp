@@ -2,6 +2,19 @@
 
 namespace rtmot::tracker {
 
+TrackerConfig with_every_option(TrackerConfig base) {
+  base.second_round = true;
+  base.detection_threshold = 0.6F;
+  base.low_score = 0.3F;
+  base.observation_centric_reupdate = true;
+  base.time_widened_gate = true;
+  base.recent_tracks_first = true;
+  base.confirm_by_duration = true;
+  base.min_coast_updates = 1;
+  base.max_age = 3;
+  return base;
+}
+
 TrackerConfig TrackerConfig::sort_preset() {
   TrackerConfig config;
   config.predictor = PredictorKind::kalman;

@@ -71,6 +71,11 @@ struct TrackerConfig {
   static TrackerConfig sort_preset();
 };
 
+/// `base` with every optional mechanism switched on (second round, re-update, widened gate, recent
+/// tracks first, confirmation by duration, minimum coasting): the costliest configuration, for
+/// benchmarks and the allocation tests.
+TrackerConfig with_every_option(TrackerConfig base);
+
 /// The usual threshold for an affinity, as in C++SORT.
 double default_threshold(AffinityKind affinity);
 

@@ -19,23 +19,14 @@ TEST_P(SteadyState, AllocatesNothingAfterWarmUp) {
   const auto dir = test::shared_path("data/mot15-train/ADL-Rundle-6");
   RTMOT_REQUIRE_FILE(dir / "det" / "det.txt");
   const test::MotSequence sequence = test::load_mot_sequence(dir);
-  TrackerConfig config = TrackerConfig::sort_preset();
+  // Every option on: they must not allocate either.
+  TrackerConfig config = with_every_option(TrackerConfig::sort_preset());
   config.predictor = std::get<0>(GetParam());
   config.affinity = std::get<1>(GetParam());
   config.affinity_threshold = default_threshold(config.affinity);
   config.image_width = sequence.width;
   config.image_height = sequence.height;
   config.particle_count = 30;
-  // Every option on: they must not allocate either.
-  config.second_round = true;
-  config.detection_threshold = 0.6F;
-  config.low_score = 0.3F;
-  config.observation_centric_reupdate = true;
-  config.time_widened_gate = true;
-  config.recent_tracks_first = true;
-  config.confirm_by_duration = true;
-  config.min_coast_updates = 1;
-  config.max_age = 3;
   Tracker tracker(config);
 
   const std::size_t half = sequence.frames.size() / 2;

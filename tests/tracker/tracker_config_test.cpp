@@ -18,6 +18,19 @@ TEST(TrackerConfig, SortPresetIsSort) {
                config.time_widened_gate);
 }
 
+TEST(TrackerConfig, EveryOptionSwitchesOnEachOptionAndKeepsTheModel) {
+  TrackerConfig base = TrackerConfig::sort_preset();
+  base.predictor = PredictorKind::particle;
+  const TrackerConfig config = with_every_option(base);
+  EXPECT_TRUE(config.second_round && config.observation_centric_reupdate &&
+              config.time_widened_gate && config.recent_tracks_first && config.confirm_by_duration);
+  EXPECT_GT(config.min_coast_updates, 0);
+  EXPECT_GT(config.low_score, 0.F);
+  EXPECT_LT(config.low_score, config.detection_threshold) << "a second round needs a band below";
+  EXPECT_EQ(config.predictor, PredictorKind::particle);
+  EXPECT_EQ(config.affinity, base.affinity);
+}
+
 TEST(TrackerConfig, DefaultThresholdsAreCppSorts) {
   EXPECT_DOUBLE_EQ(default_threshold(AffinityKind::iou), 0.3);
   EXPECT_DOUBLE_EQ(default_threshold(AffinityKind::linear), 10000.0);
