@@ -1,6 +1,7 @@
 // A live source that fails mid-run: the pipeline reopens it with backoff and keeps running and
-// sending messages (flagged source_outage, with coasting tracks and so no reports) while it is down;
-// the report counts the outages. Faults are injected with GStreamer (test://...&error-after=N).
+// sending messages (flagged source_outage, with coasting tracks and so no reports) while it is
+// down; the report counts the outages. Faults are injected with GStreamer
+// (test://...&error-after=N).
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -12,8 +13,8 @@
 namespace rtmot::pipeline {
 namespace {
 
-// One person walking slowly right, on every frame that has a picture. Slow and large, so that even a
-// long outage (a loaded machine, qemu: reopens that back off for seconds) leaves the coasted box
+// One person walking slowly right, on every frame that has a picture. Slow and large, so that even
+// a long outage (a loaded machine, qemu: reopens that back off for seconds) leaves the coasted box
 // overlapping the next detection: the test is about the outage, not about the predictor.
 class WalkerDetector : public detector::Detector {
  public:
@@ -74,7 +75,8 @@ TEST(SourceOutage, LiveSourceIsReopenedWhileMessagesKeepFlowing) {
       ++reported_after_first_outage;
     }
     // The walker keeps its id through every outage (its track coasts): no second id, ever.
-    for (const tracker::TrackReport& track : message.tracks) EXPECT_EQ(track.id, 1) << "message " << i;
+    for (const tracker::TrackReport& track : message.tracks)
+      EXPECT_EQ(track.id, 1) << "message " << i;
     if (i > 0) {
       EXPECT_GE(message.pts_ns, messages[i - 1].pts_ns) << "time never runs backwards";
     }
