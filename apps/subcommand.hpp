@@ -1,9 +1,8 @@
 #pragma once
 // How `rtmot` is put together: each subcommand lives in its own cmd_*.cpp, registers its options on
 // the top-level CLI and hands back what to run if the user chose it.
-#include <functional>
-
 #include <CLI/CLI.hpp>
+#include <functional>
 
 namespace rtmot::app {
 

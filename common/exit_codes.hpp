@@ -1,5 +1,6 @@
 #pragma once
-// Process exit codes, documented in docs/exit-codes.md. Scripts and systemd rely on them: keep stable.
+// Process exit codes, documented in docs/exit-codes.md. Scripts and systemd rely on them: keep
+// stable.
 
 namespace rtmot {
 
@@ -14,6 +15,8 @@ enum class ExitCode : int {
   network = 6,         // a socket cannot be opened/bound (e.g. port in use)
 };
 
-constexpr int to_int(ExitCode code) { return static_cast<int>(code); }
+constexpr int to_int(ExitCode code) {
+  return static_cast<int>(code);
+}
 
 }  // namespace rtmot

@@ -18,9 +18,9 @@ struct FrameTimes {
 
 struct FrameResult {
   std::uint32_t stream_id{0};
-  std::uint64_t sequence{0};      // 0-based count of processed frames (messages) in this run
-  std::int64_t frame_number{0};   // the source's 1-based frame number
-  std::int64_t pts_ns{0};         // stream timestamp of the frame
+  std::uint64_t sequence{0};        // 0-based count of processed frames (messages) in this run
+  std::int64_t frame_number{0};     // the source's 1-based frame number
+  std::int64_t pts_ns{0};           // stream timestamp of the frame
   std::uint32_t frames_dropped{0};  // frames the source produced but nobody processed, so far
   /// No picture: the live source is down and being reopened. The tracker still advanced (tracks
   /// coast), so the ground station keeps hearing from us; `tracks` is then empty.

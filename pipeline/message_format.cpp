@@ -143,9 +143,9 @@ std::size_t MessageEncoder::encode(const FrameResult& result, std::uint8_t* buff
   std::uint8_t* const header = buffer;
   put<std::uint32_t>(header + offset::magic, message::magic);
   header[offset::version] = message::version;
-  header[offset::flags] = static_cast<std::uint8_t>(
-      (truncated ? message::flag_truncated : 0) |
-      (result.source_outage ? message::flag_source_outage : 0));
+  header[offset::flags] =
+      static_cast<std::uint8_t>((truncated ? message::flag_truncated : 0) |
+                                (result.source_outage ? message::flag_source_outage : 0));
   put<std::uint16_t>(header + offset::header_length,
                      static_cast<std::uint16_t>(message::header_size));
   put<std::uint32_t>(header + offset::stream_id, result.stream_id);

@@ -231,8 +231,9 @@ void read_tracker(Section section, tracker::TrackerConfig& config) {
   config.frame_rate = 0.0;  // still "from the source" unless set below
   config.image_width = 0.F;
   config.image_height = 0.F;
-  // A preset's detection_threshold was tuned on MOTChallenge detection scores (Faster R-CNN); in the
-  // pipeline the detector's own score_threshold is the one confidence cut unless this is set below.
+  // A preset's detection_threshold was tuned on MOTChallenge detection scores (Faster R-CNN); in
+  // the pipeline the detector's own score_threshold is the one confidence cut unless this is set
+  // below.
   config.detection_threshold = 0.F;
   read_enum(section, "predictor", tracker::parse_predictor, "kalman, stationary or particle",
             config.predictor);

@@ -9,7 +9,8 @@
 
 namespace rtmot::test {
 
-// Test instrumentation: process-wide counters are the point here, and only this executable has them.
+// Test instrumentation: process-wide counters are the point here, and only this executable has
+// them.
 struct AllocationCounters {
   std::atomic<bool> counting{false};
   std::atomic<long> allocations{0};
@@ -52,9 +53,21 @@ inline void* counted_allocation(std::size_t size) {
 
 }  // namespace rtmot::test
 
-void* operator new(std::size_t size) { return rtmot::test::counted_allocation(size); }
-void* operator new[](std::size_t size) { return rtmot::test::counted_allocation(size); }
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete[](void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
+void* operator new(std::size_t size) {
+  return rtmot::test::counted_allocation(size);
+}
+void* operator new[](std::size_t size) {
+  return rtmot::test::counted_allocation(size);
+}
+void operator delete(void* p) noexcept {
+  std::free(p);
+}
+void operator delete[](void* p) noexcept {
+  std::free(p);
+}
+void operator delete(void* p, std::size_t) noexcept {
+  std::free(p);
+}
+void operator delete[](void* p, std::size_t) noexcept {
+  std::free(p);
+}

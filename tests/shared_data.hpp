@@ -1,5 +1,6 @@
 #pragma once
-// Locating the test data in ../shared. A test whose data is missing fails (never skips) and names the file.
+// Locating the test data in ../shared. A test whose data is missing fails (never skips) and names
+// the file.
 #include <gtest/gtest.h>
 
 #include <filesystem>

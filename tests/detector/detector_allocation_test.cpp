@@ -5,10 +5,10 @@
 #include <opencv2/videoio.hpp>
 #include <vector>
 
+#include "allocation_counter.hpp"
 #include "detector/replay_detector.hpp"
 #include "detector/ssd_detector.hpp"
 #include "detector/ssd_postprocess.hpp"
-#include "allocation_counter.hpp"
 #include "shared_data.hpp"
 
 namespace rtmot::detector {

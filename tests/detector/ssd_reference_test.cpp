@@ -28,8 +28,8 @@ constexpr float kReferenceThreshold = 0.3F;
 constexpr float kExtraAllowedBelow = 0.35F;  // unmatched detections must score under this
 // The reference was made on x86-64, where this import reproduces it to 0.05 px and 5e-5. On aarch64
 // OpenCV takes other SIMD (NEON) paths in decoding/resizing and in the DNN kernels, with other
-// rounding: measured under qemu, boxes move by up to 3.3 px and scores by up to 0.039. There the test
-// allows that much (the platforms' own agreement through the product is checked by
+// rounding: measured under qemu, boxes move by up to 3.3 px and scores by up to 0.039. There the
+// test allows that much (the platforms' own agreement through the product is checked by
 // scripts/cross_compare_tracks.sh, to 0.5 px and 0.005).
 #if defined(__aarch64__)
 constexpr float kBoxTolerancePx = 4.F;

@@ -17,9 +17,9 @@ namespace {
 std::vector<std::uint8_t> realistic_message() {
   const auto frames = test::frames_from_detections("ETH-Bahnhof", 100);
   if (frames.empty()) return {};
-  const auto busiest = std::max_element(frames.begin(), frames.end(), [](const auto& a, const auto& b) {
-    return a.tracks.size() < b.tracks.size();
-  });
+  const auto busiest = std::max_element(
+      frames.begin(), frames.end(),
+      [](const auto& a, const auto& b) { return a.tracks.size() < b.tracks.size(); });
   std::vector<std::uint8_t> bytes(message::safe_udp_payload);
   MessageEncoder encoder;
   bytes.resize(encoder.encode(*busiest, bytes.data(), bytes.size()));
