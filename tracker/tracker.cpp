@@ -250,18 +250,12 @@ struct Tracker::State {
     detection_matched.assign(high.size(), 0);
     track_matched.assign(order.size(), 0);
     if (config.recent_tracks_first) associate_older_tracks();
-    for (const Match& match : matches) {
-      detection_matched[match.detection] = 1;
-      track_matched[match.track] = 1;
-      apply(match, high[match.detection]);
-    }
+    mark_matches();
+    for (const Match& match : matches) apply(match, high[match.detection]);
 
     if (config.second_round && !low.empty()) {
       // ByteTrack: low-score detections may only continue tracks the first round left unmatched.
-      unmatched_tracks.clear();
-      for (int t = 0; t < static_cast<int>(order.size()); ++t) {
-        if (!track_matched[t]) unmatched_tracks.push_back(t);
-      }
+      collect_unmatched_tracks();
       matches.clear();
       associate_round(low, unmatched_tracks);
       for (const Match& match : matches) apply(match, low[match.detection]);
@@ -273,6 +267,21 @@ struct Tracker::State {
 
     report_and_retire();
     return reports;
+  }
+
+  void mark_matches() {
+    for (const Match& match : matches) {
+      detection_matched[match.detection] = 1;
+      track_matched[match.track] = 1;
+    }
+  }
+
+  // The tracks (indices into `order`) that no match has claimed yet.
+  void collect_unmatched_tracks() {
+    unmatched_tracks.clear();
+    for (int t = 0; t < static_cast<int>(order.size()); ++t) {
+      if (!track_matched[t]) unmatched_tracks.push_back(t);
+    }
   }
 
   bool confirmed(const Track& track) const {
@@ -287,10 +296,7 @@ struct Tracker::State {
   // DeepSORT's matching cascade in two levels: the tracks lost for a while (whose gate is wide and
   // whose prediction is poor) only get the detections the recently matched tracks left over.
   void associate_older_tracks() {
-    for (const Match& match : matches) {
-      detection_matched[match.detection] = 1;
-      track_matched[match.track] = 1;
-    }
+    mark_matches();
     rest.clear();
     rest_index.clear();
     for (std::size_t d = 0; d < high.size(); ++d) {
@@ -298,10 +304,7 @@ struct Tracker::State {
       rest.push_back(high[d]);
       rest_index.push_back(static_cast<int>(d));
     }
-    unmatched_tracks.clear();
-    for (int t = 0; t < static_cast<int>(order.size()); ++t) {
-      if (!track_matched[t]) unmatched_tracks.push_back(t);
-    }
+    collect_unmatched_tracks();
     const std::size_t first_round = matches.size();
     associate_round(rest, unmatched_tracks);
     for (std::size_t m = first_round; m < matches.size(); ++m) {

@@ -36,8 +36,8 @@ struct TrackerConfig {
   float image_height{1080.F};
 
   // --- what SORT's descendants learned (options measured by `rtmot study`) ---
-  /// ByteTrack: a second association round for detections scoring in [low_score,
-  /// detection_threshold).
+  /// ByteTrack: a second association round for the detections scoring in
+  /// [low_score, detection_threshold).
   bool second_round{false};
   float low_score{0.1F};
   /// OC-SORT: when a lost track is found again, re-update it from a virtual trajectory between its
@@ -49,8 +49,7 @@ struct TrackerConfig {
   /// are associated first; the tracks lost longer only get the detections left over.
   bool recent_tracks_first{false};
 
-  // --- the same meaning at every frame rate (processed frames may be several nominal ones apart)
-  // ---
+  // --- the same meaning at every frame rate (processed frames may be nominal frames apart) ---
   /// A track is also reported once its current run of matches has lasted `min_hits` nominal frames
   /// (at full rate this is the same as `min_hits` matches; at 1/10 rate one match suffices).
   bool confirm_by_duration{false};
@@ -62,8 +61,7 @@ struct TrackerConfig {
   int particle_count{100};
   std::uint64_t seed{1};
 
-  // --- capacity: the tracker preallocates for this many; beyond it, extra detections are ignored
-  // ---
+  // --- capacity: preallocated for this many; beyond it, extra detections are ignored ---
   int max_tracks{1024};
   int max_detections{1024};
 
