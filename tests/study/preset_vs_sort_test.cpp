@@ -40,7 +40,7 @@ std::unique_ptr<std::vector<LoadedSequence>> PresetVsSort::dataset_;
     ASSERT_EQ(dataset_->size(), 11U);                          \
   } while (0)
 
-TEST_F(PresetVsSort, DefaultPresetIsTheStudysBest) {
+TEST_F(PresetVsSort, DefaultPresetIsRtmot) {
   EXPECT_EQ(default_preset_name(), "rtmot");
   EXPECT_TRUE(find_preset(default_preset_name()).has_value());
 }
