@@ -11,10 +11,10 @@
 
 #include "apps/subcommand.hpp"
 #include "common/input_error.hpp"
-#include "pipeline/jsonl_sink.hpp"
-#include "pipeline/message_file_reader.hpp"
-#include "pipeline/message_format.hpp"
-#include "pipeline/message_stream_stats.hpp"
+#include "messages/jsonl_sink.hpp"
+#include "messages/message_file_reader.hpp"
+#include "messages/message_format.hpp"
+#include "messages/message_stream_stats.hpp"
 #include "platform/clock.hpp"
 #include "platform/signals.hpp"
 #include "platform/udp_socket.hpp"
@@ -22,10 +22,10 @@
 namespace rtmot::app {
 namespace {
 
-using pipeline::Arrival;
-using pipeline::DecodedMessage;
-using pipeline::DecodeError;
-using pipeline::ListenerStats;
+using messages::Arrival;
+using messages::DecodedMessage;
+using messages::DecodeError;
+using messages::ListenerStats;
 
 struct ListenOptions {
   std::uint16_t port{0};
@@ -41,19 +41,19 @@ struct ListenOptions {
 constexpr int poll_interval_ms =
     200;  // how often a quiet socket checks for Ctrl-C, duration, stats
 
-const char* describe(Arrival arrival) {
+const char* describe(messages::Arrival arrival) {
   switch (arrival) {
-    case Arrival::first:
+    case messages::Arrival::first:
       return " (first)";
-    case Arrival::in_order:
+    case messages::Arrival::in_order:
       return "";
-    case Arrival::after_gap:
+    case messages::Arrival::after_gap:
       return " (after a gap)";
-    case Arrival::late:
+    case messages::Arrival::late:
       return " (late)";
-    case Arrival::duplicate:
+    case messages::Arrival::duplicate:
       return " (duplicate)";
-    case Arrival::restart:
+    case messages::Arrival::restart:
       return " (sender restarted)";
   }
   return "";
@@ -63,7 +63,7 @@ double to_ms(double ns) {
   return ns / 1e6;
 }
 
-void print_message(const DecodedMessage& message, Arrival arrival) {
+void print_message(const messages::DecodedMessage& message, messages::Arrival arrival) {
   const auto& frame = message.frame;
   fmt::print(
       "stream {} seq {} frame {}: {} tracks{}, latency {:.1f} ms, dropped {}{}\n", frame.stream_id,
@@ -72,11 +72,11 @@ void print_message(const DecodedMessage& message, Arrival arrival) {
       to_ms(static_cast<double>(message.latency_ns())), frame.frames_dropped, describe(arrival));
 }
 
-void print_corrupt(DecodeError reason, std::size_t size) {
-  fmt::print("corrupt message ({} bytes): {}\n", size, pipeline::to_string(reason));
+void print_corrupt(messages::DecodeError reason, std::size_t size) {
+  fmt::print("corrupt message ({} bytes): {}\n", size, messages::to_string(reason));
 }
 
-void print_stats_line(const ListenerStats& stats, double elapsed_s) {
+void print_stats_line(const messages::ListenerStats& stats, double elapsed_s) {
   std::uint64_t lost = 0;
   for (const auto& entry : stats.streams()) lost += entry.second.sequences.lost();
   fmt::print("[{:.1f} s] received {}, lost {}, corrupt {}, streams {}\n", elapsed_s,
@@ -85,7 +85,7 @@ void print_stats_line(const ListenerStats& stats, double elapsed_s) {
 }
 
 /// `elapsed_s` < 0: not a timed run (a file).
-void print_summary(const ListenerStats& stats, double elapsed_s) {
+void print_summary(const messages::ListenerStats& stats, double elapsed_s) {
   fmt::print("summary{}: {} messages, {} corrupt, {} streams\n",
              elapsed_s >= 0 ? fmt::format(" after {:.1f} s", elapsed_s) : std::string(),
              stats.received(), stats.corrupt(), stats.streams().size());
@@ -101,10 +101,10 @@ void print_summary(const ListenerStats& stats, double elapsed_s) {
   }
   if (stats.corrupt() > 0) {
     fmt::print("  corrupt by reason:");
-    for (std::size_t i = 1; i < pipeline::decode_error_count; ++i) {
-      const auto reason = static_cast<DecodeError>(i);
+    for (std::size_t i = 1; i < messages::decode_error_count; ++i) {
+      const auto reason = static_cast<messages::DecodeError>(i);
       if (stats.corrupt(reason) > 0)
-        fmt::print(" {} {};", pipeline::to_string(reason), stats.corrupt(reason));
+        fmt::print(" {} {};", messages::to_string(reason), stats.corrupt(reason));
     }
     fmt::print("\n");
   }
@@ -116,21 +116,21 @@ class MessageHandler {
  public:
   explicit MessageHandler(const ListenOptions& options) : quiet_(options.quiet) {
     if (!options.jsonl_path.empty())
-      jsonl_ = std::make_unique<pipeline::JsonlSink>(options.jsonl_path);
+      jsonl_ = std::make_unique<messages::JsonlSink>(options.jsonl_path);
   }
 
   void handle(const std::uint8_t* data, std::size_t size) {
-    const DecodeError error = pipeline::decode_message(data, size, decoded_);
-    if (error != DecodeError::none) {
+    const messages::DecodeError error = messages::decode_message(data, size, decoded_);
+    if (error != messages::DecodeError::none) {
       handle_corrupt(error, size);
       return;
     }
-    const Arrival arrival = stats_.record(decoded_);
+    const messages::Arrival arrival = stats_.record(decoded_);
     if (!quiet_) print_message(decoded_, arrival);
     if (jsonl_) jsonl_->write(decoded_);
   }
 
-  void handle_corrupt(DecodeError reason, std::size_t size) {
+  void handle_corrupt(messages::DecodeError reason, std::size_t size) {
     stats_.record_corrupt(reason);
     if (!quiet_) print_corrupt(reason, size);
   }
@@ -138,13 +138,13 @@ class MessageHandler {
   void flush() {
     if (jsonl_) jsonl_->flush();
   }
-  const ListenerStats& stats() const { return stats_; }
+  const messages::ListenerStats& stats() const { return stats_; }
 
  private:
   bool quiet_;
-  DecodedMessage decoded_;  // reused: decoding allocates nothing once it has seen the largest frame
-  ListenerStats stats_;
-  std::unique_ptr<pipeline::JsonlSink> jsonl_;
+  messages::DecodedMessage decoded_;  // reused: decoding allocates nothing once it has seen the largest frame
+  messages::ListenerStats stats_;
+  std::unique_ptr<messages::JsonlSink> jsonl_;
 };
 
 int listen_udp(const ListenOptions& options) {
@@ -154,7 +154,7 @@ int listen_udp(const ListenOptions& options) {
   spdlog::info("listening on udp://{}", receiver.local_address());
 
   // Room for the largest UDP payload: a longer message than we send is still seen, and rejected.
-  std::vector<std::uint8_t> datagram(pipeline::message::max_message_size + 1);
+  std::vector<std::uint8_t> datagram(messages::message::max_message_size + 1);
   const std::int64_t start_ns = platform::steady_now_ns();
   const auto elapsed_s = [start_ns] {
     return static_cast<double>(platform::steady_now_ns() - start_ns) / 1e9;
@@ -175,7 +175,7 @@ int listen_udp(const ListenOptions& options) {
     if (status != platform::ReceiveStatus::datagram) continue;
     ++datagrams;
     if (cut) {
-      handler.handle_corrupt(DecodeError::length_mismatch, size);  // longer than any message
+      handler.handle_corrupt(messages::DecodeError::length_mismatch, size);  // longer than any message
     } else {
       handler.handle(datagram.data(), size);
     }
@@ -186,18 +186,18 @@ int listen_udp(const ListenOptions& options) {
 }
 
 int read_file(const ListenOptions& options) {
-  pipeline::MessageFileReader reader(options.read_path);
+  messages::MessageFileReader reader(options.read_path);
   MessageHandler handler(options);
   std::vector<std::uint8_t> record;
-  pipeline::FileReadStatus status = pipeline::FileReadStatus::message;
+  messages::FileReadStatus status = messages::FileReadStatus::message;
   while (options.count == 0 || reader.records_read() < options.count) {
     status = reader.next(record);
-    if (status != pipeline::FileReadStatus::message) break;
+    if (status != messages::FileReadStatus::message) break;
     handler.handle(record.data(), record.size());
   }
   handler.flush();
   print_summary(handler.stats(), -1.0);
-  if (status == pipeline::FileReadStatus::broken_framing) {
+  if (status == messages::FileReadStatus::broken_framing) {
     // Everything before the break was read and reported; the file itself is malformed.
     throw InputError(options.read_path, 0, "", reader.problem());
   }

@@ -10,8 +10,8 @@
 #include "common/exit_codes.hpp"
 #include "common/input_error.hpp"
 #include "pipeline/pipeline.hpp"
-#include "pipeline/run_config.hpp"
-#include "pipeline/run_setup.hpp"
+#include "runner/run_config.hpp"
+#include "runner/run_setup.hpp"
 #include "platform/board.hpp"
 #include "platform/signals.hpp"
 
@@ -34,7 +34,7 @@ struct RunOverrides {
   std::int64_t stream_id{-1};
 };
 
-void apply(const RunOverrides& overrides, pipeline::RunConfig& config) {
+void apply(const RunOverrides& overrides, runner::RunConfig& config) {
   if (!overrides.source.empty()) config.source.uri = overrides.source;
   if (!overrides.playback.empty()) {
     const auto mode = pipeline::parse_playback_mode(overrides.playback);
@@ -59,20 +59,20 @@ void apply(const RunOverrides& overrides, pipeline::RunConfig& config) {
 int run(const RunOverrides& overrides) {
   // Before any thread exists: every thread inherits the blocked SIGINT/SIGTERM.
   platform::StopSignals signals;
-  pipeline::RunConfig config = pipeline::load_run_config(overrides.config_file);
+  runner::RunConfig config = runner::load_run_config(overrides.config_file);
   apply(overrides, config);
-  pipeline::validate(config);
+  runner::validate(config);
 
   spdlog::info("board: {}", platform::describe(platform::detect_board()));
-  auto source = pipeline::make_source(config);
+  auto source = runner::make_source(config);
   const platform::SourceInfo source_info = source->info();
   spdlog::info("source: {} ({}x{} at {:.2f} fps{})", source_info.uri, source_info.width,
                source_info.height, source_info.fps, source_info.live ? ", live" : "");
-  auto detector = pipeline::make_detector(config);
+  auto detector = runner::make_detector(config);
   spdlog::info("detector: {}", detector->describe());
   pipeline::Pipeline pipeline(std::move(source), std::move(detector),
-                              pipeline::complete_tracker_config(config, source_info),
-                              pipeline::make_sinks(config), pipeline::make_options(config));
+                              runner::complete_tracker_config(config, source_info),
+                              runner::make_sinks(config), runner::make_options(config));
   const pipeline::PipelineReport report = pipeline.run(signals.stop_flag());
 
   spdlog::info("{}", pipeline::summary_line(report));

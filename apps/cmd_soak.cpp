@@ -17,8 +17,8 @@
 #include "apps/subcommand.hpp"
 #include "common/exit_codes.hpp"
 #include "pipeline/pipeline.hpp"
-#include "pipeline/run_config.hpp"
-#include "pipeline/run_setup.hpp"
+#include "runner/run_config.hpp"
+#include "runner/run_setup.hpp"
 #include "platform/signals.hpp"
 
 namespace rtmot::app {
@@ -43,19 +43,19 @@ double ms(std::int64_t ns) {
   return static_cast<double>(ns) * 1e-6;
 }
 
-pipeline::PipelineReport run_once(const pipeline::RunConfig& config,
+pipeline::PipelineReport run_once(const runner::RunConfig& config,
                                   const std::atomic<bool>& stop) {
-  auto source = pipeline::make_source(config);
-  const auto tracker_config = pipeline::complete_tracker_config(config, source->info());
-  pipeline::Pipeline pipe(std::move(source), pipeline::make_detector(config), tracker_config,
-                          pipeline::make_sinks(config), pipeline::make_options(config));
+  auto source = runner::make_source(config);
+  const auto tracker_config = runner::complete_tracker_config(config, source->info());
+  pipeline::Pipeline pipe(std::move(source), runner::make_detector(config), tracker_config,
+                          runner::make_sinks(config), runner::make_options(config));
   return pipe.run(stop);
 }
 
 int run_soak(const SoakOptions& options) {
   platform::StopSignals signals;  // first: threads started later inherit the blocked mask
-  const pipeline::RunConfig config = pipeline::load_run_config(options.config_path);
-  pipeline::validate(config);
+  const runner::RunConfig config = runner::load_run_config(options.config_path);
+  runner::validate(config);
 
   using Clock = std::chrono::steady_clock;
   const auto start = Clock::now();

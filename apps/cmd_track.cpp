@@ -13,9 +13,9 @@
 #include "common/exit_codes.hpp"
 #include "common/input_error.hpp"
 #include "mot/evaluation.hpp"
-#include "mot/results_writer.hpp"
-#include "mot/track_runner.hpp"
-#include "mot/tracker_presets.hpp"
+#include "motio/results_writer.hpp"
+#include "motio/track_runner.hpp"
+#include "tracker/presets.hpp"
 #include "tracker/tracker_config.hpp"
 
 namespace rtmot::app {
@@ -28,7 +28,7 @@ constexpr double kProgressEverySeconds = 3.0;
 struct TrackCommandOptions {
   std::string dataset;
   std::string out_dir;
-  std::string preset{mot::default_preset_name()};
+  std::string preset{tracker::default_preset_name()};
   std::string predictor;
   std::string affinity;
   std::string time_step;
@@ -54,10 +54,10 @@ Value parsed(const std::optional<Value>& value, const char* option, const std::s
 
 // The preset first, then every option given on the command line.
 tracker::TrackerConfig make_config(const TrackCommandOptions& options) {
-  const auto preset = mot::find_preset(options.preset);
+  const auto preset = tracker::find_preset(options.preset);
   if (!preset) {
     throw InputError("command line", 0, "--preset",
-                     "unknown preset '" + options.preset + "' (known: " + mot::preset_names() + ")",
+                     "unknown preset '" + options.preset + "' (known: " + tracker::preset_names() + ")",
                      ExitCode::usage);
   }
   tracker::TrackerConfig config = *preset;
@@ -88,7 +88,7 @@ double hz(int frames, double seconds) {
 }
 
 int run_track(const TrackCommandOptions& options) {
-  mot::TrackOptions track_options;
+  motio::TrackOptions track_options;
   track_options.config = make_config(options);
   track_options.detections = options.detections;
   track_options.interval = options.interval;
@@ -107,9 +107,9 @@ int run_track(const TrackCommandOptions& options) {
       next_report = Clock::now() + std::chrono::duration<double>(kProgressEverySeconds);
       spdlog::info("{}: frame {} of {}", dir.filename().string(), frame, length);
     };
-    const mot::TrackRun run = mot::track_sequence(dir, track_options, progress);
+    const motio::TrackRun run = motio::track_sequence(dir, track_options, progress);
     const fs::path out_file = fs::path(options.out_dir) / (run.info.name + ".txt");
-    mot::write_results(out_file, run.tracks);
+    motio::write_results(out_file, run.tracks);
     fmt::print("{:<16} {:>6} frames {:>7} boxes  tracker {:>9.0f} Hz  -> {}\n", run.info.name,
                run.frames_processed, run.tracks.size(),
                hz(run.frames_processed, run.seconds_in_update), out_file.string());
@@ -135,7 +135,7 @@ Subcommand add_track_command(CLI::App& parent) {
       ->required();
   cli->add_option("--out", options->out_dir, "folder for the results files")->required();
   cli->add_option("--preset", options->preset,
-                  "starting configuration (" + mot::preset_names() + "); options below override it")
+                  "starting configuration (" + tracker::preset_names() + "); options below override it")
       ->capture_default_str();
   cli->add_option("--predictor", options->predictor, "kalman, stationary or particle")
       ->check(CLI::IsMember({"kalman", "stationary", "particle"}));

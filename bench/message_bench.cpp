@@ -5,12 +5,12 @@
 #include <random>
 #include <vector>
 
-#include "pipeline/jsonl_sink.hpp"
-#include "pipeline/message_format.hpp"
+#include "messages/jsonl_sink.hpp"
+#include "messages/message_format.hpp"
 
 namespace {
 
-using namespace rtmot::pipeline;
+using namespace rtmot::messages;
 
 FrameResult crowd(std::size_t tracks) {
   std::mt19937 random(42);

@@ -6,13 +6,14 @@
 #include <string>
 
 #include "mot/evaluation.hpp"
-#include "mot/mot_files.hpp"
+#include "motio/mot_files.hpp"
 #include "mot/prepared_sequence.hpp"
 #include "mot/scorer.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
+using namespace rtmot::motio;
 using namespace rtmot::mot;
 
 fs::path shared_dir() {

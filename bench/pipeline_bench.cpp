@@ -13,7 +13,7 @@
 
 #include "detector/ssd_detector.hpp"
 #include "pipeline/pipeline.hpp"
-#include "pipeline/source_factory.hpp"
+#include "runner/source_factory.hpp"
 #include "tracker/tracker_config.hpp"
 
 namespace {
@@ -26,9 +26,9 @@ std::filesystem::path shared_dir() {
 }
 
 // A sink that keeps nothing: the benchmark measures the pipeline, not an output.
-class NullSink : public rtmot::pipeline::TrackSink {
+class NullSink : public rtmot::messages::TrackSink {
  public:
-  void write(const rtmot::pipeline::FrameResult&) override {}
+  void write(const rtmot::messages::FrameResult&) override {}
   void flush() override {}
 };
 
@@ -41,10 +41,10 @@ void BM_PipelineEveryFrameVsDetector(benchmark::State& state) {
       ssd.model_path = RTMOT_MODEL_PATH;
       ssd.backend = detector::BackendRequest::cpu;
       ssd.threads = static_cast<int>(state.range(0));
-      auto source = pipeline::open_source((shared_dir() / "data/video/vtest.avi").string(), {});
+      auto source = runner::open_source((shared_dir() / "data/video/vtest.avi").string(), {});
       auto tracker_config = tracker::TrackerConfig::sort_preset();
       tracker_config.frame_rate = source->info().fps;
-      std::vector<std::unique_ptr<pipeline::TrackSink>> sinks;
+      std::vector<std::unique_ptr<messages::TrackSink>> sinks;
       sinks.push_back(std::make_unique<NullSink>());
       pipeline::PipelineOptions options;
       options.playback = pipeline::PlaybackMode::every_frame;

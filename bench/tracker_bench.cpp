@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "mot/mot_files.hpp"
-#include "mot/tracker_presets.hpp"
+#include "motio/mot_files.hpp"
+#include "tracker/presets.hpp"
 #include "tracker/linear_assignment.hpp"
 #include "tracker/tracker.hpp"
 
@@ -20,7 +20,7 @@ using rtmot::tracker::Tracker;
 using rtmot::tracker::TrackerConfig;
 
 struct Sequence {
-  rtmot::mot::SequenceInfo info;
+  rtmot::motio::SequenceInfo info;
   std::vector<std::vector<rtmot::tracker::Detection>> frames;
 };
 
@@ -37,10 +37,10 @@ std::vector<Sequence> load_all() {
   for (const char* name : kNames) {
     const auto dir = shared_dir() / "data" / "mot15-train" / name;
     Sequence sequence;
-    sequence.info = rtmot::mot::read_seqinfo(dir / "seqinfo.ini");
+    sequence.info = rtmot::motio::read_seqinfo(dir / "seqinfo.ini");
     const auto rows =
-        rtmot::mot::read_mot_file(dir / "det" / "det.txt", rtmot::mot::MotFileKind::detections);
-    sequence.frames = rtmot::mot::detections_by_frame(rows, sequence.info.length);
+        rtmot::motio::read_mot_file(dir / "det" / "det.txt", rtmot::motio::MotFileKind::detections);
+    sequence.frames = rtmot::motio::detections_by_frame(rows, sequence.info.length);
     sequences.push_back(std::move(sequence));
   }
   return sequences;
@@ -115,7 +115,7 @@ BENCHMARK(BM_SortAllOptionsMot15)->Unit(benchmark::kMillisecond);
 
 // The default preset: what `rtmot track` and `rtmot run` pay per frame.
 void BM_DefaultPresetMot15(benchmark::State& state) {
-  track_all(state, *rtmot::mot::find_preset(rtmot::mot::default_preset_name()));
+  track_all(state, *rtmot::tracker::find_preset(rtmot::tracker::default_preset_name()));
 }
 BENCHMARK(BM_DefaultPresetMot15)->Unit(benchmark::kMillisecond);
 

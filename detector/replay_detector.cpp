@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "mot/mot_files.hpp"
+#include "motio/mot_files.hpp"
 
 namespace rtmot::detector {
 namespace {
@@ -13,10 +13,10 @@ constexpr int kPersonClass = 1;  // COCO's id: MOTChallenge detections are pedes
 
 ReplayDetector::ReplayDetector(std::filesystem::path det_path, float score_threshold)
     : path_(std::move(det_path)), score_threshold_(score_threshold) {
-  const auto rows = mot::read_mot_file(path_, mot::MotFileKind::detections);
+  const auto rows = motio::read_mot_file(path_, motio::MotFileKind::detections);
   int last = 0;
   for (const auto& row : rows) last = std::max(last, row.frame);
-  by_frame_ = mot::detections_by_frame(rows, last);
+  by_frame_ = motio::detections_by_frame(rows, last);
   for (auto& frame : by_frame_) {
     frame.erase(
         std::remove_if(frame.begin(), frame.end(),

@@ -3,7 +3,7 @@
 #include <algorithm>
 
 #include "common/input_error.hpp"
-#include "mot/mot_files.hpp"
+#include "motio/mot_files.hpp"
 #include "mot/prepared_sequence.hpp"
 #include "mot/scorer.hpp"
 
@@ -29,13 +29,13 @@ std::vector<fs::path> find_sequence_dirs(const fs::path& dir) {
 
 SequenceScore evaluate_sequence(const fs::path& sequence_dir, const fs::path& results_file,
                                 int interval) {
-  const SequenceInfo info = read_seqinfo(sequence_dir / "seqinfo.ini");
+  const motio::SequenceInfo info = motio::read_seqinfo(sequence_dir / "seqinfo.ini");
   const fs::path gt_file = sequence_dir / "gt" / "gt.txt";
   if (!fs::exists(results_file)) {
     throw InputError(results_file.string(), 0, "", "missing: no results for sequence " + info.name);
   }
-  const auto gt_rows = read_mot_file(gt_file, MotFileKind::ground_truth, info.length);
-  const auto result_rows = read_mot_file(results_file, MotFileKind::results, info.length);
+  const auto gt_rows = motio::read_mot_file(gt_file, motio::MotFileKind::ground_truth, info.length);
+  const auto result_rows = motio::read_mot_file(results_file, motio::MotFileKind::results, info.length);
   PrepareOptions options;
   options.interval = interval;
   options.sequence_length = info.length;
@@ -64,7 +64,7 @@ EvaluationReport evaluate(const fs::path& gt_dir, const fs::path& results_dir, i
   }
   EvaluationReport report;
   for (const auto& sequence_dir : find_sequence_dirs(gt_dir)) {
-    const std::string name = read_seqinfo(sequence_dir / "seqinfo.ini").name;
+    const std::string name = motio::read_seqinfo(sequence_dir / "seqinfo.ini").name;
     report.sequences.push_back(
         evaluate_sequence(sequence_dir, results_dir / (name + ".txt"), interval));
   }

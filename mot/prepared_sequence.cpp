@@ -14,13 +14,13 @@ namespace {
 
 constexpr int kPedestrian = 1;
 
-bool has_class_column(const std::vector<MotRow>& gt_rows) {
+bool has_class_column(const std::vector<motio::MotRow>& gt_rows) {
   return std::any_of(gt_rows.begin(), gt_rows.end(),
-                     [](const MotRow& row) { return row.class_id >= 0; });
+                     [](const motio::MotRow& row) { return row.class_id >= 0; });
 }
 
 /// Row indices grouped by frame.
-std::map<int, std::vector<std::size_t>> rows_by_frame(const std::vector<MotRow>& rows) {
+std::map<int, std::vector<std::size_t>> rows_by_frame(const std::vector<motio::MotRow>& rows) {
   std::map<int, std::vector<std::size_t>> frames;
   for (std::size_t i = 0; i < rows.size(); ++i) frames[rows[i].frame].push_back(i);
   return frames;
@@ -29,8 +29,8 @@ std::map<int, std::vector<std::size_t>> rows_by_frame(const std::vector<MotRow>&
 // The devkit's preprocessResult: per frame, a min-cost matching of all gt boxes (any class, any
 // conf) with the result boxes on 1 - IoU, pairs below IoU 0.5 forbidden; a result box matched to a
 // distractor or to a too-occluded box is dropped.
-std::vector<bool> results_to_keep(const std::vector<MotRow>& gt_rows,
-                                  const std::vector<MotRow>& result_rows, double min_visibility) {
+std::vector<bool> results_to_keep(const std::vector<motio::MotRow>& gt_rows,
+                                  const std::vector<motio::MotRow>& result_rows, double min_visibility) {
   std::vector<bool> keep(result_rows.size(), true);
   const auto gt_frames = rows_by_frame(gt_rows);
   const auto result_frames = rows_by_frame(result_rows);
@@ -57,7 +57,7 @@ std::vector<bool> results_to_keep(const std::vector<MotRow>& gt_rows,
     for (int r = 0; r < rows; ++r) {
       const int c = assignment[r];
       if (c < 0 || cost[static_cast<std::size_t>(r) * cols + c] >= forbidden) continue;
-      const MotRow& gt = gt_rows[gt_indices[r]];
+      const motio::MotRow& gt = gt_rows[gt_indices[r]];
       if (is_distractor_class(gt.class_id) || gt.visibility < min_visibility) {
         keep[result_indices[c]] = false;
       }
@@ -67,25 +67,25 @@ std::vector<bool> results_to_keep(const std::vector<MotRow>& gt_rows,
 }
 
 /// Maps sparse ids to 0..n-1 in increasing order (the devkit's unique()).
-std::map<int, int> dense_ids(const std::vector<const MotRow*>& rows) {
+std::map<int, int> dense_ids(const std::vector<const motio::MotRow*>& rows) {
   std::map<int, int> ids;
-  for (const MotRow* row : rows) ids.emplace(row->id, 0);
+  for (const motio::MotRow* row : rows) ids.emplace(row->id, 0);
   int next = 0;
   for (auto& [id, dense] : ids) dense = next++;
   return ids;
 }
 
-std::vector<TimestepBoxes> to_timesteps(const std::vector<const MotRow*>& rows,
+std::vector<TimestepBoxes> to_timesteps(const std::vector<const motio::MotRow*>& rows,
                                         const std::map<int, int>& ids, int interval, int timesteps,
                                         const std::string& file) {
-  std::vector<std::vector<const MotRow*>> per_step(static_cast<std::size_t>(timesteps));
-  for (const MotRow* row : rows)
+  std::vector<std::vector<const motio::MotRow*>> per_step(static_cast<std::size_t>(timesteps));
+  for (const motio::MotRow* row : rows)
     per_step[static_cast<std::size_t>((row->frame - 1) / interval)].push_back(row);
   std::vector<TimestepBoxes> steps(static_cast<std::size_t>(timesteps));
   for (std::size_t t = 0; t < per_step.size(); ++t) {
     auto& in_step = per_step[t];
     std::sort(in_step.begin(), in_step.end(),
-              [](const MotRow* a, const MotRow* b) { return a->id < b->id; });
+              [](const motio::MotRow* a, const motio::MotRow* b) { return a->id < b->id; });
     for (std::size_t i = 0; i < in_step.size(); ++i) {
       if (i > 0 && in_step[i]->id == in_step[i - 1]->id) {
         throw InputError(file, 0, "id",
@@ -106,8 +106,8 @@ bool is_distractor_class(int class_id) {
   return class_id == 2 || class_id == 7 || class_id == 8 || class_id == 12;
 }
 
-PreparedSequence prepare_sequence(const std::vector<MotRow>& gt_rows,
-                                  const std::vector<MotRow>& result_rows,
+PreparedSequence prepare_sequence(const std::vector<motio::MotRow>& gt_rows,
+                                  const std::vector<motio::MotRow>& result_rows,
                                   const PrepareOptions& options) {
   if (options.interval < 1) {
     throw InputError("", 0, "interval", "must be at least 1", ExitCode::usage);
@@ -118,20 +118,20 @@ PreparedSequence prepare_sequence(const std::vector<MotRow>& gt_rows,
       with_classes ? results_to_keep(gt_rows, result_rows, options.min_visibility)
                    : std::vector<bool>(result_rows.size(), true);
 
-  std::vector<const MotRow*> gt;
-  for (const MotRow& row : gt_rows) {
+  std::vector<const motio::MotRow*> gt;
+  for (const motio::MotRow& row : gt_rows) {
     const bool counted = row.conf != 0.F && (!with_classes || row.class_id == kPedestrian);
     if (counted && scored(row.frame)) gt.push_back(&row);
   }
   int last_frame = options.sequence_length;
   if (!gt.empty()) {
-    last_frame = (*std::max_element(gt.begin(), gt.end(), [](const MotRow* a, const MotRow* b) {
+    last_frame = (*std::max_element(gt.begin(), gt.end(), [](const motio::MotRow* a, const motio::MotRow* b) {
                    return a->frame < b->frame;
                  }))->frame;
   }
-  std::vector<const MotRow*> results;
+  std::vector<const motio::MotRow*> results;
   for (std::size_t i = 0; i < result_rows.size(); ++i) {
-    const MotRow& row = result_rows[i];
+    const motio::MotRow& row = result_rows[i];
     // The devkit clips results to the last gt frame.
     if (keep_result[i] && scored(row.frame) && row.frame <= last_frame) results.push_back(&row);
   }

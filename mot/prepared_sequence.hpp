@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "mot/mot_files.hpp"
+#include "motio/mot_files.hpp"
 #include "tracker/box.hpp"
 
 namespace rtmot::mot {
@@ -41,8 +41,8 @@ struct PrepareOptions {
 /// (MOT16/17/20 gt), result boxes matched (IoU >= 0.5, Hungarian) to a distractor are removed and
 /// only pedestrians (class 1) stay in the gt; results after the last gt frame are dropped. Throws
 /// InputError on an id that appears twice in one frame.
-PreparedSequence prepare_sequence(const std::vector<MotRow>& gt_rows,
-                                  const std::vector<MotRow>& result_rows,
+PreparedSequence prepare_sequence(const std::vector<motio::MotRow>& gt_rows,
+                                  const std::vector<motio::MotRow>& result_rows,
                                   const PrepareOptions& options);
 
 /// MOT16/17 classes whose matched result boxes are removed before scoring (MOT20 adds 6).

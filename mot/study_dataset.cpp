@@ -3,7 +3,7 @@
 #include "mot/evaluation.hpp"
 #include "mot/prepared_sequence.hpp"
 #include "mot/scorer.hpp"
-#include "mot/track_runner.hpp"
+#include "motio/track_runner.hpp"
 #include "tracker/tracker.hpp"
 
 namespace rtmot::mot {
@@ -18,11 +18,11 @@ std::vector<LoadedSequence> load_study_dataset(const fs::path& dataset) {
   std::vector<LoadedSequence> sequences;
   for (const fs::path& dir : find_sequence_dirs(dataset)) {
     LoadedSequence sequence;
-    sequence.info = read_seqinfo(dir / "seqinfo.ini");
+    sequence.info = motio::read_seqinfo(dir / "seqinfo.ini");
     const fs::path gt_file = dir / "gt" / "gt.txt";
-    sequence.gt_rows = read_mot_file(gt_file, MotFileKind::ground_truth, sequence.info.length);
-    sequence.detections = load_detections(dir / "det" / "det.txt", sequence.info);
-    sequence.gt_detections = load_detections(gt_file, sequence.info);
+    sequence.gt_rows = motio::read_mot_file(gt_file, motio::MotFileKind::ground_truth, sequence.info.length);
+    sequence.detections = motio::load_detections(dir / "det" / "det.txt", sequence.info);
+    sequence.gt_detections = motio::load_detections(gt_file, sequence.info);
     sequences.push_back(std::move(sequence));
   }
   return sequences;
@@ -38,12 +38,12 @@ SequenceCounts track_and_count(const LoadedSequence& sequence, StudyInput input,
   const auto& detections =
       input == StudyInput::detections ? sequence.detections : sequence.gt_detections;
 
-  std::vector<MotRow> results;
+  std::vector<motio::MotRow> results;
   for (int frame = 1; frame <= sequence.info.length; frame += interval) {
     const double time = (frame - 1) / sequence.info.frame_rate;
     for (const auto& report :
          tracker.update(detections[static_cast<std::size_t>(frame - 1)], time)) {
-      MotRow row;
+      motio::MotRow row;
       row.frame = frame;
       row.id = report.id;
       row.box = report.box;

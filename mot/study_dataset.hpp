@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "mot/metrics.hpp"
-#include "mot/mot_files.hpp"
+#include "motio/mot_files.hpp"
 #include "mot/sequence_counts.hpp"
 #include "tracker/box.hpp"
 #include "tracker/tracker_config.hpp"
@@ -22,8 +22,8 @@ enum class StudyInput {
 std::string_view to_string(StudyInput input);
 
 struct LoadedSequence {
-  SequenceInfo info;
-  std::vector<MotRow> gt_rows;
+  motio::SequenceInfo info;
+  std::vector<motio::MotRow> gt_rows;
   std::vector<std::vector<tracker::Detection>> detections;     // det/det.txt, by frame
   std::vector<std::vector<tracker::Detection>> gt_detections;  // gt/gt.txt, by frame
 };

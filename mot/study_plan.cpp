@@ -2,7 +2,7 @@
 
 #include <utility>
 
-#include "mot/tracker_presets.hpp"
+#include "tracker/presets.hpp"
 
 namespace rtmot::mot {
 namespace {
@@ -57,9 +57,9 @@ std::vector<StudyConfiguration> option_configurations() {
 
 template <typename Change>
 StudyConfiguration ablation(const std::string& suffix, Change change) {
-  TrackerConfig config = *find_preset(default_preset_name());
+  TrackerConfig config = *tracker::find_preset(tracker::default_preset_name());
   change(config);
-  return {std::string(default_preset_name()) + suffix, "ablation", config};
+  return {std::string(tracker::default_preset_name()) + suffix, "ablation", config};
 }
 
 // The default preset with one of its parts taken back to SORT's, or one more option added: what
@@ -107,7 +107,7 @@ std::vector<StudyConfiguration> study_configurations(bool quick) {
   for (auto& configuration : ablation_configurations()) {
     configurations.push_back(std::move(configuration));
   }
-  for (const auto& preset : tracker_presets()) {
+  for (const auto& preset : tracker::tracker_presets()) {
     configurations.push_back({"preset-" + std::string(preset.name), "presets", preset.make()});
   }
   return configurations;

@@ -31,7 +31,7 @@ bool ends_with(const std::string& text, const std::string& suffix) {
 AnnotatedVideoWriter::AnnotatedVideoWriter(std::string path, double fps)
     : path_(std::move(path)), fps_(fps > 0.0 ? fps : 30.0) {}
 
-void AnnotatedVideoWriter::write(cv::Mat& image, const FrameResult& result, double pipeline_fps) {
+void AnnotatedVideoWriter::write(cv::Mat& image, const messages::FrameResult& result, double pipeline_fps) {
   if (image.empty()) return;  // an image-less source: nothing to draw on
   if (!writer_.isOpened()) {
     const int codec = ends_with(path_, ".avi") ? cv::VideoWriter::fourcc('M', 'J', 'P', 'G')

@@ -6,7 +6,7 @@
 #include <opencv2/videoio.hpp>
 #include <string>
 
-#include "pipeline/frame_result.hpp"
+#include "messages/frame_result.hpp"
 
 namespace rtmot::pipeline {
 
@@ -17,7 +17,7 @@ class AnnotatedVideoWriter {
   AnnotatedVideoWriter(std::string path, double fps);
   /// Draws onto `image` (it is the pipeline's own buffer) and appends it. Throws InputError
   /// (output.video_file) if the file cannot be opened.
-  void write(cv::Mat& image, const FrameResult& result, double pipeline_fps);
+  void write(cv::Mat& image, const messages::FrameResult& result, double pipeline_fps);
   void close() { writer_.release(); }
 
  private:

@@ -25,14 +25,14 @@ using platform::steady_now_ns;
 struct DetectedFrame {
   platform::FrameInfo info;
   bool outage{false};
-  FrameTimes times;
+  messages::FrameTimes times;
   std::vector<tracker::Detection> detections;
   cv::Mat image;  // only when the annotated video is on
 };
 
 // track -> sink.
 struct TrackedFrame {
-  FrameResult result;
+  messages::FrameResult result;
   cv::Mat image;  // only when the annotated video is on
 };
 
@@ -49,7 +49,7 @@ struct Pipeline::Stages {
   std::unique_ptr<platform::VideoSource> source;
   std::unique_ptr<detector::Detector> detector;
   tracker::Tracker tracker;
-  std::vector<std::unique_ptr<TrackSink>> sinks;
+  std::vector<std::unique_ptr<messages::TrackSink>> sinks;
   PipelineOptions options;
   bool live;
   PlaybackMode playback;
@@ -82,7 +82,7 @@ struct Pipeline::Stages {
   Stages(std::unique_ptr<platform::VideoSource> source_in,
          std::unique_ptr<detector::Detector> detector_in,
          const tracker::TrackerConfig& tracker_config,
-         std::vector<std::unique_ptr<TrackSink>> sinks_in, PipelineOptions options_in)
+         std::vector<std::unique_ptr<messages::TrackSink>> sinks_in, PipelineOptions options_in)
       : source(std::move(source_in)),
         detector(std::move(detector_in)),
         tracker(tracker_config),
@@ -239,7 +239,7 @@ struct Pipeline::Stages {
         detector->detect(frame.image, frame.info.frame_number, out->detections);
       }
       out->outage = frame.outage;
-      out->times = FrameTimes{};
+      out->times = messages::FrameTimes{};
       out->times.captured_ns = frame.info.capture_ns;
       out->times.detect_start_ns = taken_ns;
       out->times.detected_ns = steady_now_ns();
@@ -257,7 +257,7 @@ struct Pipeline::Stages {
       if (out == nullptr) return;
       const double seconds = static_cast<double>(in->info.pts_ns) * 1e-9;
       const auto& reports = tracker.update(in->detections, seconds);
-      FrameResult& result = out->result;
+      messages::FrameResult& result = out->result;
       result.tracks.assign(reports.begin(), reports.end());  // within the reserved capacity
       result.stream_id = options.stream_id;
       result.sequence = static_cast<std::uint64_t>(messages++);
@@ -286,7 +286,7 @@ struct Pipeline::Stages {
     std::int64_t sent = 0;
     double recent_fps = 0.0;
     while (TrackedFrame* in = tracked.front(abort)) {
-      FrameResult& result = in->result;
+      messages::FrameResult& result = in->result;
       result.times.sent_ns = steady_now_ns();
       for (const auto& sink : sinks) sink->write(result);
       if (result.source_outage) {  // a tick, not a processed frame: no latency, no video frame
@@ -361,7 +361,7 @@ struct Pipeline::Stages {
 Pipeline::Pipeline(std::unique_ptr<platform::VideoSource> source,
                    std::unique_ptr<detector::Detector> detector,
                    const tracker::TrackerConfig& tracker_config,
-                   std::vector<std::unique_ptr<TrackSink>> sinks, PipelineOptions options)
+                   std::vector<std::unique_ptr<messages::TrackSink>> sinks, PipelineOptions options)
     : stages_(std::make_unique<Stages>(std::move(source), std::move(detector), tracker_config,
                                        std::move(sinks), std::move(options))) {}
 

@@ -11,9 +11,9 @@
 #include <vector>
 
 #include "detector/detector.hpp"
-#include "pipeline/frame_result.hpp"
+#include "messages/frame_result.hpp"
 #include "pipeline/pipeline_report.hpp"
-#include "pipeline/run_config.hpp"
+#include "pipeline/playback_mode.hpp"
 #include "platform/video_source.hpp"
 #include "tracker/tracker_config.hpp"
 
@@ -35,7 +35,7 @@ class Pipeline {
   Pipeline(std::unique_ptr<platform::VideoSource> source,
            std::unique_ptr<detector::Detector> detector,
            const tracker::TrackerConfig& tracker_config,
-           std::vector<std::unique_ptr<TrackSink>> sinks, PipelineOptions options);
+           std::vector<std::unique_ptr<messages::TrackSink>> sinks, PipelineOptions options);
   ~Pipeline();
   Pipeline(const Pipeline&) = delete;
   Pipeline& operator=(const Pipeline&) = delete;

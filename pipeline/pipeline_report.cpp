@@ -28,7 +28,7 @@ nlohmann::json to_json(const LatencyHistogram& histogram) {
 
 }  // namespace
 
-void StageLatencies::record(const FrameTimes& times) {
+void StageLatencies::record(const messages::FrameTimes& times) {
   record_between(queued, times.captured_ns, times.detect_start_ns);
   record_between(detect, times.detect_start_ns, times.detected_ns);
   record_between(track, times.detected_ns, times.tracked_ns);

@@ -5,7 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "pipeline/frame_result.hpp"
+#include "messages/frame_result.hpp"
 #include "pipeline/latency_histogram.hpp"
 
 namespace rtmot::pipeline {
@@ -18,7 +18,7 @@ struct StageLatencies {
   LatencyHistogram send;        // tracked -> sent
   LatencyHistogram end_to_end;  // captured -> sent
 
-  void record(const FrameTimes& times);
+  void record(const messages::FrameTimes& times);
   void clear();
 };
 

@@ -6,22 +6,22 @@
 
 #include "common/input_error.hpp"
 #include "memory_file.hpp"
-#include "pipeline/message_file_reader.hpp"
-#include "pipeline/message_format.hpp"
+#include "messages/message_file_reader.hpp"
+#include "messages/message_format.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace rtmot::pipeline;
-  static DecodedMessage decoded;  // reused as a receiver reuses it
+  static messages::DecodedMessage decoded;  // reused as a receiver reuses it
   // An exact-size heap copy, so that AddressSanitizer sees any read past the end.
   const std::vector<std::uint8_t> bytes(data, data + size);
-  decode_message(bytes.data(), bytes.size(), decoded);
+  messages::decode_message(bytes.data(), bytes.size(), decoded);
 
   static rtmot::fuzz::MemoryFile file;
   try {
-    MessageFileReader reader(file.write(data, size));
+    messages::MessageFileReader reader(file.write(data, size));
     std::vector<std::uint8_t> record;
-    while (reader.next(record) == FileReadStatus::message) {
-      decode_message(record.data(), record.size(), decoded);
+    while (reader.next(record) == messages::FileReadStatus::message) {
+      messages::decode_message(record.data(), record.size(), decoded);
     }
   } catch (const rtmot::InputError&) {
   }

@@ -5,13 +5,13 @@
 #include <string>
 
 #include "common/input_error.hpp"
-#include "pipeline/run_config.hpp"
+#include "runner/run_config.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);
   try {
-    const auto config = rtmot::pipeline::parse_run_config(text, "fuzz.yaml");
-    rtmot::pipeline::validate(config);
+    const auto config = rtmot::runner::parse_run_config(text, "fuzz.yaml");
+    rtmot::runner::validate(config);
   } catch (const rtmot::InputError&) {
   }
   return 0;

@@ -4,12 +4,12 @@
 
 #include "common/input_error.hpp"
 #include "memory_file.hpp"
-#include "mot/mot_files.hpp"
+#include "motio/mot_files.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   static rtmot::fuzz::MemoryFile file;
   try {
-    rtmot::mot::read_seqinfo(file.write(data, size));
+    rtmot::motio::read_seqinfo(file.write(data, size));
   } catch (const rtmot::InputError&) {
   }
   return 0;

@@ -7,9 +7,9 @@
 #include <map>
 #include <vector>
 
-#include "mot/mot_files.hpp"
-#include "pipeline/binary_file_sink.hpp"
-#include "pipeline/message_format.hpp"
+#include "motio/mot_files.hpp"
+#include "messages/binary_file_sink.hpp"
+#include "messages/message_format.hpp"
 
 int main(int argc, char** argv) {
   if (argc != 3) {
@@ -19,8 +19,8 @@ int main(int argc, char** argv) {
   using namespace rtmot;
   const std::filesystem::path out_dir = argv[2];
   std::filesystem::create_directories(out_dir);
-  std::map<int, pipeline::FrameResult> frames;
-  for (const auto& row : mot::read_mot_file(argv[1], mot::MotFileKind::ground_truth)) {
+  std::map<int, messages::FrameResult> frames;
+  for (const auto& row : motio::read_mot_file(argv[1], motio::MotFileKind::ground_truth)) {
     if (row.frame > 20) continue;
     auto& frame = frames[row.frame];
     frame.frame_number = row.frame;
@@ -30,9 +30,9 @@ int main(int argc, char** argv) {
     frame.times.sent_ns = frame.times.captured_ns + 60'000'000LL;
     frame.tracks.push_back({row.id, row.box, row.conf, 1, 3, row.frame});
   }
-  pipeline::MessageEncoder encoder;
+  messages::MessageEncoder encoder;
   std::vector<std::uint8_t> buffer(pipeline::message::max_message_size);
-  pipeline::BinaryFileSink file_sink(out_dir / "messages-file.bin");
+  messages::BinaryFileSink file_sink(out_dir / "messages-file.bin");
   for (const auto& [number, frame] : frames) {
     const std::size_t size = encoder.encode(frame, buffer.data(), buffer.size());
     std::ofstream(out_dir / ("message-" + std::to_string(number) + ".bin"), std::ios::binary)

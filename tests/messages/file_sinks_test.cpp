@@ -10,11 +10,11 @@
 
 #include "common/input_error.hpp"
 #include "message_test_data.hpp"
-#include "pipeline/binary_file_sink.hpp"
-#include "pipeline/jsonl_sink.hpp"
-#include "pipeline/message_file_reader.hpp"
+#include "messages/binary_file_sink.hpp"
+#include "messages/jsonl_sink.hpp"
+#include "messages/message_file_reader.hpp"
 
-namespace rtmot::pipeline {
+namespace rtmot::messages {
 namespace {
 
 class FileSinks : public ::testing::Test {
@@ -157,4 +157,4 @@ TEST_F(FileSinks, JsonLinesParseBackToTheSameFrames) {
 }
 
 }  // namespace
-}  // namespace rtmot::pipeline
+}  // namespace rtmot::messages

@@ -8,9 +8,9 @@
 #include <vector>
 
 #include "message_test_data.hpp"
-#include "pipeline/message_format.hpp"
+#include "messages/message_format.hpp"
 
-namespace rtmot::pipeline {
+namespace rtmot::messages {
 namespace {
 
 // The busiest of ETH-Bahnhof's first 100 frames: every field, and several tracks, to damage.
@@ -129,4 +129,4 @@ TEST(MessageCorruption, RandomBytesNeverDecodeAndNeverCrash) {
 }
 
 }  // namespace
-}  // namespace rtmot::pipeline
+}  // namespace rtmot::messages

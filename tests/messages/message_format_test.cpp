@@ -1,5 +1,5 @@
 // Round trips of the binary track message on realistic frames, its byte layout and its limits.
-#include "pipeline/message_format.hpp"
+#include "messages/message_format.hpp"
 
 #include <gtest/gtest.h>
 #include <zlib.h>
@@ -11,7 +11,7 @@
 
 #include "message_test_data.hpp"
 
-namespace rtmot::pipeline {
+namespace rtmot::messages {
 namespace {
 
 using test::crowd_from_detections;
@@ -195,4 +195,4 @@ TEST(MessageFormat, EncoderRefusesABufferSmallerThanTheHeader) {
 }
 
 }  // namespace
-}  // namespace rtmot::pipeline
+}  // namespace rtmot::messages

@@ -1,11 +1,11 @@
 // The listener's accounting of loss, reordering and duplication on crafted arrival orders.
-#include "pipeline/message_stream_stats.hpp"
+#include "messages/message_stream_stats.hpp"
 
 #include <gtest/gtest.h>
 
 #include <vector>
 
-namespace rtmot::pipeline {
+namespace rtmot::messages {
 namespace {
 
 std::vector<Arrival> feed(SequenceAccounting& accounting,
@@ -113,4 +113,4 @@ TEST(ListenerStats, StreamsAreCountedApartAndCorruptByReason) {
 }
 
 }  // namespace
-}  // namespace rtmot::pipeline
+}  // namespace rtmot::messages

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cstring>
 
-#include "mot/mot_files.hpp"
+#include "motio/mot_files.hpp"
 #include "shared_data.hpp"
 
 namespace rtmot::test {
@@ -13,17 +13,17 @@ constexpr std::int64_t frame_period_ns = 33'333'333;
 constexpr std::int64_t capture_origin_ns =
     5'000'000'000'000;  // a steady clock some hours after boot
 
-std::vector<mot::MotRow> detection_rows(const std::string& sequence) {
+std::vector<motio::MotRow> detection_rows(const std::string& sequence) {
   const auto path = shared_path("data/mot15-train/" + sequence + "/det/det.txt");
   if (!std::filesystem::exists(path)) {
     ADD_FAILURE() << "missing test data file: " << path;
     return {};
   }
-  return mot::read_mot_file(path, mot::MotFileKind::detections);
+  return motio::read_mot_file(path, motio::MotFileKind::detections);
 }
 
-pipeline::FrameResult empty_frame(std::int64_t frame_number) {
-  pipeline::FrameResult frame;
+messages::FrameResult empty_frame(std::int64_t frame_number) {
+  messages::FrameResult frame;
   frame.stream_id = 7;
   frame.sequence = static_cast<std::uint64_t>(frame_number - 1);
   frame.frame_number = frame_number;
@@ -37,7 +37,7 @@ pipeline::FrameResult empty_frame(std::int64_t frame_number) {
   return frame;
 }
 
-tracker::TrackReport track_from(const mot::MotRow& row, std::int32_t id) {
+tracker::TrackReport track_from(const motio::MotRow& row, std::int32_t id) {
   tracker::TrackReport track;
   track.id = id;
   track.box = row.box;
@@ -54,9 +54,9 @@ bool same_bits(float a, float b) {
 
 }  // namespace
 
-std::vector<pipeline::FrameResult> frames_from_detections(const std::string& sequence,
+std::vector<messages::FrameResult> frames_from_detections(const std::string& sequence,
                                                           std::size_t max_frames) {
-  std::vector<pipeline::FrameResult> frames;
+  std::vector<messages::FrameResult> frames;
   std::int32_t next_id = 1;
   for (const auto& row : detection_rows(sequence)) {
     if (static_cast<std::size_t>(row.frame) > max_frames) break;
@@ -68,8 +68,8 @@ std::vector<pipeline::FrameResult> frames_from_detections(const std::string& seq
   return frames;
 }
 
-pipeline::FrameResult crowd_from_detections(const std::string& sequence, std::size_t track_count) {
-  pipeline::FrameResult frame = empty_frame(1);
+messages::FrameResult crowd_from_detections(const std::string& sequence, std::size_t track_count) {
+  messages::FrameResult frame = empty_frame(1);
   std::int32_t next_id = 1;
   for (const auto& row : detection_rows(sequence)) {
     if (frame.tracks.size() == track_count) break;
@@ -81,8 +81,8 @@ pipeline::FrameResult crowd_from_detections(const std::string& sequence, std::si
   return frame;
 }
 
-::testing::AssertionResult same_as_sent(const pipeline::FrameResult& sent,
-                                        const pipeline::DecodedMessage& decoded) {
+::testing::AssertionResult same_as_sent(const messages::FrameResult& sent,
+                                        const messages::DecodedMessage& decoded) {
   const auto& got = decoded.frame;
   if (got.stream_id != sent.stream_id || got.sequence != sent.sequence ||
       got.frame_number != sent.frame_number || got.pts_ns != sent.pts_ns ||

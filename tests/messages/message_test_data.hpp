@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "pipeline/frame_result.hpp"
-#include "pipeline/message_format.hpp"
+#include "messages/frame_result.hpp"
+#include "messages/message_format.hpp"
 
 namespace rtmot::test {
 
@@ -15,15 +15,15 @@ namespace rtmot::test {
 /// each detection of det/det.txt one track (ids unique over the sequence, class person, ages and
 /// hits growing with the frame), timed as a 30 fps capture with a few milliseconds of latency.
 /// Fails the test (naming the file) if the data is missing.
-std::vector<pipeline::FrameResult> frames_from_detections(const std::string& sequence,
+std::vector<messages::FrameResult> frames_from_detections(const std::string& sequence,
                                                           std::size_t max_frames);
 
 /// One frame holding `track_count` tracks: the detections of successive frames of `sequence`
 /// pooled together, for crowds larger than any single frame of MOT15.
-pipeline::FrameResult crowd_from_detections(const std::string& sequence, std::size_t track_count);
+messages::FrameResult crowd_from_detections(const std::string& sequence, std::size_t track_count);
 
 /// Whether `decoded` carries exactly what the message format promises to carry of `sent`.
-::testing::AssertionResult same_as_sent(const pipeline::FrameResult& sent,
-                                        const pipeline::DecodedMessage& decoded);
+::testing::AssertionResult same_as_sent(const messages::FrameResult& sent,
+                                        const messages::DecodedMessage& decoded);
 
 }  // namespace rtmot::test

@@ -6,10 +6,10 @@
 
 #include "common/input_error.hpp"
 #include "message_test_data.hpp"
-#include "pipeline/udp_sink.hpp"
+#include "messages/udp_sink.hpp"
 #include "platform/udp_socket.hpp"
 
-namespace rtmot::pipeline {
+namespace rtmot::messages {
 namespace {
 
 constexpr int receive_timeout_ms = 2000;  // generous: only a lost datagram ever waits this long
@@ -115,4 +115,4 @@ TEST(UdpSocketErrors, BindingAnAddressThatIsNotLocalFails) {
 }
 
 }  // namespace
-}  // namespace rtmot::pipeline
+}  // namespace rtmot::messages

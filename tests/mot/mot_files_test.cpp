@@ -1,5 +1,5 @@
 // The MOTChallenge readers: real files load; every kind of bad line names file, line and field.
-#include "mot/mot_files.hpp"
+#include "motio/mot_files.hpp"
 
 #include <gtest/gtest.h>
 
@@ -9,10 +9,10 @@
 #include <string>
 
 #include "common/input_error.hpp"
-#include "mot/results_writer.hpp"
+#include "motio/results_writer.hpp"
 #include "shared_data.hpp"
 
-namespace rtmot::mot {
+namespace rtmot::motio {
 namespace {
 
 namespace fs = std::filesystem;
@@ -242,4 +242,4 @@ TEST(ResultsWriter, FullDeviceIsReportedOnClose) {
 }
 
 }  // namespace
-}  // namespace rtmot::mot
+}  // namespace rtmot::motio

@@ -6,8 +6,8 @@
 #include "mot/evaluation.hpp"
 #include "mot/prepared_sequence.hpp"
 #include "mot/scorer.hpp"
-#include "mot/track_runner.hpp"
-#include "mot/tracker_presets.hpp"
+#include "motio/track_runner.hpp"
+#include "tracker/presets.hpp"
 #include "shared_data.hpp"
 
 namespace rtmot::mot {
@@ -19,13 +19,13 @@ TEST(SortOnMot15Train, ReachesTheReferenceMotaAndIdf1) {
   const auto sequence_dirs = find_sequence_dirs(dataset);
   ASSERT_EQ(sequence_dirs.size(), 11U);
 
-  TrackOptions options;
-  options.config = *find_preset("sort");
+  motio::TrackOptions options;
+  options.config = *tracker::find_preset("sort");
   std::vector<SequenceScore> scores;
   for (const auto& dir : sequence_dirs) {
-    const TrackRun run = track_sequence(dir, options);
+    const motio::TrackRun run = motio::track_sequence(dir, options);
     const auto gt_rows =
-        read_mot_file(dir / "gt" / "gt.txt", MotFileKind::ground_truth, run.info.length);
+        motio::read_mot_file(dir / "gt" / "gt.txt", motio::MotFileKind::ground_truth, run.info.length);
     PrepareOptions prepare;
     prepare.sequence_length = run.info.length;
     SequenceScore score;

@@ -7,10 +7,10 @@
 #include "common/input_error.hpp"
 #include "mot/evaluation.hpp"
 #include "mot/prepared_sequence.hpp"
-#include "mot/results_writer.hpp"
+#include "motio/results_writer.hpp"
 #include "mot/scorer.hpp"
-#include "mot/track_runner.hpp"
-#include "mot/tracker_presets.hpp"
+#include "motio/track_runner.hpp"
+#include "tracker/presets.hpp"
 #include "shared_data.hpp"
 
 namespace rtmot::mot {
@@ -24,25 +24,25 @@ fs::path sequence(const std::string& name) {
 
 TEST(TrackSequence, IntervalKeepsOriginalFrameNumbers) {
   RTMOT_REQUIRE_FILE(sequence("TUD-Stadtmitte") / "seqinfo.ini");
-  TrackOptions options;
-  options.config = *find_preset("sort");
+  motio::TrackOptions options;
+  options.config = *tracker::find_preset("sort");
   options.interval = 3;
-  const TrackRun run = track_sequence(sequence("TUD-Stadtmitte"), options);
+  const motio::TrackRun run = motio::track_sequence(sequence("TUD-Stadtmitte"), options);
   EXPECT_EQ(run.frames_processed, (run.info.length + 2) / 3);
   ASSERT_FALSE(run.tracks.empty());
-  for (const MotRow& row : run.tracks) EXPECT_EQ((row.frame - 1) % 3, 0) << row.frame;
+  for (const motio::MotRow& row : run.tracks) EXPECT_EQ((row.frame - 1) % 3, 0) << row.frame;
 }
 
 TEST(TrackSequence, GroundTruthAsDetectorTracksAlmostPerfectly) {
   const fs::path dir = sequence("TUD-Stadtmitte");
   RTMOT_REQUIRE_FILE(dir / "gt/gt.txt");
-  TrackOptions options;
-  options.config = *find_preset("sort");
+  motio::TrackOptions options;
+  options.config = *tracker::find_preset("sort");
   options.detections = "gt/gt.txt";
-  const TrackRun run = track_sequence(dir, options);
+  const motio::TrackRun run = motio::track_sequence(dir, options);
   PrepareOptions prepare;
   prepare.sequence_length = run.info.length;
-  const auto gt = read_mot_file(dir / "gt/gt.txt", MotFileKind::ground_truth);
+  const auto gt = motio::read_mot_file(dir / "gt/gt.txt", motio::MotFileKind::ground_truth);
   const Metrics m = summarize(count_all(prepare_sequence(gt, run.tracks, prepare)));
   // Only SORT's start-up (min_hits) and its Kalman smoothing keep it from 100.
   EXPECT_GT(m.mota, 95.0);
@@ -51,10 +51,10 @@ TEST(TrackSequence, GroundTruthAsDetectorTracksAlmostPerfectly) {
 }
 
 TEST(TrackSequence, MissingDetectionsFileIsNamed) {
-  TrackOptions options;
+  motio::TrackOptions options;
   options.detections = "det/nothing-here.txt";
   try {
-    track_sequence(sequence("TUD-Campus"), options);
+    motio::track_sequence(sequence("TUD-Campus"), options);
     FAIL() << "no error";
   } catch (const InputError& error) {
     EXPECT_NE(error.file().find("nothing-here.txt"), std::string::npos) << error.what();
@@ -113,14 +113,14 @@ TEST_F(EvaluateFolders, OverallPoolsTheSequencesCounts) {
 TEST_F(EvaluateFolders, WrittenResultsScoreLikeTheRowsInMemory) {
   const fs::path dir = sequence("TUD-Campus");
   RTMOT_REQUIRE_FILE(dir / "det/det.txt");
-  TrackOptions options;
-  options.config = *find_preset("sort");
-  const TrackRun run = track_sequence(dir, options);
-  write_results(results_ / "TUD-Campus.txt", run.tracks);
+  motio::TrackOptions options;
+  options.config = *tracker::find_preset("sort");
+  const motio::TrackRun run = motio::track_sequence(dir, options);
+  motio::write_results(results_ / "TUD-Campus.txt", run.tracks);
   const SequenceScore from_file = evaluate_sequence(dir, results_ / "TUD-Campus.txt");
   PrepareOptions prepare;
   prepare.sequence_length = run.info.length;
-  const auto gt = read_mot_file(dir / "gt/gt.txt", MotFileKind::ground_truth);
+  const auto gt = motio::read_mot_file(dir / "gt/gt.txt", motio::MotFileKind::ground_truth);
   const Metrics in_memory = summarize(count_all(prepare_sequence(gt, run.tracks, prepare)));
   // Two decimals in the file move IoUs by ~1e-4: the same matches here.
   EXPECT_EQ(from_file.metrics.false_positives, in_memory.false_positives);

@@ -7,7 +7,7 @@
 #include <atomic>
 
 #include "pipeline/pipeline.hpp"
-#include "pipeline/source_factory.hpp"
+#include "runner/source_factory.hpp"
 #include "tracker/tracker_config.hpp"
 
 namespace rtmot::pipeline {
@@ -27,14 +27,14 @@ class WalkerDetector : public detector::Detector {
   std::string describe() const override { return "walker"; }
 };
 
-class CollectingSink : public TrackSink {
+class CollectingSink : public messages::TrackSink {
  public:
-  explicit CollectingSink(std::vector<FrameResult>& into) : into_(into) {}
-  void write(const FrameResult& result) override { into_.push_back(result); }
+  explicit CollectingSink(std::vector<messages::FrameResult>& into) : into_(into) {}
+  void write(const messages::FrameResult& result) override { into_.push_back(result); }
   void flush() override {}
 
  private:
-  std::vector<FrameResult>& into_;
+  std::vector<messages::FrameResult>& into_;
 };
 
 TEST(SourceOutage, LiveSourceIsReopenedWhileMessagesKeepFlowing) {
@@ -42,10 +42,10 @@ TEST(SourceOutage, LiveSourceIsReopenedWhileMessagesKeepFlowing) {
   const std::string uri = "test://ball?is-live=true&width=64&height=48&fps=50&error-after=15";
   platform::SourceOptions source_options;
   source_options.open_timeout_ms = 3000;
-  auto source = open_source(uri, source_options);
+  auto source = runner::open_source(uri, source_options);
 
-  std::vector<FrameResult> messages;
-  std::vector<std::unique_ptr<TrackSink>> sinks;
+  std::vector<messages::FrameResult> messages;
+  std::vector<std::unique_ptr<messages::TrackSink>> sinks;
   sinks.push_back(std::make_unique<CollectingSink>(messages));
   tracker::TrackerConfig tracker_config = tracker::TrackerConfig::sort_preset();
   tracker_config.time_step = tracker::TimeStep::elapsed;
@@ -66,7 +66,7 @@ TEST(SourceOutage, LiveSourceIsReopenedWhileMessagesKeepFlowing) {
   long ticks = 0;
   long reported_after_first_outage = 0;
   for (std::size_t i = 0; i < messages.size(); ++i) {
-    const FrameResult& message = messages[i];
+    const messages::FrameResult& message = messages[i];
     EXPECT_EQ(message.sequence, i) << "one message per frame or tick, none missing";
     if (message.source_outage) {
       ++ticks;

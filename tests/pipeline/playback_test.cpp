@@ -11,9 +11,9 @@
 #include <thread>
 
 #include "common/input_error.hpp"
-#include "mot/mot_files.hpp"
+#include "motio/mot_files.hpp"
 #include "pipeline/pipeline.hpp"
-#include "pipeline/sequence_clock_source.hpp"
+#include "runner/sequence_clock_source.hpp"
 #include "platform/clock.hpp"
 #include "shared_data.hpp"
 #include "tracker/tracker_config.hpp"
@@ -65,22 +65,22 @@ class FixedBoxDetector : public detector::Detector {
 };
 
 struct Collected {
-  std::vector<FrameResult> results;
+  std::vector<messages::FrameResult> results;
   int flushes{0};
 };
 
-class CollectingSink : public TrackSink {
+class CollectingSink : public messages::TrackSink {
  public:
   explicit CollectingSink(Collected& into) : into_(into) {}
-  void write(const FrameResult& result) override { into_.results.push_back(result); }
+  void write(const messages::FrameResult& result) override { into_.results.push_back(result); }
   void flush() override { ++into_.flushes; }
 
  private:
   Collected& into_;
 };
 
-std::vector<std::unique_ptr<TrackSink>> sinks_into(Collected& collected) {
-  std::vector<std::unique_ptr<TrackSink>> sinks;
+std::vector<std::unique_ptr<messages::TrackSink>> sinks_into(Collected& collected) {
+  std::vector<std::unique_ptr<messages::TrackSink>> sinks;
   sinks.push_back(std::make_unique<CollectingSink>(collected));
   return sinks;
 }
@@ -150,7 +150,7 @@ TEST(SimulatedPlayback, VtestAt250msProcessesExactlyThePredictedFramesDeterminis
   // About 4 of every 10 frames at 4 detections per second on a 10 fps video.
   EXPECT_EQ(std::count_if(predicted.begin(), predicted.end(), [](auto n) { return n <= 100; }), 40);
   ASSERT_FALSE(first.results.empty());
-  const FrameResult& last = first.results.back();
+  const messages::FrameResult& last = first.results.back();
   EXPECT_EQ(last.frames_dropped, last.frame_number - 1 - static_cast<std::int64_t>(last.sequence));
   EXPECT_EQ(first.flushes, 1);
   for (std::size_t i = 0; i < first.results.size(); ++i) {
@@ -187,10 +187,10 @@ TEST(EveryFramePlayback, ProcessesEveryFrameInOrderWithAllLatencyPoints) {
   EXPECT_EQ(report.frames_dropped, 0);
   ASSERT_EQ(collected.results.size(), 120U);
   for (std::size_t i = 0; i < collected.results.size(); ++i) {
-    const FrameResult& result = collected.results[i];
+    const messages::FrameResult& result = collected.results[i];
     EXPECT_EQ(result.frame_number, static_cast<std::int64_t>(i) + 1);
     EXPECT_EQ(result.frames_dropped, 0U);
-    const FrameTimes& t = result.times;
+    const messages::FrameTimes& t = result.times;
     EXPECT_GT(t.captured_ns, 0);
     EXPECT_LE(t.captured_ns, t.detect_start_ns);
     EXPECT_LE(t.detect_start_ns, t.detected_ns);
@@ -208,9 +208,9 @@ TEST(SequencePlayback, ImageLessMotSequenceFeedsItsDetectionsFrameByFrame) {
   const auto sequence = test::shared_path("data/mot15-train/ADL-Rundle-6");
   RTMOT_REQUIRE_FILE(sequence / "seqinfo.ini");
   RTMOT_REQUIRE_FILE(sequence / "det/det.txt");
-  const mot::SequenceInfo info = mot::read_seqinfo(sequence / "seqinfo.ini");
-  const auto by_frame = mot::detections_by_frame(
-      mot::read_mot_file(sequence / "det/det.txt", mot::MotFileKind::detections), info.length);
+  const motio::SequenceInfo info = motio::read_seqinfo(sequence / "seqinfo.ini");
+  const auto by_frame = motio::detections_by_frame(
+      motio::read_mot_file(sequence / "det/det.txt", motio::MotFileKind::detections), info.length);
 
   // Hands out det.txt's boxes by frame number and checks that no image came with them.
   class DetFileDetector : public detector::Detector {
@@ -229,7 +229,7 @@ TEST(SequencePlayback, ImageLessMotSequenceFeedsItsDetectionsFrameByFrame) {
   };
 
   Collected collected;
-  Pipeline pipeline(std::make_unique<SequenceClockSource>("mot-seq://" + sequence.string()),
+  Pipeline pipeline(std::make_unique<runner::SequenceClockSource>("mot-seq://" + sequence.string()),
                     std::make_unique<DetFileDetector>(by_frame), sort_for(info.frame_rate),
                     sinks_into(collected), quiet(PlaybackMode::every_frame));
   const std::atomic<bool> stop{false};
@@ -246,7 +246,7 @@ TEST(SequencePlayback, ImageLessMotSequenceFeedsItsDetectionsFrameByFrame) {
 
 TEST(SequencePlayback, MissingSeqinfoNamesTheFile) {
   try {
-    SequenceClockSource source("mot-seq:///nonexistent/sequence");
+    runner::SequenceClockSource source("mot-seq:///nonexistent/sequence");
     FAIL() << "expected an InputError";
   } catch (const InputError& error) {
     EXPECT_NE(std::string(error.what()).find("seqinfo.ini"), std::string::npos) << error.what();

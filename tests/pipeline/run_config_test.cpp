@@ -1,6 +1,6 @@
 // The run configuration: every shipped config loads, and every kind of mistake names file, line
 // and field.
-#include "pipeline/run_config.hpp"
+#include "runner/run_config.hpp"
 
 #include <gtest/gtest.h>
 
@@ -42,7 +42,7 @@ max_frames: 100
 )";
 
 TEST(RunConfig, ReadsEverySection) {
-  const RunConfig config = parse_run_config(full, "full.yaml");
+  const runner::RunConfig config = runner::parse_run_config(full, "full.yaml");
   EXPECT_EQ(config.source.uri, "data/vtest.avi");
   EXPECT_EQ(config.source.width, 640);
   EXPECT_DOUBLE_EQ(config.source.fps, 10.0);
@@ -71,7 +71,7 @@ TEST(RunConfig, EveryShippedConfigLoadsAndValidates) {
   for (const auto& entry : std::filesystem::directory_iterator(folder)) {
     if (entry.path().extension() != ".yaml") continue;
     SCOPED_TRACE(entry.path().string());
-    const RunConfig config = load_run_config(entry.path().string());
+    const runner::RunConfig config = runner::load_run_config(entry.path().string());
     EXPECT_NO_THROW(validate(config));
     ++count;
   }
@@ -81,7 +81,7 @@ TEST(RunConfig, EveryShippedConfigLoadsAndValidates) {
 // Parses `yaml` expecting an InputError at `line` naming `field`.
 void expect_error(const std::string& yaml, int line, const std::string& field) {
   try {
-    parse_run_config(yaml, "bad.yaml");
+    runner::parse_run_config(yaml, "bad.yaml");
     FAIL() << "accepted:\n" << yaml;
   } catch (const InputError& error) {
     EXPECT_EQ(error.file(), "bad.yaml");
@@ -123,7 +123,7 @@ TEST(RunConfig, MalformedYamlNamesTheLine) {
 }
 
 TEST(RunConfig, ValidateNamesWhatIsMissing) {
-  RunConfig config = parse_run_config("detector:\n  kind: replay\n", "x.yaml");
+  runner::RunConfig config = runner::parse_run_config("detector:\n  kind: replay\n", "x.yaml");
   try {
     validate(config);
     FAIL();
@@ -141,7 +141,7 @@ TEST(RunConfig, ValidateNamesWhatIsMissing) {
 
 TEST(RunConfig, MissingFileNamesIt) {
   try {
-    load_run_config("/nonexistent/run.yaml");
+    runner::load_run_config("/nonexistent/run.yaml");
     FAIL();
   } catch (const InputError& error) {
     EXPECT_EQ(error.file(), "/nonexistent/run.yaml");

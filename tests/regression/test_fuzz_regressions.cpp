@@ -5,7 +5,7 @@
 #include <string>
 
 #include "common/input_error.hpp"
-#include "pipeline/run_config.hpp"
+#include "runner/run_config.hpp"
 
 namespace rtmot {
 namespace {
@@ -20,7 +20,7 @@ TEST(FuzzRegression, RunConfigComplexKeyIsABadInputError) {
   };
   for (const auto& text : inputs) {
     try {
-      pipeline::parse_run_config(text, "fuzz.yaml");
+      runner::parse_run_config(text, "fuzz.yaml");
       ADD_FAILURE() << "accepted: " << text;
     } catch (const InputError& error) {
       EXPECT_EQ(error.exit_code(), ExitCode::bad_input) << error.what();

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "mot/study_dataset.hpp"
-#include "mot/tracker_presets.hpp"
+#include "tracker/presets.hpp"
 #include "shared_data.hpp"
 
 namespace rtmot::mot {
@@ -23,7 +23,7 @@ class PresetVsSort : public ::testing::Test {
   static void TearDownTestSuite() { dataset_.reset(); }
 
   static Metrics score(const std::string& preset, int interval) {
-    const auto config = find_preset(preset);
+    const auto config = tracker::find_preset(preset);
     EXPECT_TRUE(config.has_value()) << preset;
     return track_and_score(*dataset_, StudyInput::detections, *config, interval);
   }
@@ -41,14 +41,14 @@ std::unique_ptr<std::vector<LoadedSequence>> PresetVsSort::dataset_;
   } while (0)
 
 TEST_F(PresetVsSort, DefaultPresetIsRtmot) {
-  EXPECT_EQ(default_preset_name(), "rtmot");
-  EXPECT_TRUE(find_preset(default_preset_name()).has_value());
+  EXPECT_EQ(tracker::default_preset_name(), "rtmot");
+  EXPECT_TRUE(tracker::find_preset(tracker::default_preset_name()).has_value());
 }
 
 TEST_F(PresetVsSort, BeatsSortAtFullRate) {
   REQUIRE_DATASET();
   const Metrics sort = score("sort", 1);
-  const Metrics best = score(std::string(default_preset_name()), 1);
+  const Metrics best = score(std::string(tracker::default_preset_name()), 1);
   RecordProperty("sort_MOTA", std::to_string(sort.mota));
   RecordProperty("sort_IDF1", std::to_string(sort.idf1));
   RecordProperty("rtmot_MOTA", std::to_string(best.mota));
@@ -65,7 +65,7 @@ TEST_P(PresetVsSortAtInterval, ThirtyPercentBetterThanSort) {
   REQUIRE_DATASET();
   const int interval = GetParam();
   const Metrics sort = score("sort", interval);
-  const Metrics best = score(std::string(default_preset_name()), interval);
+  const Metrics best = score(std::string(tracker::default_preset_name()), interval);
   RecordProperty("sort_MOTA", std::to_string(sort.mota));
   RecordProperty("sort_IDF1", std::to_string(sort.idf1));
   RecordProperty("rtmot_MOTA", std::to_string(best.mota));

@@ -1,0 +1,41 @@
+#pragma once
+// The tracking stage's output for one processed frame, as the message sinks receive it.
+#include <cstdint>
+#include <vector>
+
+#include "tracker/box.hpp"
+
+namespace rtmot::messages {
+
+/// When a frame passed each point of the pipeline (platform::steady_now_ns()). 0 = not reached.
+struct FrameTimes {
+  std::int64_t captured_ns{0};      // the source handed the frame to us
+  std::int64_t detect_start_ns{0};  // the detector took it
+  std::int64_t detected_ns{0};      // the detector finished
+  std::int64_t tracked_ns{0};       // the tracker finished
+  std::int64_t sent_ns{0};          // the sinks were handed the message (stamped by the sink stage)
+};
+
+struct FrameResult {
+  std::uint32_t stream_id{0};
+  std::uint64_t sequence{0};        // 0-based count of processed frames (messages) in this run
+  std::int64_t frame_number{0};     // the source's 1-based frame number
+  std::int64_t pts_ns{0};           // stream timestamp of the frame
+  std::uint32_t frames_dropped{0};  // frames the source produced but nobody processed, so far
+  /// No picture: the live source is down and being reopened. The tracker still advanced (tracks
+  /// coast), so the ground station keeps hearing from us; `tracks` is then empty.
+  bool source_outage{false};
+  FrameTimes times;
+  std::vector<tracker::TrackReport> tracks;  // reserved once; never grows in steady state
+};
+
+/// A destination for track messages (UDP, binary file, JSON lines). Called from one thread only.
+class TrackSink {
+ public:
+  virtual ~TrackSink() = default;
+  virtual void write(const FrameResult& result) = 0;
+  /// Makes everything written so far durable/visible (called at the end and on shutdown).
+  virtual void flush() = 0;
+};
+
+}  // namespace rtmot::messages

@@ -1,0 +1,40 @@
+#pragma once
+// Runs the tracker over a MOTChallenge sequence's detections: the library side of `rtmot track`.
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "motio/mot_files.hpp"
+#include "tracker/tracker_config.hpp"
+
+namespace rtmot::motio {
+
+struct TrackOptions {
+  /// frame_rate and image size are taken from the sequence's seqinfo.ini.
+  tracker::TrackerConfig config{tracker::TrackerConfig::sort_preset()};
+  /// Relative to the sequence folder. A file named gt.txt is used as a perfect detector: its ids
+  /// and its ignored rows (conf 0, non-pedestrian classes) are dropped.
+  std::filesystem::path detections{"det/det.txt"};
+  /// Process frames 1, 1 + interval, ... only, keeping their numbers and times.
+  int interval{1};
+};
+
+struct TrackRun {
+  SequenceInfo info;
+  std::vector<MotRow> tracks;  // one row per reported track and frame
+  int frames_processed{0};
+  double seconds_in_update{0.0};  // time spent inside Tracker::update only
+};
+
+/// Called after each processed frame with (frame, sequence length); for progress reports.
+using ProgressCallback = std::function<void(int frame, int length)>;
+
+TrackRun track_sequence(const std::filesystem::path& sequence_dir, const TrackOptions& options,
+                        const ProgressCallback& progress = {});
+
+/// The detections a TrackOptions::detections file holds, grouped by frame.
+std::vector<std::vector<tracker::Detection>> load_detections(const std::filesystem::path& file,
+                                                             const SequenceInfo& info);
+
+}  // namespace rtmot::motio

@@ -1,0 +1,102 @@
+#include "runner/run_setup.hpp"
+
+#include "common/input_error.hpp"
+#include "detector/dnn_backend.hpp"
+#include "detector/replay_detector.hpp"
+#include "detector/ssd_detector.hpp"
+#include "messages/binary_file_sink.hpp"
+#include "messages/jsonl_sink.hpp"
+#include "runner/source_factory.hpp"
+#include "messages/udp_sink.hpp"
+
+namespace rtmot::runner {
+namespace {
+
+struct HostPort {
+  std::string host;
+  std::uint16_t port{0};
+};
+
+HostPort parse_host_port(const RunConfig& config) {
+  const std::string& text = config.output.udp;
+  const auto colon = text.rfind(':');
+  const auto bad = [&] {
+    return InputError(config.file, 0, "output.udp", "expected HOST:PORT, got '" + text + "'");
+  };
+  if (colon == std::string::npos || colon == 0 || colon + 1 == text.size()) throw bad();
+  int port = 0;
+  for (const char c : text.substr(colon + 1)) {
+    if (c < '0' || c > '9' || port > 65535) throw bad();
+    port = port * 10 + (c - '0');
+  }
+  if (port < 1 || port > 65535) throw bad();
+  return {text.substr(0, colon), static_cast<std::uint16_t>(port)};
+}
+
+}  // namespace
+
+std::unique_ptr<platform::VideoSource> make_source(const RunConfig& config) {
+  platform::SourceOptions options;
+  options.width = config.source.width;
+  options.height = config.source.height;
+  options.fps = config.source.fps;
+  return open_source(config.source.uri, options);
+}
+
+std::unique_ptr<detector::Detector> make_detector(const RunConfig& config) {
+  const DetectorConfig& wanted = config.detector;
+  if (wanted.kind == "replay") {
+    return std::make_unique<detector::ReplayDetector>(wanted.det_file, wanted.score_threshold);
+  }
+  detector::SsdConfig ssd;
+  ssd.model_path = wanted.model;
+  ssd.anchors_path = wanted.anchors;
+  ssd.score_threshold = wanted.score_threshold;
+  ssd.nms_iou = wanted.nms_threshold;
+  ssd.classes = wanted.classes;
+  // Both were checked by the config parser.
+  ssd.backend = detector::parse_backend_request(wanted.backend).value();
+  ssd.fp16 = detector::parse_fp16_request(wanted.fp16).value();
+  ssd.threads = wanted.threads;
+  return std::make_unique<detector::SsdDetector>(ssd);
+}
+
+std::vector<std::unique_ptr<messages::TrackSink>> make_sinks(const RunConfig& config) {
+  std::vector<std::unique_ptr<messages::TrackSink>> sinks;
+  const OutputConfig& output = config.output;
+  if (!output.udp.empty()) {
+    const HostPort target = parse_host_port(config);
+    sinks.push_back(std::make_unique<messages::UdpSink>(target.host, target.port));
+  }
+  if (!output.binary_file.empty()) {
+    sinks.push_back(std::make_unique<messages::BinaryFileSink>(output.binary_file));
+  }
+  if (!output.jsonl_file.empty()) sinks.push_back(std::make_unique<messages::JsonlSink>(output.jsonl_file));
+  return sinks;
+}
+
+tracker::TrackerConfig complete_tracker_config(const RunConfig& config,
+                                               const platform::SourceInfo& source) {
+  tracker::TrackerConfig tracker = config.tracker;
+  if (tracker.frame_rate <= 0.0) tracker.frame_rate = source.fps > 0.0 ? source.fps : 30.0;
+  if (tracker.image_width <= 0.F) {
+    tracker.image_width = source.width > 0 ? static_cast<float>(source.width) : 1920.F;
+  }
+  if (tracker.image_height <= 0.F) {
+    tracker.image_height = source.height > 0 ? static_cast<float>(source.height) : 1080.F;
+  }
+  return tracker;
+}
+
+pipeline::PipelineOptions make_options(const RunConfig& config) {
+  pipeline::PipelineOptions options;
+  options.playback = config.playback.mode;
+  options.simulated_latency_ms = config.playback.latency_ms;
+  options.stream_id = config.stream_id;
+  options.max_frames = config.max_frames;
+  options.stats_interval_s = config.stats_interval_s;
+  options.video_file = config.output.video_file;
+  return options;
+}
+
+}  // namespace rtmot::runner
