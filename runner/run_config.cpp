@@ -9,147 +9,12 @@
 
 #include "common/input_error.hpp"
 #include "detector/dnn_backend.hpp"
-#include "tracker/presets.hpp"
 #include "runner/sequence_clock_source.hpp"
+#include "runner/yaml_section.hpp"
+#include "tracker/presets.hpp"
 
 namespace rtmot::runner {
 namespace {
-
-int line_of(const YAML::Node& node) {
-  const YAML::Mark mark = node.Mark();
-  return mark.is_null() ? 0 : mark.line + 1;
-}
-
-std::string type_name(int) {
-  return "an integer";
-}
-std::string type_name(std::int64_t) {
-  return "an integer";
-}
-std::string type_name(std::uint32_t) {
-  return "a non-negative integer";
-}
-std::string type_name(double) {
-  return "a number";
-}
-std::string type_name(float) {
-  return "a number";
-}
-std::string type_name(bool) {
-  return "true or false";
-}
-std::string type_name(const std::string&) {
-  return "a string";
-}
-std::string type_name(const std::vector<int>&) {
-  return "a list of integers";
-}
-
-// One mapping of the file: reads the keys it knows and rejects the rest.
-class Section {
- public:
-  Section(const YAML::Node& node, std::string file, std::string prefix)
-      : node_(node), file_(std::move(file)), prefix_(std::move(prefix)) {
-    if (node_.IsNull()) return;  // "section:" with nothing under it
-    if (!node_.IsMap()) fail(node_, "", "expected a mapping of keys");
-  }
-
-  /// Reads `key` into `out` if present (keeps `out` otherwise). Returns true if it was present.
-  template <typename T>
-  bool read(const std::string& key, T& out) {
-    known_.insert(key);
-    const std::optional<YAML::Node> found = find(key);
-    if (!found) return false;
-    const YAML::Node& value = *found;
-    if (value.IsNull()) fail(find_key(key), key, "has no value: expected " + type_name(out));
-    bool ok = IsScalarLike<T>::value ? value.IsScalar() : value.IsSequence();
-    if (ok) {
-      try {
-        out = value.as<T>();
-      } catch (const YAML::BadConversion&) {
-        ok = false;
-      }
-    }
-    if (!ok) fail(value, key, "expected " + type_name(out));
-    return true;
-  }
-
-  /// Reads a sub-mapping (null node if absent).
-  YAML::Node child(const std::string& key) {
-    known_.insert(key);
-    return find(key).value_or(YAML::Node{});
-  }
-
-  /// A value's problem, named by its key.
-  [[noreturn]] void fail(const YAML::Node& where, const std::string& key,
-                         const std::string& problem) const {
-    throw InputError(file_, line_of(where), field(key), problem);
-  }
-
-  std::string field(const std::string& key) const {
-    return prefix_.empty() ? key : key.empty() ? prefix_ : prefix_ + "." + key;
-  }
-
-  /// A map key as text. YAML allows sequences and maps as keys ("? [a]"); a config never needs
-  /// them, and as<std::string>() would throw a YAML exception that escapes as an internal error.
-  std::string key_text(const YAML::Node& key) const {
-    if (!key.IsScalar()) fail(key, "", "a key must be a plain name, not a list or a map");
-    return key.Scalar();
-  }
-
-  /// Throws for the first key that no read() or child() asked for.
-  void reject_unknown() const {
-    if (!node_.IsMap()) return;
-    for (const auto& entry : node_) {
-      const auto key = key_text(entry.first);
-      if (known_.count(key) == 0) fail(entry.first, key, "unknown key");
-    }
-  }
-
-  /// The value under `key`; an undefined node when absent (a default YAML::Node is a defined null).
-  std::optional<YAML::Node> find(const std::string& key) const {
-    if (!node_.IsMap()) return std::nullopt;
-    for (const auto& entry : node_) {
-      if (key_text(entry.first) == key) return entry.second;
-    }
-    return std::nullopt;
-  }
-
-  // The key itself: where an empty value is reported (an empty value has no position of its own).
-  YAML::Node find_key(const std::string& key) const {
-    for (const auto& entry : node_) {
-      if (key_text(entry.first) == key) return entry.first;
-    }
-    return node_;
-  }
-
- private:
-  template <typename T>
-  struct IsScalarLike : std::true_type {};
-  template <typename U>
-  struct IsScalarLike<std::vector<U>> : std::false_type {};
-
-  YAML::Node node_;
-  std::string file_;
-  std::string prefix_;
-  std::set<std::string> known_;
-};
-
-// A value read successfully but outside its range.
-template <typename T, typename Check>
-void read_checked(Section& section, const std::string& key, T& out, Check is_valid,
-                  const std::string& expectation) {
-  if (section.read(key, out) && !is_valid(out)) {
-    section.fail(*section.find(key), key, "expected " + expectation);
-  }
-}
-
-bool non_negative(double value) {
-  return value >= 0.0;
-}
-bool unit_interval(double value) {
-  return value >= 0.0 && value <= 1.0;
-}
 
 void read_source(Section section, SourceConfig& source) {
   section.read("uri", source.uri);
@@ -166,7 +31,8 @@ void read_playback(Section section, PlaybackConfig& playback) {
   if (section.read("mode", mode)) {
     const auto parsed = pipeline::parse_playback_mode(mode);
     if (!parsed) {
-      section.fail(*section.find("mode"), "mode", "expected " + pipeline::playback_mode_alternatives());
+      section.fail(*section.find("mode"), "mode",
+                   "expected " + pipeline::playback_mode_alternatives());
     }
     playback.mode = *parsed;
   }

@@ -6,8 +6,8 @@
 #include "detector/ssd_detector.hpp"
 #include "messages/binary_file_sink.hpp"
 #include "messages/jsonl_sink.hpp"
-#include "runner/source_factory.hpp"
 #include "messages/udp_sink.hpp"
+#include "runner/source_factory.hpp"
 
 namespace rtmot::runner {
 namespace {
@@ -71,7 +71,8 @@ std::vector<std::unique_ptr<messages::TrackSink>> make_sinks(const RunConfig& co
   if (!output.binary_file.empty()) {
     sinks.push_back(std::make_unique<messages::BinaryFileSink>(output.binary_file));
   }
-  if (!output.jsonl_file.empty()) sinks.push_back(std::make_unique<messages::JsonlSink>(output.jsonl_file));
+  if (!output.jsonl_file.empty())
+    sinks.push_back(std::make_unique<messages::JsonlSink>(output.jsonl_file));
   return sinks;
 }
 

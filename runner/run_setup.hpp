@@ -7,8 +7,8 @@
 #include "detector/detector.hpp"
 #include "messages/frame_result.hpp"
 #include "pipeline/pipeline.hpp"
-#include "runner/run_config.hpp"
 #include "platform/video_source.hpp"
+#include "runner/run_config.hpp"
 
 namespace rtmot::runner {
 

@@ -2,9 +2,9 @@
 
 #include <algorithm>
 
-#include "runner/sequence_clock_source.hpp"
 #include "platform/reconnecting_source.hpp"
 #include "platform/video_uri.hpp"
+#include "runner/sequence_clock_source.hpp"
 
 namespace rtmot::runner {
 
