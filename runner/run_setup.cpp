@@ -7,30 +7,21 @@
 #include "messages/binary_file_sink.hpp"
 #include "messages/jsonl_sink.hpp"
 #include "messages/udp_sink.hpp"
+#include "platform/host_port.hpp"
 #include "runner/source_factory.hpp"
 
 namespace rtmot::runner {
 namespace {
 
-struct HostPort {
-  std::string host;
-  std::uint16_t port{0};
-};
-
-HostPort parse_host_port(const RunConfig& config) {
-  const std::string& text = config.output.udp;
-  const auto colon = text.rfind(':');
-  const auto bad = [&] {
-    return InputError(config.file, 0, "output.udp", "expected HOST:PORT, got '" + text + "'");
-  };
-  if (colon == std::string::npos || colon == 0 || colon + 1 == text.size()) throw bad();
-  int port = 0;
-  for (const char c : text.substr(colon + 1)) {
-    if (c < '0' || c > '9' || port > 65535) throw bad();
-    port = port * 10 + (c - '0');
+platform::HostPort parse_udp_target(const RunConfig& config) {
+  std::string problem;
+  const auto target = platform::parse_host_port(config.output.udp, problem);
+  if (!target) {
+    throw InputError(
+        config.file, 0, "output.udp",
+        "expected HOST:PORT or [IPV6]:PORT, got '" + config.output.udp + "': " + problem);
   }
-  if (port < 1 || port > 65535) throw bad();
-  return {text.substr(0, colon), static_cast<std::uint16_t>(port)};
+  return *target;
 }
 
 }  // namespace
@@ -65,7 +56,7 @@ std::vector<std::unique_ptr<messages::TrackSink>> make_sinks(const RunConfig& co
   std::vector<std::unique_ptr<messages::TrackSink>> sinks;
   const OutputConfig& output = config.output;
   if (!output.udp.empty()) {
-    const HostPort target = parse_host_port(config);
+    const platform::HostPort target = parse_udp_target(config);
     sinks.push_back(std::make_unique<messages::UdpSink>(target.host, target.port));
   }
   if (!output.binary_file.empty()) {
