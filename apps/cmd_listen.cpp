@@ -11,6 +11,7 @@
 
 #include "apps/subcommand.hpp"
 #include "common/input_error.hpp"
+#include "detector/coco_labels.hpp"
 #include "messages/jsonl_sink.hpp"
 #include "messages/message_file_reader.hpp"
 #include "messages/message_format.hpp"
@@ -116,7 +117,7 @@ class MessageHandler {
  public:
   explicit MessageHandler(const ListenOptions& options) : quiet_(options.quiet) {
     if (!options.jsonl_path.empty())
-      jsonl_ = std::make_unique<messages::JsonlSink>(options.jsonl_path);
+      jsonl_ = std::make_unique<messages::JsonlSink>(options.jsonl_path, &detector::coco_label);
   }
 
   void handle(const std::uint8_t* data, std::size_t size) {
@@ -142,7 +143,8 @@ class MessageHandler {
 
  private:
   bool quiet_;
-  messages::DecodedMessage decoded_;  // reused: decoding allocates nothing once it has seen the largest frame
+  messages::DecodedMessage
+      decoded_;  // reused: decoding allocates nothing once it has seen the largest frame
   messages::ListenerStats stats_;
   std::unique_ptr<messages::JsonlSink> jsonl_;
 };
@@ -175,7 +177,8 @@ int listen_udp(const ListenOptions& options) {
     if (status != platform::ReceiveStatus::datagram) continue;
     ++datagrams;
     if (cut) {
-      handler.handle_corrupt(messages::DecodeError::length_mismatch, size);  // longer than any message
+      handler.handle_corrupt(messages::DecodeError::length_mismatch,
+                             size);  // longer than any message
     } else {
       handler.handle(datagram.data(), size);
     }

@@ -1,6 +1,7 @@
 #include "runner/run_setup.hpp"
 
 #include "common/input_error.hpp"
+#include "detector/coco_labels.hpp"
 #include "detector/dnn_backend.hpp"
 #include "detector/replay_detector.hpp"
 #include "detector/ssd_detector.hpp"
@@ -63,7 +64,8 @@ std::vector<std::unique_ptr<messages::TrackSink>> make_sinks(const RunConfig& co
     sinks.push_back(std::make_unique<messages::BinaryFileSink>(output.binary_file));
   }
   if (!output.jsonl_file.empty())
-    sinks.push_back(std::make_unique<messages::JsonlSink>(output.jsonl_file));
+    sinks.push_back(
+        std::make_unique<messages::JsonlSink>(output.jsonl_file, &detector::coco_label));
   return sinks;
 }
 
