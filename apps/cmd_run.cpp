@@ -10,10 +10,10 @@
 #include "common/exit_codes.hpp"
 #include "common/input_error.hpp"
 #include "pipeline/pipeline.hpp"
-#include "runner/run_config.hpp"
-#include "runner/run_setup.hpp"
 #include "platform/board.hpp"
 #include "platform/signals.hpp"
+#include "runner/run_config.hpp"
+#include "runner/run_setup.hpp"
 
 namespace rtmot::app {
 namespace {
@@ -24,6 +24,7 @@ struct RunOverrides {
   std::string playback;
   double latency_ms{0.0};
   std::string udp;
+  std::string mqtt;
   std::string jsonl;
   std::string binary;
   std::string video_out;
@@ -46,6 +47,7 @@ void apply(const RunOverrides& overrides, runner::RunConfig& config) {
   }
   if (overrides.latency_ms > 0.0) config.playback.latency_ms = overrides.latency_ms;
   if (!overrides.udp.empty()) config.output.udp = overrides.udp;
+  if (!overrides.mqtt.empty()) config.output.mqtt = overrides.mqtt;
   if (!overrides.jsonl.empty()) config.output.jsonl_file = overrides.jsonl;
   if (!overrides.binary.empty()) config.output.binary_file = overrides.binary;
   if (!overrides.video_out.empty()) config.output.video_file = overrides.video_out;
@@ -105,6 +107,9 @@ Subcommand add_run_command(CLI::App& parent) {
   cli->add_option("--latency-ms", overrides->latency_ms, "simulated detector latency (ms)")
       ->check(CLI::PositiveNumber);
   cli->add_option("--udp", overrides->udp, "send track messages to HOST:PORT");
+  cli->add_option(
+      "--mqtt", overrides->mqtt,
+      "publish track messages to mqtt://HOST[:PORT]/TOPIC[?qos=0|1&format=binary|json]");
   cli->add_option("--jsonl", overrides->jsonl, "write track messages as JSON lines to FILE");
   cli->add_option("--binary", overrides->binary, "write binary track messages to FILE");
   cli->add_option("--video-out", overrides->video_out, "write an annotated video to FILE");

@@ -42,8 +42,12 @@ struct OutputConfig {
   std::string udp;          // HOST:PORT, empty = off
   std::string binary_file;  // empty = off
   std::string jsonl_file;   // empty = off
-  std::string video_file;   // annotated video, empty = off
-  std::string report_file;  // JSON report, empty = off
+  std::string mqtt;         // mqtt://HOST[:PORT]/TOPIC[?qos=0|1&format=binary|json], empty = off
+  std::string video_file;  // annotated video by path or URI (outputs/video_target.hpp), empty = off
+  std::string overlay{"box,labels,conf,track,trail,stats"};  // what the video shows
+  std::string report_file;                                   // JSON report, empty = off
+  int metrics_port{0};                    // Prometheus endpoint on this TCP port, 0 = off
+  std::string metrics_bind{"127.0.0.1"};  // address the endpoint listens on
 };
 
 struct RunConfig {

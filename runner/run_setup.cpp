@@ -8,6 +8,7 @@
 #include "messages/binary_file_sink.hpp"
 #include "messages/jsonl_sink.hpp"
 #include "messages/udp_sink.hpp"
+#include "outputs/mqtt_publisher.hpp"
 #include "platform/host_port.hpp"
 #include "runner/source_factory.hpp"
 
@@ -62,6 +63,13 @@ std::vector<std::unique_ptr<messages::TrackSink>> make_sinks(const RunConfig& co
   }
   if (!output.binary_file.empty()) {
     sinks.push_back(std::make_unique<messages::BinaryFileSink>(output.binary_file));
+  }
+  if (!output.mqtt.empty()) {
+    std::string problem;  // checked by validate()
+    outputs::MqttPublisherOptions mqtt;
+    mqtt.uri = outputs::parse_mqtt_uri(output.mqtt, problem).value();
+    sinks.push_back(
+        std::make_unique<outputs::MqttPublisher>(mqtt, config.stream_id, &detector::coco_label));
   }
   if (!output.jsonl_file.empty())
     sinks.push_back(

@@ -14,7 +14,7 @@ namespace rtmot::runner {
 
 std::unique_ptr<platform::VideoSource> make_source(const RunConfig& config);
 std::unique_ptr<detector::Detector> make_detector(const RunConfig& config);
-/// UDP, binary file and JSON lines, in that order, as configured.
+/// UDP, binary file, MQTT and JSON lines, in that order, as configured.
 std::vector<std::unique_ptr<messages::TrackSink>> make_sinks(const RunConfig& config);
 /// The configured tracker with what the file left unset (0) taken from the source.
 tracker::TrackerConfig complete_tracker_config(const RunConfig& config,
