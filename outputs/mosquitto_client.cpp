@@ -48,22 +48,26 @@ MosquittoClient::~MosquittoClient() {
 void MosquittoClient::start(const MqttUri& uri, MqttReconnect reconnect) {
   mosquitto_reconnect_delay_set(client_, static_cast<unsigned>(reconnect.min_delay.count()),
                                 static_cast<unsigned>(reconnect.max_delay.count()), true);
-  const int connected = mosquitto_connect_async(client_, uri.host.c_str(), uri.port, keepalive_s);
   const std::string where = "mqtt://" + platform::format_host_port(uri.host, uri.port);
-  if (connected == MOSQ_ERR_EAI || connected == MOSQ_ERR_INVAL) {
-    throw InputError(where, 0, "", "cannot resolve the broker's host", ExitCode::network);
-  }
-  if (connected != MOSQ_ERR_SUCCESS) {
-    // Refused or unreachable now: the loop thread keeps trying with the backoff.
-    spdlog::warn("{}: broker not reachable yet ({}); retrying in the background", where,
-                 mosquitto_error_text(connected));
-  }
+  // The loop thread first, then the connection: libmosquitto's loop thread retries a connection
+  // that failed with its reconnect backoff only when it is already running when connect_async
+  // fails (started after a failed connect_async, it gives up: a broker started after the board
+  // would never be reached).
   const int looping = mosquitto_loop_start(client_);
   if (looping != MOSQ_ERR_SUCCESS) {
     throw InputError(where, 0, "", "cannot start the MQTT thread: " + mosquitto_error_text(looping),
                      ExitCode::network);
   }
   started_ = true;
+  const int connected = mosquitto_connect_async(client_, uri.host.c_str(), uri.port, keepalive_s);
+  if (connected == MOSQ_ERR_EAI || connected == MOSQ_ERR_INVAL) {
+    stop();
+    throw InputError(where, 0, "", "cannot resolve the broker's host", ExitCode::network);
+  }
+  if (connected != MOSQ_ERR_SUCCESS) {
+    spdlog::warn("{}: broker not reachable yet ({}); retrying in the background", where,
+                 mosquitto_error_text(connected));
+  }
 }
 
 void MosquittoClient::stop() {
