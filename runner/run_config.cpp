@@ -10,6 +10,8 @@
 #include "common/input_error.hpp"
 #include "detector/dnn_backend.hpp"
 #include "outputs/mqtt_uri.hpp"
+#include "outputs/overlay.hpp"
+#include "outputs/video_target.hpp"
 #include "platform/host_port.hpp"
 #include "runner/sequence_clock_source.hpp"
 #include "runner/yaml_section.hpp"
@@ -188,6 +190,13 @@ RunConfig parse_run_config(const std::string& yaml_text, const std::string& file
   return config;
 }
 
+RunConfig default_run_config() {
+  RunConfig config = parse_run_config("tracker: {}\n", "(defaults)");
+  config.file = "(command line)";
+  config.detector.model = "models/ssdlite_mobilenet_v2_coco.onnx";
+  return config;
+}
+
 RunConfig load_run_config(const std::string& path) {
   std::ifstream file(path);
   if (!file) throw InputError(path, 0, "", "cannot open the configuration file");
@@ -223,6 +232,13 @@ void validate(const RunConfig& config) {
   }
   if (!config.output.mqtt.empty() && !outputs::parse_mqtt_uri(config.output.mqtt, problem)) {
     missing("output.mqtt", "'" + config.output.mqtt + "': " + problem);
+  }
+  if (!config.output.video_file.empty() &&
+      !outputs::parse_video_target(config.output.video_file, problem)) {
+    missing("output.video_file", "'" + config.output.video_file + "': " + problem);
+  }
+  if (!outputs::parse_overlay_flags(config.output.overlay, problem)) {
+    missing("output.overlay", problem);
   }
 }
 

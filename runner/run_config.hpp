@@ -66,6 +66,9 @@ struct RunConfig {
 
 /// Reads a YAML run configuration. Relative paths in it stay as written (relative to the cwd).
 RunConfig load_run_config(const std::string& path);
+/// The configuration without a file: every default of docs/config.md (tracker preset `rtmot`, the
+/// model scripts/fetch_model.sh writes); the command line supplies the rest.
+RunConfig default_run_config();
 /// Same, from text; `file_name` names it in errors.
 RunConfig parse_run_config(const std::string& yaml_text, const std::string& file_name);
 

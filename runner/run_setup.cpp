@@ -1,5 +1,9 @@
 #include "runner/run_setup.hpp"
 
+#include <fmt/format.h>
+
+#include <filesystem>
+
 #include "common/input_error.hpp"
 #include "detector/coco_labels.hpp"
 #include "detector/dnn_backend.hpp"
@@ -9,7 +13,10 @@
 #include "messages/jsonl_sink.hpp"
 #include "messages/udp_sink.hpp"
 #include "outputs/mqtt_publisher.hpp"
+#include "outputs/video_stream.hpp"
+#include "outputs/video_target.hpp"
 #include "platform/host_port.hpp"
+#include "runner/progress_sink.hpp"
 #include "runner/source_factory.hpp"
 
 namespace rtmot::runner {
@@ -54,27 +61,93 @@ std::unique_ptr<detector::Detector> make_detector(const RunConfig& config) {
   return std::make_unique<detector::SsdDetector>(ssd);
 }
 
-std::vector<std::unique_ptr<messages::TrackSink>> make_sinks(const RunConfig& config) {
-  std::vector<std::unique_ptr<messages::TrackSink>> sinks;
+RunOutputs make_outputs(const RunConfig& config, const platform::SourceInfo& source) {
+  RunOutputs outputs;
+  std::vector<outputs::OutputProbe> probes;
   const OutputConfig& output = config.output;
+  // Files: missing folders are created (out/tracks.jsonl on a fresh clone), and the log says when
+  // an existing file is replaced.
+  const auto file_line = [](const char* kind, const std::string& path) {
+    std::error_code error;
+    const std::filesystem::path parent = std::filesystem::path(path).parent_path();
+    if (!parent.empty()) std::filesystem::create_directories(parent, error);
+    return fmt::format("{} -> {}{}", kind, path,
+                       std::filesystem::exists(path, error) ? " (replaces the existing file)" : "");
+  };
   if (!output.udp.empty()) {
     const platform::HostPort target = parse_udp_target(config);
-    sinks.push_back(std::make_unique<messages::UdpSink>(target.host, target.port));
+    auto sink = std::make_unique<messages::UdpSink>(target.host, target.port);
+    const messages::UdpSink* udp = sink.get();
+    probes.push_back(
+        {"udp", [udp] { return udp->messages_sent(); }, [udp] { return udp->send_failures(); }});
+    outputs.destinations.push_back("udp -> " +
+                                   platform::format_host_port(target.host, target.port));
+    outputs.sinks.push_back(std::move(sink));
   }
   if (!output.binary_file.empty()) {
-    sinks.push_back(std::make_unique<messages::BinaryFileSink>(output.binary_file));
+    outputs.destinations.push_back(file_line("binary", output.binary_file));
+    outputs.sinks.push_back(std::make_unique<messages::BinaryFileSink>(output.binary_file));
   }
   if (!output.mqtt.empty()) {
     std::string problem;  // checked by validate()
     outputs::MqttPublisherOptions mqtt;
     mqtt.uri = outputs::parse_mqtt_uri(output.mqtt, problem).value();
-    sinks.push_back(
-        std::make_unique<outputs::MqttPublisher>(mqtt, config.stream_id, &detector::coco_label));
+    auto sink =
+        std::make_unique<outputs::MqttPublisher>(mqtt, config.stream_id, &detector::coco_label);
+    const outputs::MqttPublisher* publisher = sink.get();
+    probes.push_back({"mqtt", [publisher] { return publisher->counters().published.load(); },
+                      [publisher] {
+                        return publisher->counters().dropped.load() +
+                               publisher->counters().failed.load();
+                      }});
+    outputs.destinations.push_back("mqtt -> " + outputs::to_string(mqtt.uri));
+    outputs.sinks.push_back(std::move(sink));
   }
-  if (!output.jsonl_file.empty())
-    sinks.push_back(
+  if (!output.jsonl_file.empty()) {
+    outputs.destinations.push_back(file_line("jsonl", output.jsonl_file));
+    outputs.sinks.push_back(
         std::make_unique<messages::JsonlSink>(output.jsonl_file, &detector::coco_label));
-  return sinks;
+  }
+  if (!output.video_file.empty()) {
+    outputs.destinations.push_back("video -> " + output.video_file + " (overlay " + output.overlay +
+                                   ")");
+  }
+  if (!output.report_file.empty()) {
+    outputs.destinations.push_back(file_line("report", output.report_file));
+  }
+  if (config.stats_interval_s > 0.0) {
+    outputs.sinks.push_back(
+        std::make_unique<ProgressSink>(config.stats_interval_s, source.frame_count));
+  }
+  if (output.metrics_port > 0) {
+    outputs.metrics = std::make_unique<outputs::PipelineMetrics>(std::move(probes));
+    outputs.metrics_server = std::make_unique<outputs::MetricsServer>(
+        *outputs.metrics, output.metrics_bind, static_cast<std::uint16_t>(output.metrics_port));
+    outputs.sinks.push_back(std::make_unique<outputs::MetricsSink>(*outputs.metrics));
+    outputs.destinations.push_back("metrics -> " + outputs.metrics_server->url());
+  }
+  return outputs;
+}
+
+std::vector<std::unique_ptr<messages::TrackSink>> make_sinks(const RunConfig& config) {
+  return std::move(make_outputs(config).sinks);
+}
+
+void prepare_video_output(const RunConfig& config) {
+  if (config.output.video_file.empty()) return;
+  std::string problem;
+  const auto target = outputs::parse_video_target(config.output.video_file, problem);
+  const auto fail = [&](const std::string& why) {
+    throw InputError(config.output.video_file, 0, "output.video_file", why);
+  };
+  if (!target) fail(problem);
+  problem = outputs::check_video_elements(*target);
+  if (!problem.empty()) fail(problem);
+  if (target->kind == outputs::VideoTargetKind::mp4_file ||
+      target->kind == outputs::VideoTargetKind::mkv_file) {
+    problem = outputs::prepare_video_file(*target);
+    if (!problem.empty()) fail("cannot write the video: " + problem);
+  }
 }
 
 tracker::TrackerConfig complete_tracker_config(const RunConfig& config,
@@ -96,7 +169,9 @@ pipeline::PipelineOptions make_options(const RunConfig& config) {
   options.simulated_latency_ms = config.playback.latency_ms;
   options.stream_id = config.stream_id;
   options.max_frames = config.max_frames;
-  options.stats_interval_s = config.stats_interval_s;
+  // The progress line is ProgressSink's (make_outputs), with the total and ETA the engine's own
+  // line cannot know.
+  options.stats_interval_s = 0.0;
   options.video_file = config.output.video_file;
   return options;
 }
