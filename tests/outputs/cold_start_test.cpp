@@ -118,3 +118,22 @@ TEST_F(ColdStart, MissingFileAndMalformedUriFailAtOnce) {
 
 }  // namespace
 }  // namespace rtmot::outputs
+
+namespace rtmot::outputs {
+namespace {
+
+// The systemd unit matches the cold start: it never stops restarting (no start limit), and it
+// does not treat exit 5 (source failed) as final.
+TEST(ColdStartUnit, ServiceNeverGivesUp) {
+  const std::string unit = test::read_text(test::source_path("scripts/deploy/rtmot.service"));
+  ASSERT_FALSE(unit.empty());
+  EXPECT_NE(unit.find("\nStartLimitIntervalSec=0\n"), std::string::npos);
+  EXPECT_NE(unit.find("\nRestart=on-failure\n"), std::string::npos);
+  const auto prevent = unit.find("\nRestartPreventExitStatus=");
+  ASSERT_NE(prevent, std::string::npos);
+  const std::string codes = unit.substr(prevent, unit.find('\n', prevent + 1) - prevent);
+  EXPECT_EQ(codes.find('5'), std::string::npos) << codes;
+}
+
+}  // namespace
+}  // namespace rtmot::outputs
