@@ -106,6 +106,10 @@ struct Pipeline::Stages {
       if (!error) error = std::move(exception);
     }
     abort.store(true, std::memory_order_relaxed);
+    // Every wait checks the flag, but a sleeping stage must be woken to see it.
+    slot.wake_all();
+    detected.wake_all();
+    tracked.wake_all();
   }
 
   // Runs `body` as a stage: named thread, exceptions recorded, `finish` always called.
