@@ -60,7 +60,9 @@ std::unique_ptr<pipeline::Pipeline> vtest_pipeline(pipeline::PlaybackMode playba
                                               tracker_config, std::move(sinks), options);
 }
 
-double ms(std::int64_t ns) { return static_cast<double>(ns) / 1e6; }
+double ms(std::int64_t ns) {
+  return static_cast<double>(ns) / 1e6;
+}
 
 void BM_PipelineEveryFrameVsDetector(benchmark::State& state) {
   for (auto _ : state) {

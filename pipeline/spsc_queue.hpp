@@ -13,7 +13,8 @@
 //
 // Waiting: a consumer that finds the queue empty, or a producer that finds it full, sleeps in a
 // WakeSignal (pipeline/wake_signal.hpp) that the other side notifies after its release store. While
-// neither side sleeps, a hand-off is a few loads and stores plus one fence: no lock, no system call.
+// neither side sleeps, a hand-off is a few loads and stores plus one fence: no lock, no system
+// call.
 #include <atomic>
 #include <cstddef>
 #include <vector>

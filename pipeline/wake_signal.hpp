@@ -5,19 +5,19 @@
 // take).
 //
 // The hand-offs keep their lock-free state (indexes, a fresh bit, a closed flag). A side that finds
-// nothing to do calls wait_until(ready): it re-checks `ready` a few times, then registers as a waiter
-// and sleeps on a condition variable. The other side, after publishing its change with a release
-// store, calls notify(): one fence and one load of the waiter count; only when somebody sleeps does
-// it take the mutex and wake them. So when both sides are busy no thread ever touches the mutex or
-// the kernel; when a stage waits for the detector (tens of ms) it sleeps in the kernel (futex) and
-// costs nothing until woken.
+// nothing to do calls wait_until(ready): it re-checks `ready` a few times, then registers as a
+// waiter and sleeps on a condition variable. The other side, after publishing its change with a
+// release store, calls notify(): one fence and one load of the waiter count; only when somebody
+// sleeps does it take the mutex and wake them. So when both sides are busy no thread ever touches
+// the mutex or the kernel; when a stage waits for the detector (tens of ms) it sleeps in the kernel
+// (futex) and costs nothing until woken.
 //
 // No wake-up is lost: the waiter increments waiters_, then (seq_cst fence) checks `ready`; the
-// notifier publishes its change, then (seq_cst fence) reads waiters_. The two fences are ordered one
-// way or the other, so either the waiter's check sees the change or the notifier sees the waiter. A
-// waiter that saw no change checks again under the mutex before it sleeps, and a notifier that saw
-// it takes the same mutex before notifying, so the notification cannot fall between that check and
-// the sleep.
+// notifier publishes its change, then (seq_cst fence) reads waiters_. The two fences are ordered
+// one way or the other, so either the waiter's check sees the change or the notifier sees the
+// waiter. A waiter that saw no change checks again under the mutex before it sleeps, and a notifier
+// that saw it takes the same mutex before notifying, so the notification cannot fall between that
+// check and the sleep.
 //
 // Why a mutex and condition variable rather than a raw futex: they are touched only on the slow
 // path, which pays a context switch anyway; they are portable C++17 (g++ 9-11 has no atomic wait),
@@ -40,8 +40,8 @@ class WakeSignal {
   void notify() {
     std::atomic_thread_fence(std::memory_order_seq_cst);
     if (waiters_.load(std::memory_order_relaxed) == 0) return;
-    // Taking the mutex orders this notify after a sleeper's last check (it holds the mutex from that
-    // check until it sleeps).
+    // Taking the mutex orders this notify after a sleeper's last check (it holds the mutex from
+    // that check until it sleeps).
     { const std::lock_guard<std::mutex> lock(mutex_); }
     wake_.notify_all();
   }
