@@ -4,6 +4,9 @@
 // video are consumers; a new output (a video stream, metrics) is one more.
 #include <memory>
 #include <opencv2/core/mat.hpp>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "messages/frame_result.hpp"
 #include "pipeline/annotated_video_writer.hpp"
@@ -36,6 +39,15 @@ class TrackSinkConsumer : public FrameConsumer {
  private:
   std::unique_ptr<messages::TrackSink> sink_;
 };
+
+/// Each message sink as a consumer, in the same order.
+inline std::vector<std::unique_ptr<FrameConsumer>> as_consumers(
+    std::vector<std::unique_ptr<messages::TrackSink>> sinks) {
+  std::vector<std::unique_ptr<FrameConsumer>> consumers;
+  for (auto& sink : sinks)
+    consumers.push_back(std::make_unique<TrackSinkConsumer>(std::move(sink)));
+  return consumers;
+}
 
 /// The annotated video (output.video_file) as a consumer: real frames only.
 class AnnotatedVideoConsumer : public FrameConsumer {

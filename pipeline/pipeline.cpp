@@ -42,7 +42,7 @@ struct Pipeline::Stages {
   std::unique_ptr<SinkStage> sink;
 
   Stages(std::vector<PipelineInput> inputs, std::unique_ptr<detector::Detector> detector,
-         std::vector<std::unique_ptr<messages::TrackSink>> sinks, PipelineOptions options_in)
+         std::vector<std::unique_ptr<FrameConsumer>> consumers, PipelineOptions options_in)
       : options(std::move(options_in)) {
     if (inputs.empty()) throw std::invalid_argument("a pipeline needs at least one source");
     if (inputs.size() > 1 && !options.video_file.empty()) {
@@ -71,10 +71,6 @@ struct Pipeline::Stages {
                                            detect_options);
     track = std::make_unique<TrackStage>(trackers, detect->output(), options.queue_capacity,
                                          keep_images);
-    std::vector<std::unique_ptr<FrameConsumer>> consumers;
-    for (auto& message_sink : sinks) {
-      consumers.push_back(std::make_unique<TrackSinkConsumer>(std::move(message_sink)));
-    }
     if (keep_images) {
       consumers.push_back(std::make_unique<AnnotatedVideoConsumer>(
           options.video_file, captures.front()->source().info().fps));
@@ -133,11 +129,11 @@ Pipeline::Pipeline(std::unique_ptr<platform::VideoSource> source,
                    const tracker::TrackerConfig& tracker_config,
                    std::vector<std::unique_ptr<messages::TrackSink>> sinks, PipelineOptions options)
     : Pipeline(one_input(std::move(source), tracker_config, options.stream_id), std::move(detector),
-               std::move(sinks), std::move(options)) {}
+               as_consumers(std::move(sinks)), std::move(options)) {}
 
 Pipeline::Pipeline(std::vector<PipelineInput> inputs, std::unique_ptr<detector::Detector> detector,
-                   std::vector<std::unique_ptr<messages::TrackSink>> sinks, PipelineOptions options)
-    : stages_(std::make_unique<Stages>(std::move(inputs), std::move(detector), std::move(sinks),
+                   std::vector<std::unique_ptr<FrameConsumer>> consumers, PipelineOptions options)
+    : stages_(std::make_unique<Stages>(std::move(inputs), std::move(detector), std::move(consumers),
                                        std::move(options))) {}
 
 Pipeline::~Pipeline() = default;

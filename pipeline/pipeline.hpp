@@ -15,6 +15,7 @@
 
 #include "detector/detector.hpp"
 #include "messages/frame_result.hpp"
+#include "pipeline/frame_consumer.hpp"
 #include "pipeline/pipeline_report.hpp"
 #include "pipeline/playback_mode.hpp"
 #include "platform/video_source.hpp"
@@ -64,10 +65,12 @@ class Pipeline {
            std::unique_ptr<detector::Detector> detector,
            const tracker::TrackerConfig& tracker_config,
            std::vector<std::unique_ptr<messages::TrackSink>> sinks, PipelineOptions options);
-  /// Several sources through one detector (batched). Throws std::invalid_argument if `inputs` is
-  /// empty or a video file is asked for with more than one source.
+  /// Several sources through one detector (batched); the sink stage hands every message to each
+  /// consumer in order (then to the annotated video if options.video_file is set). Throws
+  /// std::invalid_argument if `inputs` is empty or a video file is asked for with more than one
+  /// source.
   Pipeline(std::vector<PipelineInput> inputs, std::unique_ptr<detector::Detector> detector,
-           std::vector<std::unique_ptr<messages::TrackSink>> sinks, PipelineOptions options);
+           std::vector<std::unique_ptr<FrameConsumer>> consumers, PipelineOptions options);
   ~Pipeline();
   Pipeline(const Pipeline&) = delete;
   Pipeline& operator=(const Pipeline&) = delete;
