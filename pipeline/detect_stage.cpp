@@ -90,9 +90,9 @@ bool DetectStage::detect_and_hand_on(const std::atomic<bool>& abort) {
       detector_->detect(images_[k], numbers_[k], detections_[k]);
     }
     counts_.busy_ns += steady_now_ns() - start_ns;
-    images_.clear();  // drop the extra references to the slots' pictures
     counts_.frames += static_cast<std::int64_t>(images_.size());
     ++counts_.batches;
+    images_.clear();  // drop the extra references to the slots' pictures
   }
   const std::int64_t detected_ns = steady_now_ns();
   std::size_t picture = 0;
