@@ -2,6 +2,7 @@
 // id and accounting; a source that fails or goes silent does not stop or hold back the others.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <map>
@@ -71,6 +72,21 @@ void expect_frames_in_order(const std::vector<messages::FrameResult>& results, s
   }
   EXPECT_EQ(results.back().frame_number, last);
 }
+
+// FixedBoxDetector that records the size of every batch it is given.
+class BatchRecordingDetector : public FixedBoxDetector {
+ public:
+  explicit BatchRecordingDetector(std::vector<int>& sizes) : sizes_(sizes) {}
+  void detect_batch(const cv::Mat* const* images, const std::int64_t* frame_numbers, int count,
+                    std::vector<std::vector<tracker::Detection>>& out) override {
+    sizes_.push_back(count);
+    FixedBoxDetector::detect_batch(images, frame_numbers, count, out);
+  }
+  int max_batch() const override { return 8; }
+
+ private:
+  std::vector<int>& sizes_;
+};
 
 TEST(MultiSource, TwoRecordingsEveryFrameKeepTheirOwnStreamsTrackersAndCounts) {
   RTMOT_REQUIRE_FILE(vtest_path());
