@@ -30,7 +30,7 @@ struct RunOverrides {
   std::string preset;
   std::string overlay;
   int metrics_port{-1};
-  std::string source;
+  std::vector<std::string> sources;  // --source, repeatable
   std::string playback;
   double latency_ms{0.0};
   std::string udp;
@@ -92,7 +92,21 @@ void apply(const RunOverrides& overrides, runner::RunConfig& config) {
   }
   if (!overrides.overlay.empty()) config.output.overlay = overrides.overlay;
   if (overrides.metrics_port >= 0) config.output.metrics_port = overrides.metrics_port;
-  if (!overrides.source.empty()) config.source.uri = overrides.source;
+  if (!overrides.sources.empty()) {
+    // Replaces the file's source(s); each keeps the file's `source` capture settings.
+    runner::SourceConfig settings = config.source;
+    settings.stream_id = -1;
+    config.sources.clear();
+    for (const std::string& uri : overrides.sources) {
+      settings.uri = uri;
+      config.sources.push_back(settings);
+    }
+    config.source = config.sources.front();
+    if (config.sources.size() == 1)
+      config.sources.clear();
+    else
+      config.source.uri.clear();
+  }
   if (!overrides.playback.empty()) {
     const auto mode = pipeline::parse_playback_mode(overrides.playback);
     if (!mode) {
@@ -127,31 +141,39 @@ int run(const RunOverrides& overrides) {
   runner::prepare_video_output(config);
 
   spdlog::info("board: {}", platform::describe(platform::detect_board()));
-  auto source = runner::make_source(config);
-  const platform::SourceInfo source_info = source->info();
-  spdlog::info("source: {} ({}x{} at {:.2f} fps{})", source_info.uri, source_info.width,
-               source_info.height, source_info.fps, source_info.live ? ", live" : "");
-  runner::RunOutputs outputs = runner::make_outputs(config, source_info);
+  // Every source opens before any output: a bad URI in a list fails the run with nothing written.
+  auto inputs = runner::make_inputs(config);
+  for (const auto& input : inputs) {
+    const platform::SourceInfo& info = input.source->info();
+    spdlog::info("source: {} ({}x{} at {:.2f} fps{}), stream id {}", info.uri, info.width,
+                 info.height, info.fps, info.live ? ", live" : "", input.stream_id);
+  }
+  runner::RunOutputs outputs = runner::make_outputs(config, inputs);
   for (const auto& destination : outputs.destinations) spdlog::info("output: {}", destination);
   if (outputs.destinations.empty()) {
     spdlog::warn("no output configured: tracks go nowhere (--udp, --mqtt, --jsonl, --video-out)");
   }
   auto detector = runner::make_detector(config);
   spdlog::info("detector: {}", detector->describe());
-  pipeline::Pipeline pipeline(std::move(source), std::move(detector),
-                              runner::complete_tracker_config(config, source_info),
-                              std::move(outputs.sinks), runner::make_options(config));
+  pipeline::Pipeline pipeline(std::move(inputs), std::move(detector), std::move(outputs.consumers),
+                              runner::make_options(config));
   const pipeline::PipelineReport report = pipeline.run(signals.stop_flag());
 
   spdlog::info("{}", pipeline::summary_line(report));
+  if (report.streams.size() > 1) {
+    for (const auto& stream : report.streams) spdlog::info("{}", pipeline::summary_line(stream));
+  }
   if (!config.output.report_file.empty()) {
     pipeline::write_report(report, config.output.report_file);
     spdlog::info("report written to {}", config.output.report_file);
   }
-  if (!report.source_error.empty()) {
-    spdlog::error("{}: the source failed: {}", source_info.uri, report.source_error);
-    return to_int(ExitCode::source_failed);
+  bool failed = false;
+  for (const auto& stream : report.streams) {
+    if (stream.source_error.empty()) continue;
+    spdlog::error("{}: the source failed: {}", stream.source, stream.source_error);
+    failed = true;
   }
+  if (failed) return to_int(ExitCode::source_failed);
   return to_int(ExitCode::ok);
 }
 
@@ -182,9 +204,10 @@ Subcommand add_run_command(CLI::App& parent) {
   cli->add_option("--metrics-port", overrides->metrics_port,
                   "serve Prometheus metrics on http://127.0.0.1:PORT/metrics (0 = off)")
       ->check(CLI::Range(0, 65535));
-  cli->add_option("--source", overrides->source,
+  cli->add_option("--source", overrides->sources,
                   "source URI: file path, v4l2:///dev/videoN, csi://N, rtsp://..., test://..., "
-                  "mot-seq://SEQUENCE_DIR");
+                  "mot-seq://SEQUENCE_DIR; repeat for several sources (one batched detector)")
+      ->allow_extra_args(false);  // one URI per --source
   cli->add_option("--playback", overrides->playback, "every-frame, realtime or simulated")
       ->check(CLI::IsMember({"every-frame", "realtime", "simulated"}));
   cli->add_option("--latency-ms", overrides->latency_ms, "simulated detector latency (ms)")

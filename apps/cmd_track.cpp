@@ -56,9 +56,10 @@ Value parsed(const std::optional<Value>& value, const char* option, const std::s
 tracker::TrackerConfig make_config(const TrackCommandOptions& options) {
   const auto preset = tracker::find_preset(options.preset);
   if (!preset) {
-    throw InputError("command line", 0, "--preset",
-                     "unknown preset '" + options.preset + "' (known: " + tracker::preset_names() + ")",
-                     ExitCode::usage);
+    throw InputError(
+        "command line", 0, "--preset",
+        "unknown preset '" + options.preset + "' (known: " + tracker::preset_names() + ")",
+        ExitCode::usage);
   }
   tracker::TrackerConfig config = *preset;
   if (!options.predictor.empty()) {
@@ -134,8 +135,9 @@ Subcommand add_track_command(CLI::App& parent) {
                   "a sequence folder (with seqinfo.ini) or a folder of them")
       ->required();
   cli->add_option("--out", options->out_dir, "folder for the results files")->required();
-  cli->add_option("--preset", options->preset,
-                  "starting configuration (" + tracker::preset_names() + "); options below override it")
+  cli->add_option(
+         "--preset", options->preset,
+         "starting configuration (" + tracker::preset_names() + "); options below override it")
       ->capture_default_str();
   cli->add_option("--predictor", options->predictor, "kalman, stationary or particle")
       ->check(CLI::IsMember({"kalman", "stationary", "particle"}));

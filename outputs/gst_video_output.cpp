@@ -40,8 +40,9 @@ std::string describe_pipeline(const VideoTarget& target, int width, int height, 
   const std::string source = fmt::format(
       "appsrc name=src format=time is-live={} block={} max-buffers={} {} caps=\"{}\" ! "
       "videoconvert ! video/x-raw,format=I420 ! ",
-      file ? "false" : "true", file ? "true" : "false", file ? 4 : std::max(4, keyframe_interval / 4),
-      file ? "" : "leaky-type=downstream", raw_caps(width, height, fps));
+      file ? "false" : "true", file ? "true" : "false",
+      file ? 4 : std::max(4, keyframe_interval / 4), file ? "" : "leaky-type=downstream",
+      raw_caps(width, height, fps));
   // Browsers play H.264 High profile 4:2:0 in MP4 with the index first (faststart) and `avc1`
   // sample entries (x264enc's default stream-format=avc).
   const std::string file_encoder =

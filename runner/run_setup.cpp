@@ -12,7 +12,9 @@
 #include "messages/binary_file_sink.hpp"
 #include "messages/jsonl_sink.hpp"
 #include "messages/udp_sink.hpp"
+#include "outputs/annotated_video.hpp"
 #include "outputs/mqtt_publisher.hpp"
+#include "outputs/overlay.hpp"
 #include "outputs/video_stream.hpp"
 #include "outputs/video_target.hpp"
 #include "platform/host_port.hpp"
@@ -33,14 +35,29 @@ platform::HostPort parse_udp_target(const RunConfig& config) {
   return *target;
 }
 
+std::unique_ptr<platform::VideoSource> open_configured(const SourceConfig& source) {
+  platform::SourceOptions options;
+  options.width = source.width;
+  options.height = source.height;
+  options.fps = source.fps;
+  return open_source(source.uri, options);
+}
+
 }  // namespace
 
 std::unique_ptr<platform::VideoSource> make_source(const RunConfig& config) {
-  platform::SourceOptions options;
-  options.width = config.source.width;
-  options.height = config.source.height;
-  options.fps = config.source.fps;
-  return open_source(config.source.uri, options);
+  return open_configured(source_list(config).front());
+}
+
+std::vector<pipeline::PipelineInput> make_inputs(const RunConfig& config) {
+  const std::vector<SourceConfig> sources = source_list(config);
+  std::vector<pipeline::PipelineInput> inputs(sources.size());
+  for (std::size_t i = 0; i < sources.size(); ++i) {
+    inputs[i].source = open_configured(sources[i]);
+    inputs[i].tracker = complete_tracker_config(config, inputs[i].source->info());
+    inputs[i].stream_id = stream_id_of(config, i);
+  }
+  return inputs;
 }
 
 std::unique_ptr<detector::Detector> make_detector(const RunConfig& config) {
@@ -61,8 +78,11 @@ std::unique_ptr<detector::Detector> make_detector(const RunConfig& config) {
   return std::make_unique<detector::SsdDetector>(ssd);
 }
 
-RunOutputs make_outputs(const RunConfig& config, const platform::SourceInfo& source) {
+RunOutputs make_outputs(const RunConfig& config, std::vector<pipeline::PipelineInput>& inputs) {
   RunOutputs outputs;
+  std::vector<std::unique_ptr<messages::TrackSink>> sinks;
+  const platform::SourceInfo first =
+      inputs.empty() ? platform::SourceInfo{} : inputs.front().source->info();
   std::vector<outputs::OutputProbe> probes;
   const OutputConfig& output = config.output;
   // Files: missing folders are created (out/tracks.jsonl on a fresh clone), and the log says when
@@ -82,11 +102,11 @@ RunOutputs make_outputs(const RunConfig& config, const platform::SourceInfo& sou
         {"udp", [udp] { return udp->messages_sent(); }, [udp] { return udp->send_failures(); }});
     outputs.destinations.push_back("udp -> " +
                                    platform::format_host_port(target.host, target.port));
-    outputs.sinks.push_back(std::move(sink));
+    sinks.push_back(std::move(sink));
   }
   if (!output.binary_file.empty()) {
     outputs.destinations.push_back(file_line("binary", output.binary_file));
-    outputs.sinks.push_back(std::make_unique<messages::BinaryFileSink>(output.binary_file));
+    sinks.push_back(std::make_unique<messages::BinaryFileSink>(output.binary_file));
   }
   if (!output.mqtt.empty()) {
     std::string problem;  // checked by validate()
@@ -101,36 +121,58 @@ RunOutputs make_outputs(const RunConfig& config, const platform::SourceInfo& sou
                                publisher->counters().failed.load();
                       }});
     outputs.destinations.push_back("mqtt -> " + outputs::to_string(mqtt.uri));
-    outputs.sinks.push_back(std::move(sink));
+    sinks.push_back(std::move(sink));
   }
   if (!output.jsonl_file.empty()) {
     outputs.destinations.push_back(file_line("jsonl", output.jsonl_file));
-    outputs.sinks.push_back(
+    sinks.push_back(
         std::make_unique<messages::JsonlSink>(output.jsonl_file, &detector::coco_label));
   }
+  std::unique_ptr<pipeline::FrameConsumer> video;
   if (!output.video_file.empty()) {
-    outputs.destinations.push_back("video -> " + output.video_file + " (overlay " + output.overlay +
-                                   ")");
+    std::string problem;  // both checked by validate()
+    const outputs::VideoTarget target =
+        outputs::parse_video_target(output.video_file, problem).value();
+    auto annotated = std::make_unique<outputs::AnnotatedVideo>(
+        target, first, outputs::parse_overlay_flags(output.overlay, problem).value(),
+        &detector::coco_label);
+    // One source (validate() checked it): the video sees every one of its frames.
+    if (!inputs.empty()) inputs.front().tap = annotated->tap();
+    video = std::move(annotated);
+    outputs.destinations.push_back("video -> " + output.video_file + " (H.264, overlay " +
+                                   output.overlay + ")");
   }
   if (!output.report_file.empty()) {
     outputs.destinations.push_back(file_line("report", output.report_file));
   }
-  if (config.stats_interval_s > 0.0) {
-    outputs.sinks.push_back(
-        std::make_unique<ProgressSink>(config.stats_interval_s, source.frame_count));
+  if (config.stats_interval_s > 0.0 && inputs.size() == 1) {
+    sinks.push_back(std::make_unique<ProgressSink>(config.stats_interval_s, first.frame_count));
   }
   if (output.metrics_port > 0) {
     outputs.metrics = std::make_unique<outputs::PipelineMetrics>(std::move(probes));
     outputs.metrics_server = std::make_unique<outputs::MetricsServer>(
         *outputs.metrics, output.metrics_bind, static_cast<std::uint16_t>(output.metrics_port));
-    outputs.sinks.push_back(std::make_unique<outputs::MetricsSink>(*outputs.metrics));
+    sinks.push_back(std::make_unique<outputs::MetricsSink>(*outputs.metrics));
     outputs.destinations.push_back("metrics -> " + outputs.metrics_server->url());
   }
+  outputs.consumers = pipeline::as_consumers(std::move(sinks));
+  // The video last: it draws on the picture, after every message went out.
+  if (video) outputs.consumers.push_back(std::move(video));
   return outputs;
 }
 
 std::vector<std::unique_ptr<messages::TrackSink>> make_sinks(const RunConfig& config) {
-  return std::move(make_outputs(config).sinks);
+  RunConfig messages_only = config;
+  messages_only.output.video_file.clear();
+  messages_only.output.metrics_port = 0;
+  messages_only.stats_interval_s = 0.0;
+  std::vector<std::unique_ptr<messages::TrackSink>> sinks;
+  // make_outputs' consumers are the message sinks in order; unwrap them.
+  std::vector<pipeline::PipelineInput> no_inputs;
+  for (auto& consumer : make_outputs(messages_only, no_inputs).consumers) {
+    sinks.push_back(static_cast<pipeline::TrackSinkConsumer&>(*consumer).release());
+  }
+  return sinks;
 }
 
 void prepare_video_output(const RunConfig& config) {
@@ -169,10 +211,13 @@ pipeline::PipelineOptions make_options(const RunConfig& config) {
   options.simulated_latency_ms = config.playback.latency_ms;
   options.stream_id = config.stream_id;
   options.max_frames = config.max_frames;
-  // The progress line is ProgressSink's (make_outputs), with the total and ETA the engine's own
-  // line cannot know.
-  options.stats_interval_s = 0.0;
-  options.video_file = config.output.video_file;
+  // One source: the progress line is ProgressSink's (make_outputs), with the total and ETA the
+  // engine's own line cannot know. Several: the engine's line, per source.
+  options.stats_interval_s = source_list(config).size() == 1 ? 0.0 : config.stats_interval_s;
+  // The annotated video takes its pictures through the source's tap (make_outputs), not through
+  // the queues.
+  options.keep_images = false;
+  options.threads = config.threads;
   return options;
 }
 

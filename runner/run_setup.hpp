@@ -15,24 +15,30 @@
 
 namespace rtmot::runner {
 
+/// The first (or only) source.
 std::unique_ptr<platform::VideoSource> make_source(const RunConfig& config);
+/// Every source of source_list(), opened in order (a source that cannot be opened throws its
+/// InputError, naming its URI, before anything else is opened), each with its tracker
+/// configuration completed from that source and its stream id.
+std::vector<pipeline::PipelineInput> make_inputs(const RunConfig& config);
 std::unique_ptr<detector::Detector> make_detector(const RunConfig& config);
 /// What a run sends its tracks to, built from the output section.
 struct RunOutputs {
-  /// UDP, binary file, MQTT, JSON lines as configured, then the progress line's sink and (with
-  /// metrics on) the MetricsSink.
-  std::vector<std::unique_ptr<messages::TrackSink>> sinks;
-  /// With output.metrics_port: the numbers (fed by the last sink) and the HTTP endpoint. Keep both
-  /// alive longer than the Pipeline that owns the sinks.
+  /// For the sink stage, in order: UDP, binary file, MQTT, JSON lines as configured, the progress
+  /// line (one source), the metrics (with metrics_port), then the annotated video.
+  std::vector<std::unique_ptr<pipeline::FrameConsumer>> consumers;
+  /// With output.metrics_port: the numbers (fed by the MetricsSink) and the HTTP endpoint. Keep
+  /// both alive longer than the Pipeline that owns the consumers.
   std::unique_ptr<outputs::PipelineMetrics> metrics;
   std::unique_ptr<outputs::MetricsServer> metrics_server;
   /// One line per destination ("udp -> [::1]:5600", "jsonl -> tracks.jsonl (replaces an existing
   /// file)"), for the start-up log.
   std::vector<std::string> destinations;
 };
-/// `source` gives the progress line its total (a file's frame count).
-RunOutputs make_outputs(const RunConfig& config, const platform::SourceInfo& source = {});
-/// make_outputs(config).sinks, for runs without metrics.
+/// `inputs` (opened) give the progress line its total (a file's frame count) and the video its
+/// rate; the video sets the first input's tap (every source frame reaches it).
+RunOutputs make_outputs(const RunConfig& config, std::vector<pipeline::PipelineInput>& inputs);
+/// Only the message sinks (UDP, binary, MQTT, JSON lines), for runs without video or metrics.
 std::vector<std::unique_ptr<messages::TrackSink>> make_sinks(const RunConfig& config);
 
 /// Before the model loads: checks the annotated video's target (GStreamer has its elements; a

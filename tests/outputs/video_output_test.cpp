@@ -12,6 +12,7 @@
 
 #include "child_process.hpp"
 #include "common/input_error.hpp"
+#include "gst_read_back.hpp"
 #include "outputs/overlay.hpp"
 #include "outputs/rtsp_video_server.hpp"
 #include "outputs/video_stream.hpp"
@@ -22,59 +23,14 @@
 namespace rtmot::outputs {
 namespace {
 
+using test::read_back;
+using test::ReadBack;
+using test::to_bgr_sink;
+
 using namespace std::chrono_literals;
 
 constexpr int frame_count = 60;
 constexpr const char* test_source = "test://ball?width=320&height=240&num-buffers=60";
-
-// What the reading pipeline decoded.
-struct ReadBack {
-  int frames{0};
-  cv::Mat saved;  // the frame asked for, BGR
-  std::string caps;
-};
-
-// Runs `description` (ending in `appsink name=out`) until EOS, an error, `stop_after` frames or
-// `limit`; keeps frame `save_index` (0-based).
-ReadBack read_back(
-    const std::string& description, int save_index, int stop_after, std::chrono::milliseconds limit,
-    const std::function<void()>& once_playing = [] {}) {
-  platform::gst::ensure_initialized();
-  ReadBack result;
-  GError* raw_error = nullptr;
-  platform::gst::ObjectPtr<GstElement> pipeline(gst_parse_launch(description.c_str(), &raw_error));
-  const platform::gst::ErrorPtr error(raw_error);
-  EXPECT_TRUE(pipeline && !error) << description << ": " << (error ? error->message : "");
-  if (!pipeline) return result;
-  platform::gst::ObjectPtr<GstElement> sink(gst_bin_get_by_name(GST_BIN(pipeline.get()), "out"));
-  gst_element_set_state(pipeline.get(), GST_STATE_PLAYING);
-  once_playing();
-  const auto deadline = std::chrono::steady_clock::now() + limit;
-  while (result.frames < stop_after && std::chrono::steady_clock::now() < deadline) {
-    const platform::gst::SamplePtr sample(
-        gst_app_sink_try_pull_sample(GST_APP_SINK(sink.get()), 100 * GST_MSECOND));
-    if (!sample) {
-      if (gst_app_sink_is_eos(GST_APP_SINK(sink.get()))) break;
-      continue;
-    }
-    if (result.frames == save_index) {
-      GstCaps* caps = gst_sample_get_caps(sample.get());
-      const GstStructure* structure = gst_caps_get_structure(caps, 0);
-      int width = 0;
-      int height = 0;
-      gst_structure_get_int(structure, "width", &width);
-      gst_structure_get_int(structure, "height", &height);
-      platform::gst::MappedBuffer map(gst_sample_get_buffer(sample.get()));
-      result.saved = cv::Mat(height, width, CV_8UC3, const_cast<guint8*>(map.data())).clone();
-    }
-    ++result.frames;
-  }
-  gst_element_set_state(pipeline.get(), GST_STATE_NULL);
-  return result;
-}
-
-const std::string to_bgr_sink =
-    " ! videoconvert ! video/x-raw,format=BGR ! appsink name=out sync=false";
 
 VideoTarget target_of(const std::string& text) {
   std::string problem;
@@ -252,8 +208,7 @@ TEST_F(VideoOutputs, FullDiskIsAnError) {
     FAIL() << "writing to a full disk succeeded";
   } catch (const InputError& error) {
     EXPECT_EQ(error.exit_code(), ExitCode::io_error);
-    EXPECT_NE(std::string(error.what()).find("No space left"), std::string::npos)
-        << error.what();
+    EXPECT_NE(std::string(error.what()).find("No space left"), std::string::npos) << error.what();
   }
 }
 
