@@ -153,19 +153,23 @@ TEST_F(VideoOutputs, MkvHasEveryFrame) {
 }
 
 TEST_F(VideoOutputs, RtpStreamReachesAReceiver) {
-  const unsigned short port = test::free_tcp_port();  // free for UDP too in practice; checked below
-  ReadBack back;
-  std::thread receiver([&] {
-    back = read_back("udpsrc address=127.0.0.1 port=" + std::to_string(port) +
-                         " caps=\"application/x-rtp,media=video,encoding-name=H264,payload=96,"
-                         "clock-rate=90000\" ! rtph264depay ! avdec_h264" +
-                         to_bgr_sink,
-                     frame_count / 2, frame_count, 30s);
-  });
-  std::this_thread::sleep_for(500ms);  // the receiver is bound
+  const unsigned short port = test::free_tcp_port();  // free for UDP too in practice
   auto stream = open_video_stream(target_of("rtp://127.0.0.1:" + std::to_string(port)), 30.0);
-  EXPECT_EQ(push_test_frames(*stream, 15ms), frame_count);
-  receiver.join();
+  std::thread pusher;
+  // The sender starts once the receiver's socket is bound (the pipeline is playing): a stream's
+  // first keyframe sent into nothing would leave the decoder waiting for the next one.
+  const ReadBack back =
+      read_back("udpsrc address=127.0.0.1 port=" + std::to_string(port) +
+                    " caps=\"application/x-rtp,media=video,encoding-name=H264,payload=96,"
+                    "clock-rate=90000\" ! rtph264depay ! avdec_h264" +
+                    to_bgr_sink,
+                frame_count / 2, frame_count, 30s, [&] {
+                  pusher = std::thread([&] {
+                    std::this_thread::sleep_for(200ms);
+                    push_test_frames(*stream, 33ms);  // a 30 fps camera's pace
+                  });
+                });
+  pusher.join();
   stream->close();
   EXPECT_EQ(back.frames, frame_count);
   expect_overlay(back.saved, folder_ / "rtp.png");
