@@ -49,8 +49,13 @@ TEST_F(ColdStart, AbsentCameraIsAnOutageUntilItAppears) {
       {RTMOT_BINARY, "run", "--source", camera, "--model", model_.string(), "--jsonl",
        jsonl.string(), "--max-frames", "40", "--stats-interval", "0"},
       folder_ / "out.txt", folder_ / "err.txt");
-  // Up and reporting the outage while nothing listens on the port.
-  std::this_thread::sleep_for(3s);
+  // Up and reporting the outage while nothing listens on the port (start-up is slow under qemu).
+  const auto deadline = std::chrono::steady_clock::now() + 60s;
+  while (test::read_text(folder_ / "err.txt").find("retrying with backoff") == std::string::npos &&
+         std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(100ms);
+  }
+  std::this_thread::sleep_for(2s);  // a couple of seconds of outage ticks
   ASSERT_TRUE(rtmot.running());
   ASSERT_NE(test::read_text(folder_ / "err.txt").find("retrying with backoff"), std::string::npos)
       << test::read_text(folder_ / "err.txt");
