@@ -3,6 +3,7 @@
 #include <utility>
 
 #include "tracker/presets.hpp"
+#include "tracker/tracker_options.hpp"
 
 namespace rtmot::mot {
 namespace {
@@ -24,34 +25,32 @@ TrackerConfig grid_config(PredictorKind predictor, AffinityKind affinity) {
 }
 
 std::string grid_name(PredictorKind predictor, AffinityKind affinity) {
-  return std::string(tracker::to_string(predictor)) + "-" +
-         std::string(tracker::to_string(affinity));
+  return std::string(tracker::kPredictorNames.name(predictor)) + "-" +
+         std::string(tracker::kAffinityNames.name(affinity));
 }
 
-template <typename Change>
-StudyConfiguration option(const std::string& suffix, Change change) {
-  TrackerConfig config = grid_config(PredictorKind::kalman, AffinityKind::iou);
-  change(config);
-  return {"kalman-iou+" + suffix, "options", config};
+// One tracker option (or a few) on top of kalman-iou, by the options table's names and values.
+StudyConfiguration option(
+    const std::string& suffix,
+    const std::vector<std::pair<std::string_view, std::string_view>>& values) {
+  return {"kalman-iou+" + suffix, "options",
+          tracker::with_options(grid_config(PredictorKind::kalman, AffinityKind::iou), values)};
 }
 
 std::vector<StudyConfiguration> option_configurations() {
   return {
+      // det.txt scores are 0.5..1: split the pool at 0.7.
       option("second-round",
-             [](TrackerConfig& c) {
-               c.second_round = true;  // det.txt scores are 0.5..1: split the pool at 0.7
-               c.detection_threshold = 0.7F;
-               c.low_score = 0.5F;
-             }),
-      option("oru", [](TrackerConfig& c) { c.observation_centric_reupdate = true; }),
-      option("widened-gate", [](TrackerConfig& c) { c.time_widened_gate = true; }),
-      option("cascade", [](TrackerConfig& c) { c.recent_tracks_first = true; }),
-      option("confirm-by-duration", [](TrackerConfig& c) { c.confirm_by_duration = true; }),
-      option("coast-1", [](TrackerConfig& c) { c.min_coast_updates = 1; }),
-      option("max-age-3", [](TrackerConfig& c) { c.max_age = 3; }),
-      option("max-age-10", [](TrackerConfig& c) { c.max_age = 10; }),
-      option("min-hits-1", [](TrackerConfig& c) { c.min_hits = 1; }),
-      option("det-0.7", [](TrackerConfig& c) { c.detection_threshold = 0.7F; }),
+             {{"second_round", "true"}, {"detection_threshold", "0.7"}, {"low_score", "0.5"}}),
+      option("oru", {{"observation_centric_reupdate", "true"}}),
+      option("widened-gate", {{"time_widened_gate", "true"}}),
+      option("cascade", {{"recent_tracks_first", "true"}}),
+      option("confirm-by-duration", {{"confirm_by_duration", "true"}}),
+      option("coast-1", {{"min_coast_updates", "1"}}),
+      option("max-age-3", {{"max_age", "3"}}),
+      option("max-age-10", {{"max_age", "10"}}),
+      option("min-hits-1", {{"min_hits", "1"}}),
+      option("det-0.7", {{"detection_threshold", "0.7"}}),
   };
 }
 

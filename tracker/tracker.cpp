@@ -41,16 +41,8 @@ struct Match {
 };
 
 const TrackerConfig& validated(const TrackerConfig& config) {
-  if (config.max_tracks < 1 || config.max_detections < 1)
-    throw std::invalid_argument("tracker: max_tracks and max_detections must be >= 1");
-  if (config.predictor == PredictorKind::particle && config.particle_count < 1)
-    throw std::invalid_argument("tracker: particle_count must be >= 1");
-  if (config.max_age < 0 || config.min_hits < 0 || config.min_coast_updates < 0)
-    throw std::invalid_argument("tracker: max_age, min_hits and min_coast_updates must be >= 0");
-  if (config.time_step == TimeStep::elapsed && !(config.frame_rate > 0.0))
-    throw std::invalid_argument("tracker: frame_rate must be > 0 with elapsed time steps");
-  if (!std::isfinite(config.affinity_threshold))
-    throw std::invalid_argument("tracker: affinity_threshold must be finite");
+  if (const auto problem = config_problem(config))
+    throw std::invalid_argument("tracker: " + *problem);
   return config;
 }
 

@@ -2,18 +2,30 @@
 // Everything that parameterises a Tracker. Plain values: copy it, compare it, print it.
 #include <cstdint>
 #include <optional>
-#include <string_view>
+#include <string>
+
+#include "tracker/enum_names.hpp"
 
 namespace rtmot::tracker {
 
 enum class PredictorKind { kalman, stationary, particle };
 enum class AffinityKind { iou, linear, exponential };
 
+inline constexpr auto kPredictorNames = make_enum_names<PredictorKind>(
+    std::pair{PredictorKind::kalman, "kalman"}, std::pair{PredictorKind::stationary, "stationary"},
+    std::pair{PredictorKind::particle, "particle"});
+inline constexpr auto kAffinityNames = make_enum_names<AffinityKind>(
+    std::pair{AffinityKind::iou, "iou"}, std::pair{AffinityKind::linear, "linear"},
+    std::pair{AffinityKind::exponential, "exponential"});
+
 /// How the predictors advance between two updates.
 enum class TimeStep {
   per_update,  // one fixed step per processed frame, whatever time passed (SORT, C++SORT)
   elapsed,     // by the real time between updates, in units of the nominal frame period
 };
+
+inline constexpr auto kTimeStepNames = make_enum_names<TimeStep>(
+    std::pair{TimeStep::per_update, "per_update"}, std::pair{TimeStep::elapsed, "elapsed"});
 
 struct TrackerConfig {
   PredictorKind predictor{PredictorKind::kalman};
@@ -77,11 +89,9 @@ TrackerConfig with_every_option(TrackerConfig base);
 /// The usual threshold for an affinity, as in C++SORT.
 double default_threshold(AffinityKind affinity);
 
-std::string_view to_string(PredictorKind kind);
-std::string_view to_string(AffinityKind kind);
-std::string_view to_string(TimeStep step);
-std::optional<PredictorKind> parse_predictor(std::string_view text);
-std::optional<AffinityKind> parse_affinity(std::string_view text);
-std::optional<TimeStep> parse_time_step(std::string_view text);
+/// What makes `config` unusable as a whole (ranges that only fail together, e.g. the particle
+/// storage of max_tracks x particle_count); nullopt when it is usable. Each value's own range is
+/// checked where it is parsed (tracker/tracker_options.hpp).
+std::optional<std::string> config_problem(const TrackerConfig& config);
 
 }  // namespace rtmot::tracker
