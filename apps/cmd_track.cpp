@@ -15,7 +15,9 @@
 #include "mot/evaluation.hpp"
 #include "motio/results_writer.hpp"
 #include "motio/track_runner.hpp"
+#include "motio/mot_files.hpp"
 #include "tracker/presets.hpp"
+#include "tracker/score_scale.hpp"
 #include "tracker/tracker_config.hpp"
 
 namespace rtmot::app {
@@ -48,6 +50,17 @@ tracker::TrackerConfig make_config(const TrackCommandOptions& options) {
   return config;
 }
 
+// A detections file whose scores do not fit the configuration's absolute cuts gets one warning
+// naming the file and the range seen (tracker/score_scale.hpp); the run goes on.
+void warn_on_score_scale(const fs::path& file, const tracker::TrackerConfig& config) {
+  if (file.filename() == "gt.txt") return;  // the perfect detector: every score is 1
+  tracker::ScoreRange range;
+  for (const auto& row : motio::read_mot_file(file, motio::MotFileKind::detections))
+    range.include(row.conf);
+  if (const auto warning = tracker::score_scale_warning(config, range))
+    spdlog::warn("{}: {}", file.string(), *warning);
+}
+
 double hz(int frames, double seconds) {
   return seconds > 0.0 ? frames / seconds : 0.0;
 }
@@ -65,6 +78,7 @@ int run_track(const TrackCommandOptions& options) {
   int total_frames = 0;
   double total_seconds = 0.0;
   for (const auto& dir : sequences) {
+    warn_on_score_scale(dir / options.detections, track_options.config);
     using Clock = std::chrono::steady_clock;
     auto next_report = Clock::now() + std::chrono::duration<double>(kProgressEverySeconds);
     const auto progress = [&](int frame, int length) {

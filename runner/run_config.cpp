@@ -87,10 +87,9 @@ void read_tracker(Section section, tracker::TrackerConfig& config) {
   config.frame_rate = 0.0;  // still "from the source" unless set below
   config.image_width = 0.F;
   config.image_height = 0.F;
-  // A preset's detection_threshold was tuned on MOTChallenge detection scores (Faster R-CNN); in
-  // the pipeline the detector's own score_threshold is the one confidence cut unless this is set
-  // below.
-  config.detection_threshold = 0.F;
+  // No preset assumes a score scale (the default's cut is relative to the stream's own scores),
+  // so the preset applies here as in `rtmot track`; the detector's score_threshold is the
+  // detector's own cut, made before the tracker sees anything.
   // Every other key is an option of the one table (tracker/tracker_options.hpp), read as text so
   // that the YAML file and the command line accept exactly the same values.
   for (const auto& option : tracker::tracker_options()) {

@@ -8,12 +8,16 @@
 #include "tracker/association.hpp"
 #include "tracker/box_geometry.hpp"
 #include "tracker/predictor.hpp"
+#include "tracker/score_cut.hpp"
 #include "tracker/track.hpp"
 
 namespace rtmot::tracker {
 namespace {
 
 constexpr int kTypicalSceneSize = 64;
+// The relative score cut remembers this many recent scores: about 100 frames of a MOT15 scene,
+// enough for a stable quantile, short enough to follow a scene that changes.
+constexpr int kScoreWindow = 1024;
 // Timestamps of nominal frames (f / rate) do not subtract to exactly one period in floating
 // point; a track one frame late must not die of a rounding error in the last bit.
 constexpr double kFrameTolerance = 1e-6;
@@ -38,7 +42,8 @@ struct Tracker::State {
       : config(validated(c)),
         // MOT15 peaks at 16 detections a frame: a 64 x 64 workspace rarely has to grow.
         associator(std::min(c.max_detections, kTypicalSceneSize),
-                   std::min(c.max_tracks, kTypicalSceneSize)) {
+                   std::min(c.max_tracks, kTypicalSceneSize)),
+        score_cut(c.score_quantile, c.score_range_cut, kScoreWindow) {
     const auto tracks = static_cast<std::size_t>(config.max_tracks);
     const auto detections = static_cast<std::size_t>(config.max_detections);
     slots.resize(tracks);
@@ -68,6 +73,7 @@ struct Tracker::State {
     frame_count = 0;
     elapsed_frames = 0.0;
     has_previous_time = false;
+    score_cut.reset();
     reports.clear();
   }
 
@@ -97,12 +103,14 @@ struct Tracker::State {
   }
 
   // High-score detections may start and continue tracks; low ones (ByteTrack) only continue them.
+  // High means at or above both the absolute and the relative cut.
   void split_by_score(const std::vector<Detection>& detections) {
     high.clear();
     low.clear();
+    const float cut = std::max(config.detection_threshold, score_cut.observe(detections));
     for (const Detection& detection : detections) {
       if (!usable(detection)) continue;
-      if (detection.score >= config.detection_threshold) {
+      if (detection.score >= cut) {
         if (static_cast<int>(high.size()) < config.max_detections) high.push_back(detection);
       } else if (config.second_round && detection.score >= config.low_score) {
         if (static_cast<int>(low.size()) < config.max_detections) low.push_back(detection);
@@ -333,6 +341,7 @@ struct Tracker::State {
   std::vector<AssociationMatch> round_matches;
   std::vector<TrackReport> reports;
   Associator associator;
+  ScoreCut score_cut;
   std::int32_t next_id{1};
   int frame_count{0};
   double elapsed_frames{0.0};  // nominal frames since the first update

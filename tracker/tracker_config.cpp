@@ -1,6 +1,7 @@
 #include "tracker/tracker_config.hpp"
 
 #include <cmath>
+#include <limits>
 
 #include "tracker/tracker_limits.hpp"
 
@@ -10,6 +11,7 @@ TrackerConfig with_every_option(TrackerConfig base) {
   base.second_round = true;
   base.detection_threshold = 0.6F;
   base.low_score = 0.3F;
+  base.score_quantile = 0.2;
   base.observation_centric_reupdate = true;
   base.time_widened_gate = true;
   base.recent_tracks_first = true;
@@ -24,7 +26,9 @@ TrackerConfig TrackerConfig::sort_preset() {
   config.predictor = PredictorKind::kalman;
   config.affinity = AffinityKind::iou;
   config.affinity_threshold = default_threshold(AffinityKind::iou);
-  config.detection_threshold = 0.0F;
+  config.detection_threshold = std::numeric_limits<float>::lowest();  // sort.py keeps every row
+  config.score_quantile = 0.0;
+  config.score_range_cut = 0.0;
   config.max_age = 1;
   config.min_hits = 3;
   config.time_step = TimeStep::per_update;
@@ -69,6 +73,10 @@ std::optional<std::string> config_problem(const TrackerConfig& config) {
   if (!std::isfinite(config.affinity_threshold)) return "affinity_threshold must be finite";
   if (std::isnan(config.detection_threshold) || std::isnan(config.low_score))
     return "detection_threshold and low_score must be numbers";
+  if (!(config.score_quantile >= 0.0 && config.score_quantile <= limits::kMaxScoreQuantile))
+    return "score_quantile must be in [0, " + std::to_string(limits::kMaxScoreQuantile) + "]";
+  if (!(config.score_range_cut >= 0.0 && config.score_range_cut <= limits::kMaxScoreQuantile))
+    return "score_range_cut must be in [0, " + std::to_string(limits::kMaxScoreQuantile) + "]";
   return std::nullopt;
 }
 

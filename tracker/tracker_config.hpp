@@ -1,6 +1,7 @@
 #pragma once
 // Everything that parameterises a Tracker. Plain values: copy it, compare it, print it.
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <string>
 
@@ -33,8 +34,16 @@ struct TrackerConfig {
   /// Minimum affinity for a match. Meaning depends on `affinity`: IoU 0.3, linear 10000 (after
   /// inversion, larger is more similar), exponential 0.5. See default_threshold().
   double affinity_threshold{0.3};
-  /// Detections scoring below this are dropped before anything else.
-  float detection_threshold{0.0F};
+  /// Detections scoring below this absolute score are low (dropped, or second-round only). The
+  /// lowest float by default: an absolute cut assumes one detector's score scale.
+  float detection_threshold{std::numeric_limits<float>::lowest()};
+  /// Detections scoring below this quantile of the stream's recent scores (tracker/score_cut.hpp)
+  /// are low too: a cut that holds on any score scale. 0 = off.
+  double score_quantile{0.0};
+  /// Detections scoring below low + f x (high - low) of the recent scores' 1st..99th percentile
+  /// range are low too (tracker/score_cut.hpp): a cut that holds on any affine score scale. 0 =
+  /// off.
+  double score_range_cut{0.0};
   /// A track is deleted after more than `max_age` nominal frames without a match.
   int max_age{1};
   /// A track is reported once it has `min_hits` consecutive matches.

@@ -10,5 +10,6 @@ inline constexpr long long kMaxParticleStorage = 4000000;  // max_tracks x parti
 inline constexpr int kMaxFrames = 1000000;                 // max_age, min_hits, min_coast_updates
 inline constexpr double kMaxFrameRate = 10000.0;
 inline constexpr double kMaxImageSide = 100000.0;
+inline constexpr double kMaxScoreQuantile = 0.99;  // a cut that keeps 1% still tracks something
 
 }  // namespace rtmot::tracker::limits

@@ -67,10 +67,11 @@ TrackerOption integer(std::string name, std::string doc, Int TrackerConfig::*mem
 template <typename Real>
 TrackerOption real(std::string name, std::string doc, Real TrackerConfig::*member, double low,
                    double high, bool open_low = false) {
-  std::string expected = high >= std::numeric_limits<float>::max()
-                             ? "a finite number >= " + number_text(low)
-                             : "a number in " + std::string(open_low ? "(" : "[") +
-                                   number_text(low) + ", " + number_text(high) + "]";
+  const bool unbounded = high >= std::numeric_limits<float>::max();
+  std::string expected = unbounded && low <= -high ? std::string("a finite number")
+                         : unbounded               ? "a finite number >= " + number_text(low)
+                                     : "a number in " + std::string(open_low ? "(" : "[") +
+                                           number_text(low) + ", " + number_text(high) + "]";
   return {std::move(name), std::move(doc), std::move(expected),
           [=](TrackerConfig& c, std::string_view t) {
             double value = 0.0;
@@ -122,8 +123,15 @@ std::vector<TrackerOption> make_table() {
       affinity_option(),
       real("affinity_threshold", "minimum affinity for a match", &C::affinity_threshold, 0.0,
            kHuge),
-      real("detection_threshold", "detections scoring below this are dropped",
-           &C::detection_threshold, 0.0, 1.0),
+      real("detection_threshold", "absolute score cut: detections below it are low (any scale)",
+           &C::detection_threshold, -kHuge, kHuge),
+      real("score_quantile",
+           "relative score cut: detections below this quantile of the recent scores are low",
+           &C::score_quantile, 0.0, limits::kMaxScoreQuantile),
+      real("score_range_cut",
+           "relative score cut: detections below this fraction of the recent 1st..99th percentile "
+           "score range are low",
+           &C::score_range_cut, 0.0, limits::kMaxScoreQuantile),
       integer("max_age", "nominal frames a track survives without a match", &C::max_age, 0,
               kMaxFrames),
       integer("min_hits", "consecutive matches before a track is reported", &C::min_hits, 0,
@@ -139,7 +147,8 @@ std::vector<TrackerOption> make_table() {
       flag("second_round",
            "ByteTrack: a second round for detections in [low_score, detection_threshold)",
            &C::second_round),
-      real("low_score", "lowest score the second round uses", &C::low_score, 0.0, 1.0),
+      real("low_score", "lowest score the second round uses (absolute)", &C::low_score, -kHuge,
+           kHuge),
       flag("observation_centric_reupdate",
            "OC-SORT: re-update a found-again track along a virtual trajectory",
            &C::observation_centric_reupdate),

@@ -28,6 +28,8 @@ TEST(TrackerOptions, EveryKnobOfTheConfigCanBeSet) {
                                      {"affinity", "exponential"},
                                      {"affinity_threshold", "0.4"},
                                      {"detection_threshold", "0.25"},
+                                     {"score_quantile", "0.2"},
+                                     {"score_range_cut", "0.6"},
                                      {"max_age", "7"},
                                      {"min_hits", "4"},
                                      {"time_step", "elapsed"},
@@ -49,6 +51,8 @@ TEST(TrackerOptions, EveryKnobOfTheConfigCanBeSet) {
   EXPECT_EQ(config.affinity, AffinityKind::exponential);
   EXPECT_DOUBLE_EQ(config.affinity_threshold, 0.4);
   EXPECT_FLOAT_EQ(config.detection_threshold, 0.25F);
+  EXPECT_DOUBLE_EQ(config.score_quantile, 0.2);
+  EXPECT_DOUBLE_EQ(config.score_range_cut, 0.6);
   EXPECT_EQ(config.max_age, 7);
   EXPECT_EQ(config.min_hits, 4);
   EXPECT_EQ(config.time_step, TimeStep::elapsed);
@@ -66,7 +70,7 @@ TEST(TrackerOptions, EveryKnobOfTheConfigCanBeSet) {
   EXPECT_EQ(config.seed, 18446744073709551615ULL);
   EXPECT_EQ(config.max_tracks, 20);
   EXPECT_EQ(config.max_detections, 30);
-  EXPECT_EQ(tracker_options().size(), 21U) << "a new TrackerConfig field needs a line here too";
+  EXPECT_EQ(tracker_options().size(), 23U) << "a new TrackerConfig field needs a line here too";
 }
 
 TEST(TrackerOptions, AnAffinityBringsItsUsualThresholdUnlessOneFollows) {
