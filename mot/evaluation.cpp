@@ -3,9 +3,9 @@
 #include <algorithm>
 
 #include "common/input_error.hpp"
+#include "motio/mot_files.hpp"
 #include "mot/prepared_sequence.hpp"
 #include "mot/scorer.hpp"
-#include "motio/mot_files.hpp"
 
 namespace rtmot::mot {
 
@@ -35,8 +35,7 @@ SequenceScore evaluate_sequence(const fs::path& sequence_dir, const fs::path& re
     throw InputError(results_file.string(), 0, "", "missing: no results for sequence " + info.name);
   }
   const auto gt_rows = motio::read_mot_file(gt_file, motio::MotFileKind::ground_truth, info.length);
-  const auto result_rows =
-      motio::read_mot_file(results_file, motio::MotFileKind::results, info.length);
+  const auto result_rows = motio::read_mot_file(results_file, motio::MotFileKind::results, info.length);
   PrepareOptions options;
   options.interval = interval;
   options.sequence_length = info.length;
