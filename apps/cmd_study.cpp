@@ -1,6 +1,7 @@
 // `rtmot study`: the frame-rate study. Tracks every configuration of mot/study_plan.hpp on both
-// inputs at every interval, scores each run with the `rtmot eval` scorer on the processed frames,
-// and writes tables and plots (docs/study/ is made by scripts/study.sh with this command).
+// inputs at every interval, the presets on the synthetic detectors, and the cross-validation of the
+// default's candidates (mot/study_cv.hpp); scores each run with the `rtmot eval` scorer on the
+// processed frames, and writes tables and plots (docs/study/ is made by scripts/study.sh).
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
@@ -86,8 +87,9 @@ int run_study_command(const StudyCommandOptions& options) {
   std::string folds;
   if (!options.no_cv && dataset.size() >= 2) {
     const auto candidates = mot::cv_candidates(options.quick);
-    spdlog::info("study: leave-one-sequence-out cross-validation of {} candidates",
-                 candidates.size());
+    spdlog::info(
+        "study: cross-validation (one sequence and one detector left out) of {} candidates",
+        candidates.size());
     // The public detections and every synthetic detector: each is left out in turn.
     std::vector<mot::StudyInput> detectors = {mot::StudyInput::detections};
     for (const auto& input : mot::synthetic_inputs()) detectors.push_back(input);
@@ -114,7 +116,9 @@ Subcommand add_study_command(CLI::App& parent) {
   CLI::App* cli = parent.add_subcommand(
       "study",
       "Frame-rate study: every predictor x affinity, tracker option and preset at several frame "
-      "intervals, on det/det.txt and on gt/gt.txt as a perfect detector; tables and SVG plots");
+      "intervals, on det/det.txt and on gt/gt.txt as a perfect detector; the presets on five "
+      "synthetic detectors made from the ground truth; cross-validation of the default's "
+      "candidates; tables and SVG plots");
   cli->add_option("--dataset", options->dataset,
                   "a sequence folder (with seqinfo.ini) or a folder of them")
       ->required();
