@@ -1,8 +1,14 @@
 #include "runner/run_setup.hpp"
 
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+
 #include "common/input_error.hpp"
 #include "detector/dnn_backend.hpp"
 #include "detector/replay_detector.hpp"
+#include "motio/mot_files.hpp"
+#include "tracker/score_scale.hpp"
 #include "detector/ssd_detector.hpp"
 #include "messages/binary_file_sink.hpp"
 #include "messages/jsonl_sink.hpp"
@@ -58,10 +64,31 @@ std::vector<pipeline::PipelineInput> make_inputs(const RunConfig& config) {
   return inputs;
 }
 
+namespace {
+
+// A replayed detections file is cut twice on absolute scores: by the detector's score_threshold
+// and by the tracker's own cuts. Both assume [0, 1] scores; a file on another scale gets one
+// warning naming it and the range seen (tracker/score_scale.hpp). The SSD's scores are its own
+// sigmoid in [0, 1], where its threshold was chosen, so it needs none.
+void warn_on_score_scale(const DetectorConfig& detector, const tracker::TrackerConfig& tracker) {
+  tracker::ScoreRange range;
+  for (const auto& row : motio::read_mot_file(detector.det_file, motio::MotFileKind::detections))
+    range.include(row.conf);
+  tracker::TrackerConfig cuts = tracker;
+  cuts.detection_threshold = std::max(cuts.detection_threshold, detector.score_threshold);
+  if (const auto warning = tracker::score_scale_warning(cuts, range))
+    spdlog::warn("{}: {} (detector.score_threshold {})", detector.det_file, *warning,
+                 detector.score_threshold);
+}
+
+}  // namespace
+
 std::unique_ptr<detector::Detector> make_detector(const RunConfig& config) {
   const DetectorConfig& wanted = config.detector;
   if (wanted.kind == "replay") {
-    return std::make_unique<detector::ReplayDetector>(wanted.det_file, wanted.score_threshold);
+    auto replay = std::make_unique<detector::ReplayDetector>(wanted.det_file, wanted.score_threshold);
+    warn_on_score_scale(wanted, config.tracker);
+    return replay;
   }
   detector::SsdConfig ssd;
   ssd.model_path = wanted.model;
