@@ -102,7 +102,7 @@ locate_trees() {
 download() {  # url file
   command -v curl >/dev/null || die "curl not found (apt-get install curl), or give --source"
   log "downloading $1"
-  curl -fL --retry 3 -o "$2.part" "$1" || die "download of $1 failed (no network? give --source)"
+  curl -fL --retry 3 --connect-timeout 20 -o "$2.part" "$1" || die "download of $1 failed (no network? give --source)"
   mv "$2.part" "$2"
 }
 
