@@ -147,9 +147,16 @@ else
   fi
   rm -rf "$stage/in"
   for patch_file in "${patches[@]}"; do
-    log "applying $(basename "$patch_file")"
-    patch -p1 --forward --batch --silent -d "$stage/opencv" <"$patch_file" ||
+    # Checked first, so a patch that does not fit leaves the source untouched. It only changes CUDA
+    # code: a CPU build goes on without it (saying so), a CUDA build cannot.
+    if patch -p1 --forward --batch --dry-run --silent -d "$stage/opencv" <"$patch_file" >/dev/null; then
+      log "applying $(basename "$patch_file")"
+      patch -p1 --forward --batch --silent -d "$stage/opencv" <"$patch_file"
+    elif [[ $cuda == 1 ]]; then
       die "$(basename "$patch_file") does not apply to this source (not OpenCV $VERSION?)"
+    else
+      log "warning: $(basename "$patch_file") does not apply to this source; not needed without CUDA"
+    fi
   done
   echo "$fingerprint" >"$stage/.staged"
 fi
