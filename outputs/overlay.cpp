@@ -51,7 +51,10 @@ void dashed_rectangle(cv::Mat& image, const cv::Rect& box, const cv::Scalar& col
       {box.br(), {box.x, box.br().y}},
       {{box.x, box.br().y}, box.tl()},
   }};
-  for (const auto& [from, to] : sides) {
+  for (const auto& side : sides) {
+    // Named copies: a C++17 lambda cannot capture structured bindings (clang refuses).
+    const cv::Point from = side.first;
+    const cv::Point to = side.second;
     const double length = std::hypot(to.x - from.x, to.y - from.y);
     for (double start = 0.0; start < length; start += 2 * dash) {
       const double end = std::min(start + dash, length);
