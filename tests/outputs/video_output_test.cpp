@@ -156,10 +156,12 @@ TEST_F(VideoOutputs, RtpStreamReachesAReceiver) {
   const unsigned short port = test::free_tcp_port();  // free for UDP too in practice
   auto stream = open_video_stream(target_of("rtp://127.0.0.1:" + std::to_string(port)), 30.0);
   std::thread pusher;
-  // The sender starts once the receiver's socket is bound (the pipeline is playing): a stream's
+  // A large receive buffer: on a loaded machine the decoder thread may fall behind for a moment,
+  // and a datagram the kernel drops for want of room is a lost frame. The sender starts once the
+  // receiver's socket is bound (the pipeline is playing): a stream's
   // first keyframe sent into nothing would leave the decoder waiting for the next one.
   const ReadBack back =
-      read_back("udpsrc address=127.0.0.1 port=" + std::to_string(port) +
+      read_back("udpsrc address=127.0.0.1 buffer-size=8388608 port=" + std::to_string(port) +
                     " caps=\"application/x-rtp,media=video,encoding-name=H264,payload=96,"
                     "clock-rate=90000\" ! rtph264depay ! avdec_h264" +
                     to_bgr_sink,
