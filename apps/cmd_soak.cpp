@@ -17,9 +17,9 @@
 #include "apps/subcommand.hpp"
 #include "common/exit_codes.hpp"
 #include "pipeline/pipeline.hpp"
+#include "platform/signals.hpp"
 #include "runner/run_config.hpp"
 #include "runner/run_setup.hpp"
-#include "platform/signals.hpp"
 
 namespace rtmot::app {
 namespace {
@@ -43,12 +43,10 @@ double ms(std::int64_t ns) {
   return static_cast<double>(ns) * 1e-6;
 }
 
-pipeline::PipelineReport run_once(const runner::RunConfig& config,
-                                  const std::atomic<bool>& stop) {
-  auto source = runner::make_source(config);
-  const auto tracker_config = runner::complete_tracker_config(config, source->info());
-  pipeline::Pipeline pipe(std::move(source), runner::make_detector(config), tracker_config,
-                          runner::make_sinks(config), runner::make_options(config));
+pipeline::PipelineReport run_once(const runner::RunConfig& config, const std::atomic<bool>& stop) {
+  pipeline::Pipeline pipe(runner::make_inputs(config), runner::make_detector(config),
+                          pipeline::as_consumers(runner::make_sinks(config)),
+                          runner::make_options(config));
   return pipe.run(stop);
 }
 

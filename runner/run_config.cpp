@@ -24,7 +24,31 @@ void read_source(Section section, SourceConfig& source) {
   read_checked(
       section, "height", source.height, [](int v) { return v >= 0; }, "a size >= 0");
   read_checked(section, "fps", source.fps, non_negative, "a rate >= 0");
+  read_checked(
+      section, "stream_id", source.stream_id,
+      [](std::int64_t v) { return v >= 0 && v <= std::int64_t{0xFFFFFFFF}; },
+      "a stream id in 0..4294967295");
   section.reject_unknown();
+}
+
+// `sources:` a list whose entries are a URI or a mapping with the keys of `source`.
+void read_sources(Section& top, const std::string& file_name, std::vector<SourceConfig>& sources) {
+  const YAML::Node list = top.child("sources");
+  if (!list.IsDefined() || list.IsNull()) return;
+  if (!list.IsSequence()) top.fail(list, "sources", "expected a list of sources");
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const YAML::Node entry = list[i];
+    const std::string field = "sources[" + std::to_string(i) + "]";
+    SourceConfig source;
+    if (entry.IsScalar()) {
+      source.uri = entry.Scalar();
+    } else {
+      read_source(Section(entry, file_name, field), source);
+    }
+    if (source.uri.empty()) throw InputError(file_name, line_of(entry), field, "no uri given");
+    sources.push_back(source);
+  }
+  if (sources.empty()) top.fail(list, "sources", "the list is empty");
 }
 
 void read_playback(Section section, PlaybackConfig& playback) {
@@ -120,6 +144,31 @@ void read_output(Section section, OutputConfig& output) {
   section.reject_unknown();
 }
 
+// CPU_SETSIZE: the most CPUs pthread_setaffinity_np can name. A CPU this machine lacks is not a
+// configuration error (the same file runs on several boards): the thread runs unpinned, logged.
+constexpr int max_cpu = 1023;
+
+void read_stage_thread(Section section, pipeline::StageThread& thread) {
+  read_checked(
+      section, "cpu", thread.cpu, [](int v) { return v >= -1 && v <= max_cpu; },
+      "a CPU number in 0..1023, or -1 for any");
+  read_checked(
+      section, "fifo_priority", thread.fifo_priority, [](int v) { return v >= 0 && v <= 99; },
+      "a SCHED_FIFO priority in 1..99, or 0 for normal scheduling");
+  section.reject_unknown();
+}
+
+void read_threads(Section section, const std::string& file_name, pipeline::StageThreads& threads) {
+  const auto stage = [&](const char* name, pipeline::StageThread& thread) {
+    read_stage_thread(Section(section.child(name), file_name, section.field(name)), thread);
+  };
+  stage("capture", threads.capture);
+  stage("detect", threads.detect);
+  stage("track", threads.track);
+  stage("sink", threads.sink);
+  section.reject_unknown();
+}
+
 }  // namespace
 
 RunConfig parse_run_config(const std::string& yaml_text, const std::string& file_name) {
@@ -138,10 +187,15 @@ RunConfig parse_run_config(const std::string& yaml_text, const std::string& file
   Section top(root, file_name, "");
   if (root.IsNull()) throw InputError(file_name, 0, "", "the configuration is empty");
   read_source(Section(top.child("source"), file_name, "source"), config.source);
+  read_sources(top, file_name, config.sources);
+  if (!config.sources.empty() && !config.source.uri.empty()) {
+    top.fail(*top.find("sources"), "sources", "give either source.uri or sources, not both");
+  }
   read_playback(Section(top.child("playback"), file_name, "playback"), config.playback);
   read_detector(Section(top.child("detector"), file_name, "detector"), config.detector);
   read_tracker(Section(top.child("tracker"), file_name, "tracker"), config.tracker);
   read_output(Section(top.child("output"), file_name, "output"), config.output);
+  read_threads(Section(top.child("threads"), file_name, "threads"), file_name, config.threads);
   read_checked(top, "stats_interval_s", config.stats_interval_s, non_negative, "an interval >= 0");
   top.read("stream_id", config.stream_id);
   read_checked(
@@ -158,18 +212,42 @@ RunConfig load_run_config(const std::string& path) {
   return parse_run_config(text.str(), path);
 }
 
+std::vector<SourceConfig> source_list(const RunConfig& config) {
+  return config.sources.empty() ? std::vector<SourceConfig>{config.source} : config.sources;
+}
+
+std::uint32_t stream_id_of(const RunConfig& config, std::size_t index) {
+  const SourceConfig& source = source_list(config).at(index);
+  if (source.stream_id >= 0) return static_cast<std::uint32_t>(source.stream_id);
+  return config.stream_id + static_cast<std::uint32_t>(index);
+}
+
 void validate(const RunConfig& config) {
   const auto missing = [&](const std::string& field, const std::string& problem) {
     throw InputError(config.file, 0, field, problem);
   };
-  if (config.source.uri.empty()) missing("source.uri", "no source given (or use --source URI)");
+  if (config.source.uri.empty() && config.sources.empty()) {
+    missing("source.uri", "no source given (or use --source URI)");
+  }
+  const auto sources = source_list(config);
+  std::set<std::uint32_t> stream_ids;
+  for (std::size_t i = 0; i < sources.size(); ++i) {
+    if (!stream_ids.insert(stream_id_of(config, i)).second) {
+      missing("sources[" + std::to_string(i) + "].stream_id",
+              "stream id " + std::to_string(stream_id_of(config, i)) + " is used twice");
+    }
+  }
+  if (sources.size() > 1 && !config.output.video_file.empty()) {
+    missing("output.video_file", "the annotated video needs a single source");
+  }
   if (config.detector.kind == "ssd" && config.detector.model.empty()) {
     missing("detector.model", "the ssd detector needs a model file");
   }
   if (config.detector.kind == "replay" && config.detector.det_file.empty()) {
     missing("detector.det_file", "the replay detector needs a det.txt file");
   }
-  if (is_sequence_uri(config.source.uri)) {
+  for (const SourceConfig& source : sources) {
+    if (!is_sequence_uri(source.uri)) continue;
     if (config.detector.kind == "ssd") {
       missing("detector.kind", "a mot-seq:// source has no images: use the replay detector");
     }

@@ -39,14 +39,29 @@ HostPort parse_host_port(const RunConfig& config) {
   return {text.substr(0, colon), static_cast<std::uint16_t>(port)};
 }
 
+std::unique_ptr<platform::VideoSource> open_configured(const SourceConfig& source) {
+  platform::SourceOptions options;
+  options.width = source.width;
+  options.height = source.height;
+  options.fps = source.fps;
+  return open_source(source.uri, options);
+}
+
 }  // namespace
 
 std::unique_ptr<platform::VideoSource> make_source(const RunConfig& config) {
-  platform::SourceOptions options;
-  options.width = config.source.width;
-  options.height = config.source.height;
-  options.fps = config.source.fps;
-  return open_source(config.source.uri, options);
+  return open_configured(source_list(config).front());
+}
+
+std::vector<pipeline::PipelineInput> make_inputs(const RunConfig& config) {
+  const std::vector<SourceConfig> sources = source_list(config);
+  std::vector<pipeline::PipelineInput> inputs(sources.size());
+  for (std::size_t i = 0; i < sources.size(); ++i) {
+    inputs[i].source = open_configured(sources[i]);
+    inputs[i].tracker = complete_tracker_config(config, inputs[i].source->info());
+    inputs[i].stream_id = stream_id_of(config, i);
+  }
+  return inputs;
 }
 
 namespace {
@@ -124,6 +139,7 @@ pipeline::PipelineOptions make_options(const RunConfig& config) {
   options.max_frames = config.max_frames;
   options.stats_interval_s = config.stats_interval_s;
   options.video_file = config.output.video_file;
+  options.threads = config.threads;
   return options;
 }
 

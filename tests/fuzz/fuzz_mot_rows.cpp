@@ -10,9 +10,10 @@
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   if (size < 1) return 0;
   static rtmot::fuzz::MemoryFile file;
-  using rtmot::motio::MotFileKind;
-  const motio::MotFileKind kinds[] = {motio::MotFileKind::detections, motio::MotFileKind::ground_truth,
-                               motio::MotFileKind::results};
+  using namespace rtmot;
+  const motio::MotFileKind kinds[] = {motio::MotFileKind::detections,
+                                      motio::MotFileKind::ground_truth,
+                                      motio::MotFileKind::results};
   const motio::MotFileKind kind = kinds[data[0] % 3];
   const bool with_length = (data[0] & 0x80) != 0;
   const std::string path = file.write(data + 1, size - 1);

@@ -7,6 +7,7 @@
 #include <filesystem>
 
 #include "common/input_error.hpp"
+#include "runner/run_setup.hpp"
 #include "shared_data.hpp"
 
 namespace rtmot::pipeline {
@@ -116,6 +117,60 @@ TEST(RunConfig, BadValuesNameLineAndField) {
   expect_error("tracker:\n  preset: deepsort\n", 2, "tracker.preset");
   expect_error("tracker:\n  min_hits: -1\n", 2, "tracker.min_hits");
   expect_error("max_frames: -5\n", 1, "max_frames");
+}
+
+TEST(RunConfig, StageThreadsAreReadAndCheckedPerStage) {
+  const runner::RunConfig config = runner::parse_run_config(
+      "threads:\n  capture: {cpu: 0, fifo_priority: 20}\n  detect:\n    cpu: 1\n", "t.yaml");
+  EXPECT_EQ(config.threads.capture.cpu, 0);
+  EXPECT_EQ(config.threads.capture.fifo_priority, 20);
+  EXPECT_EQ(config.threads.detect.cpu, 1);
+  EXPECT_EQ(config.threads.detect.fifo_priority, 0);
+  EXPECT_EQ(config.threads.track.cpu, -1) << "unset: any CPU";
+  EXPECT_EQ(runner::make_options(config).threads.capture.fifo_priority, 20);
+  expect_error("threads:\n  detect:\n    fifo_priority: 100\n", 3, "threads.detect.fifo_priority");
+  expect_error("threads:\n  sink: {cpu: -2}\n", 2, "threads.sink.cpu");
+  expect_error("threads:\n  tracker: {cpu: 0}\n", 2, "threads.tracker");
+  expect_error("threads:\n  track: {core: 0}\n", 2, "threads.track.core");
+}
+
+TEST(RunConfig, SourcesListGivesEachItsStreamId) {
+  const runner::RunConfig config = runner::parse_run_config(
+      "stream_id: 10\nsources:\n  - a.avi\n  - {uri: rtsp://cam/1, width: 640, stream_id: 3}\n"
+      "  - uri: b.avi\n",
+      "s.yaml");
+  const auto sources = runner::source_list(config);
+  ASSERT_EQ(sources.size(), 3U);
+  EXPECT_EQ(sources[0].uri, "a.avi");
+  EXPECT_EQ(sources[1].uri, "rtsp://cam/1");
+  EXPECT_EQ(sources[1].width, 640);
+  EXPECT_EQ(runner::stream_id_of(config, 0), 10U) << "top-level id + index";
+  EXPECT_EQ(runner::stream_id_of(config, 1), 3U) << "its own";
+  EXPECT_EQ(runner::stream_id_of(config, 2), 12U);
+  EXPECT_EQ(
+      runner::source_list(runner::parse_run_config("source: {uri: x.avi}\n", "one.yaml")).size(),
+      1U);
+}
+
+TEST(RunConfig, SourcesListMistakesNameTheEntry) {
+  expect_error("sources: a.avi\n", 1, "sources");
+  expect_error("sources: []\n", 1, "sources");
+  expect_error("sources:\n  - a.avi\n  - {uri: b.avi, fsp: 3}\n", 3, "sources[1].fsp");
+  expect_error("sources:\n  - {width: 3}\n", 2, "sources[0]");
+  expect_error("source: {uri: a.avi}\nsources: [b.avi]\n", 2, "sources");
+  const auto invalid = [](const std::string& yaml, const std::string& field) {
+    runner::RunConfig config = runner::parse_run_config(yaml, "v.yaml");
+    config.detector.model = "m.onnx";
+    try {
+      runner::validate(config);
+      ADD_FAILURE() << "expected an InputError for " << field;
+    } catch (const InputError& error) {
+      EXPECT_EQ(error.field(), field) << error.what();
+    }
+  };
+  invalid("sources:\n  - {uri: a.avi, stream_id: 1}\n  - {uri: b.avi, stream_id: 1}\n",
+          "sources[1].stream_id");
+  invalid("sources: [a.avi, b.avi]\noutput: {video_file: v.avi}\n", "output.video_file");
 }
 
 // Every tracker key is read through the one options table: values a typed conversion would take
