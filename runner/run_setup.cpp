@@ -100,6 +100,10 @@ std::unique_ptr<detector::Detector> make_detector(const RunConfig& config) {
   ssd.backend = detector::parse_backend_request(wanted.backend).value();
   ssd.fp16 = detector::parse_fp16_request(wanted.fp16).value();
   ssd.threads = wanted.threads;
+  // One forward pass takes one frame of every source (the detect stage batches them): without
+  // this the SSD would split each batch into single images again.
+  ssd.max_batch = static_cast<int>(
+      std::clamp<std::size_t>(source_list(config).size(), 1, detector::kMaxBatchLimit));
   return std::make_unique<detector::SsdDetector>(ssd);
 }
 
