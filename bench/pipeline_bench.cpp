@@ -53,6 +53,7 @@ std::unique_ptr<pipeline::Pipeline> vtest_pipeline(pipeline::PlaybackMode playba
   ssd.model_path = RTMOT_MODEL_PATH;
   ssd.backend = detector::BackendRequest::cpu;
   ssd.threads = threads;
+  ssd.max_batch = sources;  // one forward pass per batch (needs the dynamic-batch model, format 2)
   std::vector<pipeline::PipelineInput> inputs(static_cast<std::size_t>(sources));
   for (std::size_t i = 0; i < inputs.size(); ++i) {
     inputs[i].source = runner::open_source((shared_dir() / "data/video/vtest.avi").string(), {});

@@ -1,5 +1,7 @@
 #include "runner/run_setup.hpp"
 
+#include <algorithm>
+
 #include "common/input_error.hpp"
 #include "detector/dnn_backend.hpp"
 #include "detector/replay_detector.hpp"
@@ -73,6 +75,9 @@ std::unique_ptr<detector::Detector> make_detector(const RunConfig& config) {
   ssd.backend = detector::parse_backend_request(wanted.backend).value();
   ssd.fp16 = detector::parse_fp16_request(wanted.fp16).value();
   ssd.threads = wanted.threads;
+  // One forward pass for the newest frame of every source (the detect stage's batch).
+  ssd.max_batch =
+      static_cast<int>(std::min<std::size_t>(source_list(config).size(), detector::kMaxBatchLimit));
   return std::make_unique<detector::SsdDetector>(ssd);
 }
 
