@@ -210,10 +210,12 @@ void BM_PipelineVsDetectorPaired(benchmark::State& state) {
     state.counters["ratio_median"] = median(ratios);
     state.counters["ratio_min"] = *std::min_element(ratios.begin(), ratios.end());
     state.counters["ratio_max"] = *std::max_element(ratios.begin(), ratios.end());
+    state.counters["opencv_threads"] = cv::getNumThreads();
   }
 }
 BENCHMARK(BM_PipelineVsDetectorPaired)
     ->ArgName("threads")
+    ->Arg(0)
     ->Arg(1)
     ->Arg(2)
     ->Iterations(1)
