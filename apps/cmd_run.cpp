@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "apps/subcommand.hpp"
+#include "apps/tracker_flags.hpp"
 #include "common/exit_codes.hpp"
 #include "common/input_error.hpp"
 #include "pipeline/pipeline.hpp"
@@ -33,6 +34,7 @@ struct RunOverrides {
   std::int64_t max_frames{-1};
   double stats_interval_s{-1.0};
   std::int64_t stream_id{-1};
+  TrackerFlags tracker_flags;
 };
 
 void apply(const RunOverrides& overrides, runner::RunConfig& config) {
@@ -69,6 +71,7 @@ void apply(const RunOverrides& overrides, runner::RunConfig& config) {
   if (overrides.max_frames >= 0) config.max_frames = overrides.max_frames;
   if (overrides.stats_interval_s >= 0.0) config.stats_interval_s = overrides.stats_interval_s;
   if (overrides.stream_id >= 0) config.stream_id = static_cast<std::uint32_t>(overrides.stream_id);
+  overrides.tracker_flags.apply(config.tracker);
 }
 
 int run(const RunOverrides& overrides) {
@@ -142,6 +145,7 @@ Subcommand add_run_command(CLI::App& parent) {
       ->check(CLI::NonNegativeNumber);
   cli->add_option("--stream-id", overrides->stream_id, "stream id in every message")
       ->check(CLI::Range(std::int64_t{0}, std::int64_t{4294967295}));
+  overrides->tracker_flags.add_to(*cli);
   return {cli, [overrides] { return run(*overrides); }};
 }
 

@@ -12,6 +12,7 @@
 #include "runner/sequence_clock_source.hpp"
 #include "runner/yaml_section.hpp"
 #include "tracker/presets.hpp"
+#include "tracker/tracker_options.hpp"
 
 namespace rtmot::runner {
 namespace {
@@ -98,17 +99,6 @@ void read_detector(Section section, DetectorConfig& detector) {
   section.reject_unknown();
 }
 
-template <typename Parse, typename Enum>
-bool read_enum(Section& section, const std::string& key, Parse parse,
-               const std::string& expectation, Enum& out) {
-  std::string text;
-  if (!section.read(key, text)) return false;
-  const auto parsed = parse(text);
-  if (!parsed) section.fail(*section.find(key), key, "expected " + expectation);
-  out = *parsed;
-  return true;
-}
-
 void read_tracker(Section section, tracker::TrackerConfig& config) {
   // Without a preset the pipeline starts from the default (best measured) one, as `rtmot track`.
   std::string preset{tracker::default_preset_name()};
@@ -121,48 +111,28 @@ void read_tracker(Section section, tracker::TrackerConfig& config) {
   config.frame_rate = 0.0;  // still "from the source" unless set below
   config.image_width = 0.F;
   config.image_height = 0.F;
-  // A preset's detection_threshold was tuned on MOTChallenge detection scores (Faster R-CNN); in
-  // the pipeline the detector's own score_threshold is the one confidence cut unless this is set
-  // below.
-  config.detection_threshold = 0.F;
-  read_enum(section, "predictor", tracker::parse_predictor, "kalman, stationary or particle",
-            config.predictor);
-  const bool affinity_given = read_enum(section, "affinity", tracker::parse_affinity,
-                                        "iou, linear or exponential", config.affinity);
-  const bool threshold_given = section.read("affinity_threshold", config.affinity_threshold);
-  // A new affinity without its own threshold gets that affinity's usual one.
-  if (affinity_given && !threshold_given)
-    config.affinity_threshold = tracker::default_threshold(config.affinity);
-  read_checked(section, "detection_threshold", config.detection_threshold, unit_interval,
-               "a score in [0, 1]");
-  read_checked(
-      section, "max_age", config.max_age, [](int v) { return v >= 0; }, "an age >= 0");
-  read_checked(
-      section, "min_hits", config.min_hits, [](int v) { return v >= 0; }, "a count >= 0");
-  read_enum(section, "time_step", tracker::parse_time_step, "per_update or elapsed",
-            config.time_step);
-  read_checked(
-      section, "frame_rate", config.frame_rate, [](double v) { return v > 0.0; }, "a rate > 0");
-  read_checked(
-      section, "image_width", config.image_width, [](float v) { return v > 0.F; }, "a width > 0");
-  read_checked(
-      section, "image_height", config.image_height, [](float v) { return v > 0.F; },
-      "a height > 0");
-  section.read("second_round", config.second_round);
-  read_checked(section, "low_score", config.low_score, unit_interval, "a score in [0, 1]");
-  section.read("observation_centric_reupdate", config.observation_centric_reupdate);
-  section.read("time_widened_gate", config.time_widened_gate);
-  read_checked(
-      section, "particle_count", config.particle_count, [](int v) { return v > 0; }, "a count > 0");
-  std::int64_t seed = static_cast<std::int64_t>(config.seed);
-  read_checked(
-      section, "seed", seed, [](std::int64_t v) { return v >= 0; }, "a seed >= 0");
-  config.seed = static_cast<std::uint64_t>(seed);
-  read_checked(
-      section, "max_tracks", config.max_tracks, [](int v) { return v > 0; }, "a count > 0");
-  read_checked(
-      section, "max_detections", config.max_detections, [](int v) { return v > 0; }, "a count > 0");
+  // No preset assumes a score scale (the default's cut is relative to the stream's own scores),
+  // so the preset applies here as in `rtmot track`; the detector's score_threshold is the
+  // detector's own cut, made before the tracker sees anything.
+  // Every other key is an option of the one table (tracker/tracker_options.hpp), read as text so
+  // that the YAML file and the command line accept exactly the same values.
+  for (const auto& option : tracker::tracker_options()) {
+    std::string text;
+    if (!section.read(option.name, text)) continue;
+    if (!option.set(config, text)) {
+      section.fail(*section.find(option.name), option.name, "expected " + option.expected);
+    }
+  }
   section.reject_unknown();
+  // Ranges that only fail together (frame_rate may still come from the source: checked later).
+  tracker::TrackerConfig check = config;
+  if (check.frame_rate <= 0.0) check.frame_rate = 1.0;
+  if (const auto problem = tracker::config_problem(check)) {
+    for (const char* key : {"particle_count", "max_tracks"}) {
+      if (const auto where = section.find(key)) section.fail(*where, key, *problem);
+    }
+    section.fail(YAML::Node{}, "", *problem);
+  }
 }
 
 void read_output(Section section, OutputConfig& output) {

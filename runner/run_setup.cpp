@@ -12,7 +12,9 @@
 #include "messages/binary_file_sink.hpp"
 #include "messages/jsonl_sink.hpp"
 #include "messages/udp_sink.hpp"
+#include "motio/mot_files.hpp"
 #include "runner/source_factory.hpp"
+#include "tracker/score_scale.hpp"
 
 namespace rtmot::runner {
 namespace {
@@ -63,10 +65,32 @@ std::vector<pipeline::PipelineInput> make_inputs(const RunConfig& config) {
   return inputs;
 }
 
+namespace {
+
+// A replayed detections file is cut twice on absolute scores: by the detector's score_threshold
+// and by the tracker's own cuts. Both assume [0, 1] scores; a file on another scale gets one
+// warning naming it and the range seen (tracker/score_scale.hpp). The SSD's scores are its own
+// sigmoid in [0, 1], where its threshold was chosen, so it needs none.
+void warn_on_score_scale(const DetectorConfig& detector, const tracker::TrackerConfig& tracker) {
+  tracker::ScoreRange range;
+  for (const auto& row : motio::read_mot_file(detector.det_file, motio::MotFileKind::detections))
+    range.include(row.conf);
+  tracker::TrackerConfig cuts = tracker;
+  cuts.detection_threshold = std::max(cuts.detection_threshold, detector.score_threshold);
+  if (const auto warning = tracker::score_scale_warning(cuts, range))
+    spdlog::warn("{}: {} (detector.score_threshold {})", detector.det_file, *warning,
+                 detector.score_threshold);
+}
+
+}  // namespace
+
 std::unique_ptr<detector::Detector> make_detector(const RunConfig& config) {
   const DetectorConfig& wanted = config.detector;
   if (wanted.kind == "replay") {
-    return std::make_unique<detector::ReplayDetector>(wanted.det_file, wanted.score_threshold);
+    auto replay =
+        std::make_unique<detector::ReplayDetector>(wanted.det_file, wanted.score_threshold);
+    warn_on_score_scale(wanted, config.tracker);
+    return replay;
   }
   detector::SsdConfig ssd;
   ssd.model_path = wanted.model;
@@ -87,9 +111,10 @@ std::unique_ptr<detector::Detector> make_detector(const RunConfig& config) {
   ssd.threads = wanted.threads > 0 ? wanted.threads : std::max(1, cv::getNumberOfCPUs());
   spdlog::info("detector threads: {}{}", ssd.threads,
                wanted.threads > 0 ? "" : " (the CPUs this process may use)");
-  // One forward pass for the newest frame of every source (the detect stage's batch).
-  ssd.max_batch =
-      static_cast<int>(std::min<std::size_t>(source_list(config).size(), detector::kMaxBatchLimit));
+  // One forward pass takes one frame of every source (the detect stage batches them): without
+  // this the SSD would split each batch into single images again.
+  ssd.max_batch = static_cast<int>(
+      std::clamp<std::size_t>(source_list(config).size(), 1, detector::kMaxBatchLimit));
   return std::make_unique<detector::SsdDetector>(ssd);
 }
 

@@ -173,6 +173,29 @@ TEST(RunConfig, SourcesListMistakesNameTheEntry) {
   invalid("sources: [a.avi, b.avi]\noutput: {video_file: v.avi}\n", "output.video_file");
 }
 
+// Every tracker key is read through the one options table: values a typed conversion would take
+// (NaN, a count written as a float, a count that would allocate gigabytes) are refused where read.
+TEST(RunConfig, TrackerRangesAreCheckedWhereRead) {
+  expect_error("tracker:\n  affinity_threshold: .nan\n", 2, "tracker.affinity_threshold");
+  expect_error("tracker:\n  max_tracks: 2147483647\n", 2, "tracker.max_tracks");
+  expect_error("tracker:\n  max_tracks: 1e6\n", 2, "tracker.max_tracks");
+  expect_error("tracker:\n  particle_count: 2147483647\n", 2, "tracker.particle_count");
+  expect_error("tracker:\n  affinity: exp\n", 2, "tracker.affinity");
+  expect_error("tracker:\n  max_tracks: 10000\n  predictor: particle\n  particle_count: 5000\n", 4,
+               "tracker.particle_count");
+}
+
+TEST(RunConfig, EveryTrackerOptionCanBeSetFromYaml) {
+  const auto config = runner::parse_run_config(
+      "tracker:\n  preset: sort\n  recent_tracks_first: true\n  confirm_by_duration: true\n"
+      "  min_coast_updates: 2\n  time_step: elapsed\n",
+      "t.yaml");
+  EXPECT_TRUE(config.tracker.recent_tracks_first);
+  EXPECT_TRUE(config.tracker.confirm_by_duration);
+  EXPECT_EQ(config.tracker.min_coast_updates, 2);
+  EXPECT_EQ(config.tracker.time_step, tracker::TimeStep::elapsed);
+}
+
 TEST(RunConfig, MalformedYamlNamesTheLine) {
   expect_error("source:\n  uri: [a.avi\n", 3, "");
 }
