@@ -10,10 +10,10 @@
 #include "common/exit_codes.hpp"
 #include "common/input_error.hpp"
 #include "pipeline/pipeline.hpp"
-#include "runner/run_config.hpp"
-#include "runner/run_setup.hpp"
 #include "platform/board.hpp"
 #include "platform/signals.hpp"
+#include "runner/run_config.hpp"
+#include "runner/run_setup.hpp"
 
 namespace rtmot::app {
 namespace {
@@ -117,7 +117,7 @@ Subcommand add_run_command(CLI::App& parent) {
       ->check(CLI::NonNegativeNumber);
   cli->add_option("--stream-id", overrides->stream_id, "stream id in every message")
       ->check(CLI::Range(std::int64_t{0}, std::int64_t{4294967295}));
-  return {cli, [overrides] { return run(*overrides); }};
+  return {cli, [overrides] { return run(*overrides); }, /*stops_on_signals=*/true};
 }
 
 }  // namespace rtmot::app

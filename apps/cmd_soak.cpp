@@ -17,9 +17,9 @@
 #include "apps/subcommand.hpp"
 #include "common/exit_codes.hpp"
 #include "pipeline/pipeline.hpp"
+#include "platform/signals.hpp"
 #include "runner/run_config.hpp"
 #include "runner/run_setup.hpp"
-#include "platform/signals.hpp"
 
 namespace rtmot::app {
 namespace {
@@ -43,8 +43,7 @@ double ms(std::int64_t ns) {
   return static_cast<double>(ns) * 1e-6;
 }
 
-pipeline::PipelineReport run_once(const runner::RunConfig& config,
-                                  const std::atomic<bool>& stop) {
+pipeline::PipelineReport run_once(const runner::RunConfig& config, const std::atomic<bool>& stop) {
   auto source = runner::make_source(config);
   const auto tracker_config = runner::complete_tracker_config(config, source->info());
   pipeline::Pipeline pipe(std::move(source), runner::make_detector(config), tracker_config,
@@ -116,7 +115,7 @@ Subcommand add_soak_command(CLI::App& parent) {
                   "passes); 0 = report only")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
-  return {cli, [options] { return run_soak(*options); }};
+  return {cli, [options] { return run_soak(*options); }, /*stops_on_signals=*/true};
 }
 
 }  // namespace rtmot::app

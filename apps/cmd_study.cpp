@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "apps/number_checks.hpp"
 #include "apps/subcommand.hpp"
 #include "common/exit_codes.hpp"
 #include "common/input_error.hpp"
@@ -16,6 +17,7 @@
 #include "mot/study_plan.hpp"
 #include "mot/study_report.hpp"
 #include "mot/study_runner.hpp"
+#include "motio/mot_files.hpp"
 
 namespace rtmot::app {
 namespace {
@@ -87,11 +89,11 @@ Subcommand add_study_command(CLI::App& parent) {
   cli->add_option("--out", options->out_dir, "folder for tables/, plots/ and summary.md")
       ->required();
   cli->add_option("--jobs", options->jobs, "worker threads")
-      ->check(CLI::PositiveNumber)
+      ->check(integer_in(1, 256))
       ->capture_default_str();
   cli->add_option("--intervals", options->intervals, "frame intervals, e.g. 1,2,3,5,10,15,30")
       ->delimiter(',')
-      ->check(CLI::PositiveNumber);
+      ->check(integer_in(1, motio::kMaxFrame));
   cli->add_flag(
       "--quick", options->quick,
       "kalman-iou, the options, the ablation and the presets only (no predictor x affinity grid)");

@@ -9,12 +9,14 @@
 #include <optional>
 #include <string>
 
+#include "apps/number_checks.hpp"
 #include "apps/subcommand.hpp"
 #include "common/exit_codes.hpp"
 #include "common/input_error.hpp"
-#include "mot/evaluation.hpp"
 #include "motio/results_writer.hpp"
+#include "motio/sequence_folders.hpp"
 #include "motio/track_runner.hpp"
+#include "platform/signals.hpp"
 #include "tracker/presets.hpp"
 #include "tracker/tracker_config.hpp"
 
@@ -56,9 +58,10 @@ Value parsed(const std::optional<Value>& value, const char* option, const std::s
 tracker::TrackerConfig make_config(const TrackCommandOptions& options) {
   const auto preset = tracker::find_preset(options.preset);
   if (!preset) {
-    throw InputError("command line", 0, "--preset",
-                     "unknown preset '" + options.preset + "' (known: " + tracker::preset_names() + ")",
-                     ExitCode::usage);
+    throw InputError(
+        "command line", 0, "--preset",
+        "unknown preset '" + options.preset + "' (known: " + tracker::preset_names() + ")",
+        ExitCode::usage);
   }
   tracker::TrackerConfig config = *preset;
   if (!options.predictor.empty()) {
@@ -88,34 +91,46 @@ double hz(int frames, double seconds) {
 }
 
 int run_track(const TrackCommandOptions& options) {
+  platform::StopSignals signals;  // a stop ends the sequence in progress, unwritten
   motio::TrackOptions track_options;
   track_options.config = make_config(options);
   track_options.detections = options.detections;
   track_options.interval = options.interval;
-  const auto sequences = mot::find_sequence_dirs(options.dataset);
+  track_options.stop = &signals.stop_flag();
+  const auto sequences = motio::find_sequences(options.dataset);
   std::error_code error;
   fs::create_directories(options.out_dir, error);
   if (error) throw InputError(options.out_dir, 0, "--out", "cannot create: " + error.message());
 
   int total_frames = 0;
   double total_seconds = 0.0;
-  for (const auto& dir : sequences) {
+  int written = 0;
+  for (const auto& sequence : sequences) {
     using Clock = std::chrono::steady_clock;
     auto next_report = Clock::now() + std::chrono::duration<double>(kProgressEverySeconds);
     const auto progress = [&](int frame, int length) {
       if (Clock::now() < next_report) return;
       next_report = Clock::now() + std::chrono::duration<double>(kProgressEverySeconds);
-      spdlog::info("{}: frame {} of {}", dir.filename().string(), frame, length);
+      spdlog::info("{}: frame {} of {}", sequence.info.name, frame, length);
     };
-    const motio::TrackRun run = motio::track_sequence(dir, track_options, progress);
-    const fs::path out_file = fs::path(options.out_dir) / (run.info.name + ".txt");
+    const motio::TrackRun run = motio::track_detections(
+        motio::load_detections(sequence.dir / track_options.detections, sequence.info),
+        sequence.info, track_options, progress);
+    if (run.stopped) break;
+    const fs::path out_file = motio::sequence_file(options.out_dir, run.info.name, ".txt");
     motio::write_results(out_file, run.tracks);
+    ++written;
     fmt::print("{:<16} {:>6} frames {:>7} boxes  tracker {:>9.0f} Hz  -> {}\n", run.info.name,
                run.frames_processed, run.tracks.size(),
                hz(run.frames_processed, run.seconds_in_update), out_file.string());
     std::fflush(stdout);
     total_frames += run.frames_processed;
     total_seconds += run.seconds_in_update;
+  }
+  if (signals.stop_requested()) {
+    spdlog::warn("stopped: {} of {} sequences written (each whole), the rest not started", written,
+                 sequences.size());
+    return to_int(ExitCode::ok);
   }
   fmt::print("{:<16} {:>6} frames  tracker {:.0f} Hz (time inside Tracker::update only)\n",
              "OVERALL", total_frames, hz(total_frames, total_seconds));
@@ -134,8 +149,9 @@ Subcommand add_track_command(CLI::App& parent) {
                   "a sequence folder (with seqinfo.ini) or a folder of them")
       ->required();
   cli->add_option("--out", options->out_dir, "folder for the results files")->required();
-  cli->add_option("--preset", options->preset,
-                  "starting configuration (" + tracker::preset_names() + "); options below override it")
+  cli->add_option(
+         "--preset", options->preset,
+         "starting configuration (" + tracker::preset_names() + "); options below override it")
       ->capture_default_str();
   cli->add_option("--predictor", options->predictor, "kalman, stationary or particle")
       ->check(CLI::IsMember({"kalman", "stationary", "particle"}));
@@ -143,25 +159,28 @@ Subcommand add_track_command(CLI::App& parent) {
                   "iou, linear or exponential (sets its usual --threshold)")
       ->check(CLI::IsMember({"iou", "linear", "exponential"}));
   options->threshold_option =
-      cli->add_option("--threshold", options->threshold, "minimum affinity for a match");
-  options->detection_threshold_option = cli->add_option(
-      "--detection-threshold", options->detection_threshold, "drop detections scoring below this");
+      cli->add_option("--threshold", options->threshold, "minimum affinity for a match")
+          ->check(finite_in(-1e12, 1e12));
+  options->detection_threshold_option =
+      cli->add_option("--detection-threshold", options->detection_threshold,
+                      "drop detections scoring below this")
+          ->check(finite_in(0.0, 1.0));
   options->max_age_option =
       cli->add_option("--max-age", options->max_age, "frames a track survives without a match")
-          ->check(CLI::NonNegativeNumber);
+          ->check(integer_in(0, motio::kMaxFrame));
   options->min_hits_option =
       cli->add_option("--min-hits", options->min_hits, "matches before a track is reported")
-          ->check(CLI::NonNegativeNumber);
+          ->check(integer_in(0, motio::kMaxFrame));
   cli->add_option("--time-step", options->time_step, "per-update or elapsed")
       ->check(CLI::IsMember({"per-update", "elapsed"}));
   cli->add_option("--interval", options->interval,
                   "process frames 1, 1+N, 1+2N, ... only (frame numbers and times kept)")
-      ->check(CLI::PositiveNumber)
+      ->check(integer_in(1, motio::kMaxFrame))
       ->capture_default_str();
   cli->add_option("--det", options->detections,
                   "detections file relative to each sequence folder (gt/gt.txt = perfect detector)")
       ->capture_default_str();
-  return {cli, [options] { return run_track(*options); }};
+  return {cli, [options] { return run_track(*options); }, /*stops_on_signals=*/true};
 }
 
 }  // namespace rtmot::app

@@ -1,7 +1,9 @@
 // rtmot: one executable, one subcommand per job (`rtmot --help` lists them).
+#include <pthread.h>
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
+#include <csignal>
 #include <exception>
 #include <string_view>
 #include <vector>
@@ -35,9 +37,29 @@ bool is_unknown_subcommand(const CLI::App& app, int argc, char** argv) {
   return true;
 }
 
+// SIGINT/SIGTERM blocked before anything else: a command that stops cleanly on them takes the ones
+// sent while it starts (platform::StopSignals sigwait()s pending signals too).
+void block_stop_signals() {
+  sigset_t stop_signals;
+  sigemptyset(&stop_signals);
+  sigaddset(&stop_signals, SIGINT);
+  sigaddset(&stop_signals, SIGTERM);
+  pthread_sigmask(SIG_BLOCK, &stop_signals, nullptr);
+}
+
+// For commands that do not stop cleanly: a pending or later signal takes its default action.
+void unblock_stop_signals() {
+  sigset_t stop_signals;
+  sigemptyset(&stop_signals);
+  sigaddset(&stop_signals, SIGINT);
+  sigaddset(&stop_signals, SIGTERM);
+  pthread_sigmask(SIG_UNBLOCK, &stop_signals, nullptr);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
+  block_stop_signals();
   // Logs and errors go to stderr (the journal on a board); stdout carries only command output.
   spdlog::set_default_logger(spdlog::stderr_color_mt("rtmot"));
 
@@ -67,7 +89,9 @@ int main(int argc, char** argv) {
   }
   spdlog::set_level(spdlog::level::from_str(log_level));
   for (const auto& subcommand : subcommands) {
-    if (subcommand.cli->parsed()) return run_reporting_errors(subcommand.run);
+    if (!subcommand.cli->parsed()) continue;
+    if (!subcommand.stops_on_signals) unblock_stop_signals();
+    return run_reporting_errors(subcommand.run);
   }
   return rtmot::to_int(rtmot::ExitCode::usage);
 }

@@ -6,8 +6,9 @@
 #include <vector>
 
 #include "mot/metrics.hpp"
-#include "motio/mot_files.hpp"
 #include "mot/sequence_counts.hpp"
+#include "motio/frame_detections.hpp"
+#include "motio/mot_files.hpp"
 #include "tracker/box.hpp"
 #include "tracker/tracker_config.hpp"
 
@@ -24,8 +25,8 @@ std::string_view to_string(StudyInput input);
 struct LoadedSequence {
   motio::SequenceInfo info;
   std::vector<motio::MotRow> gt_rows;
-  std::vector<std::vector<tracker::Detection>> detections;     // det/det.txt, by frame
-  std::vector<std::vector<tracker::Detection>> gt_detections;  // gt/gt.txt, by frame
+  motio::FrameDetections detections;     // det/det.txt
+  motio::FrameDetections gt_detections;  // gt/gt.txt
 };
 
 /// Every sequence under `dataset` (a sequence folder or a folder of them). Throws InputError.
