@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <cstring>
+#include <iterator>
 #include <string>
 #include <utility>
 
@@ -15,6 +16,7 @@ namespace rtmot {
 
 OutputFile::OutputFile(std::filesystem::path path, Publish publish, std::size_t buffer_bytes)
     : path_(std::move(path)), publish_(publish), buffer_(std::max<std::size_t>(buffer_bytes, 1)) {
+  record_ends_.reserve(1024);
   written_path_ = publish_ == Publish::on_close
                       ? std::filesystem::path(path_.string() + ".tmp-" + std::to_string(::getpid()))
                       : path_;
@@ -45,36 +47,49 @@ OutputFile::OutputFile(OutputFile&& other) noexcept
       fd_(std::exchange(other.fd_, -1)),
       whole_bytes_(other.whole_bytes_),
       buffer_(std::move(other.buffer_)),
-      used_(std::exchange(other.used_, 0)) {}
+      used_(std::exchange(other.used_, 0)),
+      record_ends_(std::move(other.record_ends_)) {}
 
 void OutputFile::write(const void* data, std::size_t size) {
   if (fd_ < 0) throw InputError(path_.string(), 0, "", "write after close");
   if (used_ + size > buffer_.size()) flush();
   if (size > buffer_.size()) {
-    write_out(static_cast<const char*>(data), size);  // alone: still one record, one write()
+    write_out(static_cast<const char*>(data), size, {size});  // alone: one record, one write()
     return;
   }
   std::memcpy(buffer_.data() + used_, data, size);
   used_ += size;
+  record_ends_.push_back(used_);  // no allocation once it has held a buffer's worth
 }
 
 void OutputFile::flush() {
   if (fd_ < 0 || used_ == 0) return;
   const std::size_t size = used_;
   used_ = 0;
-  write_out(buffer_.data(), size);
+  try {
+    write_out(buffer_.data(), size, record_ends_);
+  } catch (...) {
+    record_ends_.clear();
+    throw;
+  }
+  record_ends_.clear();
 }
 
-void OutputFile::write_out(const char* data, std::size_t size) {
+void OutputFile::write_out(const char* data, std::size_t size,
+                           const std::vector<std::size_t>& record_ends) {
   std::size_t done = 0;
   while (done < size) {
     const ssize_t wrote = ::write(fd_, data + done, size - done);
     if (wrote < 0 && errno == EINTR) continue;
     if (wrote <= 0) {
       const int error = wrote < 0 ? errno : ENOSPC;
-      // Cut back to the last whole record, so that what stays readable is whole.
-      if (::ftruncate(fd_, static_cast<off_t>(whole_bytes_)) == 0) {
-        ::lseek(fd_, static_cast<off_t>(whole_bytes_), SEEK_SET);
+      // Cut back to the end of the last whole record, so that what stays readable is whole.
+      const auto whole = std::upper_bound(record_ends.begin(), record_ends.end(), done);
+      const std::uint64_t keep =
+          whole_bytes_ + (whole == record_ends.begin() ? 0 : *std::prev(whole));
+      if (::ftruncate(fd_, static_cast<off_t>(keep)) == 0) {
+        ::lseek(fd_, static_cast<off_t>(keep), SEEK_SET);
+        whole_bytes_ = keep;
       }
       fail("cannot write", error);
     }

@@ -44,7 +44,9 @@ class OutputFile {
   const std::filesystem::path& path() const { return path_; }
 
  private:
-  void write_out(const char* data, std::size_t size);
+  /// Writes `size` bytes; on failure cuts the file back to the end of the last whole record,
+  /// `record_ends` (ascending offsets in `data`) telling where records end.
+  void write_out(const char* data, std::size_t size, const std::vector<std::size_t>& record_ends);
   [[noreturn]] void fail(const char* action, int error);
 
   std::filesystem::path path_;
@@ -54,6 +56,7 @@ class OutputFile {
   std::uint64_t whole_bytes_{0};  // bytes on disk, all whole records
   std::vector<char> buffer_;
   std::size_t used_{0};
+  std::vector<std::size_t> record_ends_;  // in buffer_: where each buffered record ends
 };
 
 /// Writes `text` to `path` as one record, published on close (never a partial file).

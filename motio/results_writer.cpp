@@ -30,7 +30,7 @@ void ResultsWriter::write(const MotRow& row) {
 
 void ResultsWriter::write_row(int frame, int id, const tracker::Box& box, float score) {
   line_ = fmt::format("{},{},{},{},{},{},{:.4f},-1,-1,-1\n", frame, id, results_number(box.x),
-                      results_number(box.y), results_number(box.w), results_number(box.h),
+                      results_number(box.y), results_size(box.w), results_size(box.h),
                       static_cast<double>(score));
   file_.write(line_);
 }

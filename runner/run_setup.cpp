@@ -7,34 +7,10 @@
 #include "messages/binary_file_sink.hpp"
 #include "messages/jsonl_sink.hpp"
 #include "messages/udp_sink.hpp"
+#include "runner/host_port.hpp"
 #include "runner/source_factory.hpp"
 
 namespace rtmot::runner {
-namespace {
-
-struct HostPort {
-  std::string host;
-  std::uint16_t port{0};
-};
-
-HostPort parse_host_port(const RunConfig& config) {
-  const std::string& text = config.output.udp;
-  const auto colon = text.rfind(':');
-  const auto bad = [&] {
-    return InputError(config.file, 0, "output.udp", "expected HOST:PORT, got '" + text + "'");
-  };
-  if (colon == std::string::npos || colon == 0 || colon + 1 == text.size()) throw bad();
-  int port = 0;
-  for (const char c : text.substr(colon + 1)) {
-    if (c < '0' || c > '9' || port > 65535) throw bad();
-    port = port * 10 + (c - '0');
-  }
-  if (port < 1 || port > 65535) throw bad();
-  return {text.substr(0, colon), static_cast<std::uint16_t>(port)};
-}
-
-}  // namespace
-
 std::unique_ptr<platform::VideoSource> make_source(const RunConfig& config) {
   platform::SourceOptions options;
   options.width = config.source.width;
@@ -65,7 +41,9 @@ std::vector<std::unique_ptr<messages::TrackSink>> make_sinks(const RunConfig& co
   std::vector<std::unique_ptr<messages::TrackSink>> sinks;
   const OutputConfig& output = config.output;
   if (!output.udp.empty()) {
-    const HostPort target = parse_host_port(config);
+    // Checked when the file was read (with its line) or the override given.
+    const HostPort target =
+        parse_host_port(output.udp, config.file, 0, "output.udp", ExitCode::bad_input);
     sinks.push_back(std::make_unique<messages::UdpSink>(target.host, target.port));
   }
   if (!output.binary_file.empty()) {
