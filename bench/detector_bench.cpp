@@ -1,14 +1,13 @@
-// The SSD detector's own speed on vtest.avi frames: frames are decoded into memory first, so only
-// detect() (resize, normalise, forward pass, decoding, NMS) is timed. Needs the model
-// (scripts/fetch_model.sh) and ../shared/data/video/vtest.avi.
+// The SSD detector's own speed on vtest.avi frames: frames are decoded into memory first (through
+// rtmot's sources: bench_frames.hpp), so only detect() (resize, normalise, forward pass, decoding,
+// NMS) is timed. Needs the model (scripts/fetch_model.sh) and ../shared/data/video/vtest.avi (or
+// RTMOT_BENCH_FRAMES=images://DIR). For batches and the CUDA backends: detector_batch_bench.
 // Run: build/bench/detector_bench [--benchmark_filter=...]
 #include <benchmark/benchmark.h>
 
-#include <cstdlib>
-#include <filesystem>
-#include <opencv2/videoio.hpp>
 #include <vector>
 
+#include "bench_frames.hpp"
 #include "detector/ssd_detector.hpp"
 
 namespace {
@@ -16,28 +15,24 @@ namespace {
 constexpr int kFrames = 16;       // kept in memory, cycled through
 constexpr int kFrameStride = 25;  // spread over the video for varied content
 
-std::filesystem::path shared_dir() {
-  const char* env = std::getenv("RTMOT_SHARED_DIR");
-  return env ? env : RTMOT_SHARED_DIR;
-}
+struct Frames {
+  std::vector<cv::Mat> images;
+  std::string error;
+};
 
-const std::vector<cv::Mat>& frames() {
-  static const std::vector<cv::Mat> decoded = [] {
-    std::vector<cv::Mat> out;
-    cv::VideoCapture video((shared_dir() / "data/video/vtest.avi").string(), cv::CAP_FFMPEG);
-    cv::Mat image;
-    for (int i = 0; static_cast<int>(out.size()) < kFrames && video.read(image); ++i) {
-      if (i % kFrameStride == 0) out.push_back(image.clone());
-    }
+const Frames& frames() {
+  static const Frames decoded = [] {
+    Frames out;
+    out.images = rtmot::bench::load_bench_frames(kFrames, kFrameStride, out.error);
     return out;
   }();
   return decoded;
 }
 
 void BM_SsdDetect(benchmark::State& state) {
-  const auto& images = frames();
+  const auto& images = frames().images;
   if (images.empty()) {
-    state.SkipWithError("cannot decode vtest.avi: set RTMOT_SHARED_DIR");
+    state.SkipWithError(("no frames: " + frames().error).c_str());
     return;
   }
   rtmot::detector::SsdConfig config;

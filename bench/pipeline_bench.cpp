@@ -1,16 +1,24 @@
-// End-to-end throughput of the pipeline against its detector's own throughput, in every-frame mode
-// on vtest.avi with the SSD on the CPU: the pipeline overlaps decoding, tracking and sending with
-// detection, so its FPS should stay within a few percent of the detector's (goal: >= 0.97x).
-// Both FPS come from the same run: detector FPS = processed frames / time spent inside detect().
+// The pipeline against its detector, on vtest.avi with the SSD on the CPU (docs/architecture.md,
+// "Measured"). Run it right after bench/detector_bench on the same machine:
+//   build/bench/detector_bench && build/bench/pipeline_bench
+// - BM_PipelineEveryFrameVsDetector: every-frame mode; the pipeline overlaps decoding, tracking and
+//   sending with detection, so its FPS should stay within a few percent of the detector's (goal:
+//   >= 0.97x detector_bench at the same thread count). detector_fps is the same run's processed
+//   frames / time inside detect().
+// - BM_PipelineRealtimeWaitCost: realtime mode (10 fps, the detector is idle most of the time):
+//   the CPU burnt by the threads that only hand frames over (rtmot-capture, -track, -sink; goal:
+//   < 3% of one core together) and the frame age at message out (capture -> sent p99; goal: <=
+//   the detector's p99 + 5 ms).
 // Needs the model (scripts/fetch_model.sh) and ../shared/data/video/vtest.avi.
-// Run: build/bench/pipeline_bench
 #include <benchmark/benchmark.h>
 
 #include <atomic>
+#include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <memory>
 
+#include "bench/thread_cpu.hpp"
 #include "detector/ssd_detector.hpp"
 #include "pipeline/pipeline.hpp"
 #include "runner/source_factory.hpp"
@@ -18,7 +26,7 @@
 
 namespace {
 
-constexpr std::int64_t kFrames = 150;
+using namespace rtmot;
 
 std::filesystem::path shared_dir() {
   const char* env = std::getenv("RTMOT_SHARED_DIR");
@@ -26,33 +34,42 @@ std::filesystem::path shared_dir() {
 }
 
 // A sink that keeps nothing: the benchmark measures the pipeline, not an output.
-class NullSink : public rtmot::messages::TrackSink {
+class NullSink : public messages::TrackSink {
  public:
-  void write(const rtmot::messages::FrameResult&) override {}
+  void write(const messages::FrameResult&) override {}
   void flush() override {}
 };
 
+std::unique_ptr<pipeline::Pipeline> vtest_pipeline(pipeline::PlaybackMode playback, int threads,
+                                                   std::int64_t frames) {
+  detector::SsdConfig ssd;
+  ssd.model_path = RTMOT_MODEL_PATH;
+  ssd.backend = detector::BackendRequest::cpu;
+  ssd.threads = threads;
+  auto source = runner::open_source((shared_dir() / "data/video/vtest.avi").string(), {});
+  auto tracker_config = tracker::TrackerConfig::sort_preset();
+  tracker_config.frame_rate = source->info().fps;
+  std::vector<std::unique_ptr<messages::TrackSink>> sinks;
+  sinks.push_back(std::make_unique<NullSink>());
+  pipeline::PipelineOptions options;
+  options.playback = playback;
+  options.max_frames = frames;
+  options.stats_interval_s = 0.0;
+  return std::make_unique<pipeline::Pipeline>(std::move(source),
+                                              std::make_unique<detector::SsdDetector>(ssd),
+                                              tracker_config, std::move(sinks), options);
+}
+
+double ms(std::int64_t ns) {
+  return static_cast<double>(ns) / 1e6;
+}
+
 void BM_PipelineEveryFrameVsDetector(benchmark::State& state) {
-  using namespace rtmot;
   for (auto _ : state) {
     std::unique_ptr<pipeline::Pipeline> run;
     try {
-      detector::SsdConfig ssd;
-      ssd.model_path = RTMOT_MODEL_PATH;
-      ssd.backend = detector::BackendRequest::cpu;
-      ssd.threads = static_cast<int>(state.range(0));
-      auto source = runner::open_source((shared_dir() / "data/video/vtest.avi").string(), {});
-      auto tracker_config = tracker::TrackerConfig::sort_preset();
-      tracker_config.frame_rate = source->info().fps;
-      std::vector<std::unique_ptr<messages::TrackSink>> sinks;
-      sinks.push_back(std::make_unique<NullSink>());
-      pipeline::PipelineOptions options;
-      options.playback = pipeline::PlaybackMode::every_frame;
-      options.max_frames = kFrames;
-      options.stats_interval_s = 0.0;
-      run = std::make_unique<pipeline::Pipeline>(std::move(source),
-                                                 std::make_unique<detector::SsdDetector>(ssd),
-                                                 tracker_config, std::move(sinks), options);
+      run = vtest_pipeline(pipeline::PlaybackMode::every_frame, static_cast<int>(state.range(0)),
+                           150);
     } catch (const std::exception& error) {
       state.SkipWithError(error.what());
       return;
@@ -62,14 +79,53 @@ void BM_PipelineEveryFrameVsDetector(benchmark::State& state) {
     state.counters["pipeline_fps"] = report.fps;
     state.counters["detector_fps"] = report.detector_fps;
     state.counters["ratio"] = report.detector_fps > 0.0 ? report.fps / report.detector_fps : 0.0;
-    state.counters["e2e_p50_ms"] =
-        static_cast<double>(report.latency.end_to_end.quantile_ns(0.5)) / 1e6;
-    state.counters["e2e_p99_ms"] =
-        static_cast<double>(report.latency.end_to_end.quantile_ns(0.99)) / 1e6;
+    state.counters["e2e_p50_ms"] = ms(report.latency.end_to_end.quantile_ns(0.5));
+    state.counters["e2e_p99_ms"] = ms(report.latency.end_to_end.quantile_ns(0.99));
   }
 }
 BENCHMARK(BM_PipelineEveryFrameVsDetector)
+    ->ArgName("threads")
     ->Arg(1)
+    ->Arg(2)
+    ->Iterations(1)
+    ->Unit(benchmark::kSecond)
+    ->UseRealTime();
+
+void BM_PipelineRealtimeWaitCost(benchmark::State& state) {
+  for (auto _ : state) {
+    std::unique_ptr<pipeline::Pipeline> run;
+    try {
+      run = vtest_pipeline(pipeline::PlaybackMode::realtime, static_cast<int>(state.range(0)), 150);
+    } catch (const std::exception& error) {
+      state.SkipWithError(error.what());
+      return;
+    }
+    const std::atomic<bool> stop{false};
+    bench::ThreadCpuSampler cpu;
+    const auto start = std::chrono::steady_clock::now();
+    const pipeline::PipelineReport report = run->run(stop);
+    const std::chrono::duration<double> wall = std::chrono::steady_clock::now() - start;
+    cpu.stop();
+    const auto percent = [&](const char* name) {
+      return 100.0 * cpu.cpu_seconds(name) / wall.count();
+    };
+    state.counters["capture_cpu_pct"] = percent("rtmot-capture");
+    state.counters["track_cpu_pct"] = percent("rtmot-track");
+    state.counters["sink_cpu_pct"] = percent("rtmot-sink");
+    state.counters["handoff_cpu_pct"] =
+        percent("rtmot-capture") + percent("rtmot-track") + percent("rtmot-sink");
+    state.counters["detect_cpu_pct"] = percent("rtmot-detect");
+    state.counters["processed"] = static_cast<double>(report.frames_processed);
+    state.counters["detect_p50_ms"] = ms(report.latency.detect.quantile_ns(0.5));
+    state.counters["detect_p99_ms"] = ms(report.latency.detect.quantile_ns(0.99));
+    state.counters["age_p50_ms"] = ms(report.latency.end_to_end.quantile_ns(0.5));
+    state.counters["age_p99_ms"] = ms(report.latency.end_to_end.quantile_ns(0.99));
+    state.counters["age_p99_minus_detect_p99_ms"] =
+        ms(report.latency.end_to_end.quantile_ns(0.99) - report.latency.detect.quantile_ns(0.99));
+  }
+}
+BENCHMARK(BM_PipelineRealtimeWaitCost)
+    ->ArgName("threads")
     ->Arg(2)
     ->Iterations(1)
     ->Unit(benchmark::kSecond)

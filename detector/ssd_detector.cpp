@@ -1,5 +1,8 @@
 #include "detector/ssd_detector.hpp"
 
+#include <algorithm>
+#include <chrono>
+#include <fstream>
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 #include <sstream>
@@ -7,6 +10,7 @@
 
 #include "common/input_error.hpp"
 #include "detector/coco_labels.hpp"
+#include "detector/model_checksum.hpp"
 
 namespace rtmot::detector {
 namespace {
@@ -19,10 +23,28 @@ InputError model_error(const std::filesystem::path& path, const std::string& pro
   return InputError(path.string(), 0, "", problem, ExitCode::bad_model);
 }
 
-cv::dnn::Net load_network(const std::filesystem::path& path, const BackendChoice& backend) {
-  if (!std::filesystem::is_regular_file(path)) {
-    throw model_error(path, "model file not found (run scripts/fetch_model.sh)");
+// A model path that cannot even be looked at (a folder without permission, a name too long) is the
+// user's problem to fix, like a missing file: say which, with the model's exit code.
+void require_readable_file(const std::filesystem::path& path, const char* what) {
+  std::error_code error;
+  const auto status = std::filesystem::status(path, error);
+  if (error && error != std::errc::no_such_file_or_directory &&
+      error != std::errc::not_a_directory) {
+    throw model_error(path, std::string("cannot access the ") + what + ": " + error.message());
   }
+  if (std::filesystem::is_directory(status)) {
+    throw model_error(path, std::string("the ") + what + " path is a folder, not a file");
+  }
+  if (!std::filesystem::is_regular_file(status)) {
+    throw model_error(path, std::string(what) + " file not found (run scripts/fetch_model.sh)");
+  }
+  if (!std::ifstream(path, std::ios::binary)) {
+    throw model_error(path, std::string("cannot read the ") + what + " file (permissions?)");
+  }
+}
+
+cv::dnn::Net load_network(const std::filesystem::path& path, const BackendChoice& backend) {
+  require_readable_file(path, "model");
   cv::dnn::Net net;
   try {
     net = cv::dnn::readNetFromONNX(path.string());
@@ -54,6 +76,24 @@ std::filesystem::path anchors_path_of(const SsdConfig& config) {
                                      : config.anchors_path;
 }
 
+// Runs before anything is loaded, so a damaged download is named as such rather than surfacing as
+// a parse error or, worse, as plausible but wrong boxes.
+BackendChoice checked_backend(const SsdConfig& config) {
+  if (config.max_batch < 1 || config.max_batch > kMaxBatchLimit) {
+    throw InputError(
+        "", 0, "max_batch",
+        std::to_string(config.max_batch) + " is outside 1.." + std::to_string(kMaxBatchLimit),
+        ExitCode::usage);
+  }
+  BackendChoice choice = choose_backend(config.backend, config.fp16, probe_backend_capabilities());
+  if (config.verify_checksums) {
+    require_readable_file(config.model_path, "model");
+    verify_model_checksums(checksum_path_of(config.model_path), config.model_path,
+                           anchors_path_of(config));
+  }
+  return choice;
+}
+
 }  // namespace
 
 std::filesystem::path default_anchors_path(const std::filesystem::path& model_path) {
@@ -63,7 +103,7 @@ std::filesystem::path default_anchors_path(const std::filesystem::path& model_pa
 
 SsdDetector::SsdDetector(SsdConfig config)
     : config_(std::move(config)),
-      backend_(choose_backend(config_.backend, config_.fp16, probe_backend_capabilities())),
+      backend_(checked_backend(config_)),
       net_(load_network(config_.model_path, backend_)),
       postprocess_(read_anchors(anchors_path_of(config_)), kNumClasses,
                    postprocess_config(config_)),
@@ -71,62 +111,124 @@ SsdDetector::SsdDetector(SsdConfig config)
       normalized_(kInputSize, kInputSize, CV_32FC3),
       output_names_{"box_encodings", "class_logits"} {
   if (config_.threads > 0) cv::setNumThreads(config_.threads);
-  const int blob_shape[] = {1, 3, kInputSize, kInputSize};
+  const int batch = config_.max_batch;
+  const int blob_shape[] = {batch, 3, kInputSize, kInputSize};
   blob_.create(4, blob_shape, CV_32F);
   blob_.setTo(0.F);
-  // cv::split writes channel k (BGR order) into planes_[k]; they point at the RGB planes 2, 1, 0.
-  for (int bgr = 0; bgr < 3; ++bgr) {
-    planes_.emplace_back(kInputSize, kInputSize, CV_32F, blob_.ptr<float>(0, 2 - bgr));
+  for (int n = 1; n <= batch; ++n) {
+    const int view_shape[] = {n, 3, kInputSize, kInputSize};
+    batch_views_.emplace_back(4, view_shape, CV_32F, blob_.data);
   }
-  // One forward pass now: it checks the model against its anchors and moves the one-off costs
-  // (layer allocation, CUDA context) out of the first frame.
+  // cv::split writes channel k (BGR order) into planes_[3 * image + k]; they point at the RGB
+  // planes 2, 1, 0 of that image.
+  for (int image = 0; image < batch; ++image) {
+    for (int bgr = 0; bgr < 3; ++bgr) {
+      planes_.emplace_back(kInputSize, kInputSize, CV_32F, blob_.ptr<float>(image, 2 - bgr));
+    }
+  }
+  // One forward pass now (at the largest batch, which also sizes OpenCV's buffers for it): it
+  // checks the model against its anchors and moves the one-off costs (layer allocation, CUDA
+  // context, cuDNN plans) out of the first frame.
+  warm_up(batch);
+  if (batch > 1) warm_up(1);  // single images too (a batch-1 pass re-plans the network)
+  // The choice and its reason are logged by whoever builds the pipeline (describe()), once.
+}
+
+void SsdDetector::warm_up(int count) {
   try {
-    net_.setInput(blob_);
-    net_.forward(outputs_, output_names_);
+    forward(count);
   } catch (const cv::Exception& e) {
     throw model_error(config_.model_path, "the model does not run: " + e.msg);
   }
   const auto anchors = static_cast<std::size_t>(postprocess_.num_anchors());
-  if (outputs_.size() != 2 || outputs_[0].total() != anchors * 4 ||
-      outputs_[1].total() != anchors * kNumClasses) {
+  const auto images = static_cast<std::size_t>(count);
+  if (outputs_.size() != 2 || outputs_[0].total() != images * anchors * 4 ||
+      outputs_[1].total() != images * anchors * kNumClasses) {
     throw model_error(config_.model_path,
                       "the model's outputs do not match " + std::to_string(anchors) +
                           " anchors x (4 box codes, 91 classes): wrong model or anchors file");
   }
-  // The choice and its reason are logged by whoever builds the pipeline (describe()), once.
+  // A model exported for one image per pass concatenates a batch's anchors into one row.
+  if (outputs_[0].dims < 3 || outputs_[0].size[0] != count || outputs_[1].size[0] != count) {
+    throw model_error(config_.model_path,
+                      "the model takes one image per pass (exported before batching), max_batch " +
+                          std::to_string(count) +
+                          " needs a batch dimension: run "
+                          "scripts/fetch_model.sh again");
+  }
+  // NaN or infinite weights (a damaged or badly converted model) make every score NaN, and NaN
+  // compares false with the threshold: the detector would silently find nothing.
+  for (const cv::Mat& output : outputs_) {
+    if (!cv::checkRange(output)) {
+      throw model_error(config_.model_path,
+                        "the model computes NaN or infinite values on its start-up pass (damaged "
+                        "weights?): run scripts/fetch_model.sh again");
+    }
+  }
 }
 
-void SsdDetector::preprocess(const cv::Mat& bgr_image) {
+void SsdDetector::forward(int count) {
+  const auto start = std::chrono::steady_clock::now();
+  net_.setInput(batch_views_[static_cast<std::size_t>(count - 1)]);
+  // What OpenCV still allocates per frame (measured, OpenCV 4.6, CPU, 1 thread): forward() makes
+  // about 1000 small heap allocations (per-layer bookkeeping: Mat vectors, scratch of at most
+  // 64 KB) and returns headers on the network's own output blobs. No buffer the size of an image
+  // or blob: those above are reused. A batch size other than the last one's makes OpenCV re-plan
+  // (and re-allocate) every layer's buffers.
+  net_.forward(outputs_, output_names_);
+  last_forward_ns_ =
+      std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - start)
+          .count();
+}
+
+void SsdDetector::preprocess(const cv::Mat& bgr_image, int slot) {
+  if (bgr_image.empty() || bgr_image.type() != CV_8UC3) {
+    throw std::invalid_argument("SsdDetector: expects non-empty 8-bit BGR images");
+  }
   // Bilinear with half-pixel centres (cv::resize), as the reference detections were made (see
   // docs/model.md). The TF graph's own ResizeBilinear (no half-pixel centres) samples up to 0.8
   // source pixels elsewhere; measured on vtest.avi that moves scores by up to 0.17 against the
-  // reference, this way by 5e-5.
+  // reference, this way by 5e-5. (cv::resize also allocates two small interpolation tables.)
   cv::resize(bgr_image, resized_, resized_.size(), 0.0, 0.0, cv::INTER_LINEAR);
   resized_.convertTo(normalized_, CV_32F, kPixelScale, -1.0);
-  cv::split(normalized_, planes_.data());  // into blob_, reordered to RGB
+  cv::split(normalized_, planes_.data() + 3 * slot);  // into blob_, reordered to RGB
 }
 
 void SsdDetector::detect(const cv::Mat& bgr_image, std::int64_t /*frame_number*/,
                          std::vector<tracker::Detection>& out) {
-  if (bgr_image.empty() || bgr_image.type() != CV_8UC3) {
-    throw std::invalid_argument("SsdDetector::detect: expects a non-empty 8-bit BGR image");
-  }
-  preprocess(bgr_image);
-  net_.setInput(blob_);
-  // What OpenCV still allocates per frame (measured, OpenCV 4.6, CPU, 1 thread): forward() makes
-  // about 1000 small heap allocations (per-layer bookkeeping: Mat vectors, scratch of at most
-  // 64 KB) and returns headers on the network's own output blobs; cv::resize two interpolation
-  // tables (14 KB). No buffer the size of an image or blob: those above are reused.
-  net_.forward(outputs_, output_names_);
+  preprocess(bgr_image, 0);
+  forward(1);
   postprocess_.run(outputs_[0].ptr<float>(), outputs_[1].ptr<float>(), bgr_image.cols,
                    bgr_image.rows, out);
+}
+
+void SsdDetector::detect_batch(const cv::Mat* const* images, const std::int64_t* /*frame_numbers*/,
+                               int count, std::vector<std::vector<tracker::Detection>>& out) {
+  if (count < 1) throw std::invalid_argument("SsdDetector::detect_batch: count must be >= 1");
+  if (out.size() < static_cast<std::size_t>(count)) out.resize(static_cast<std::size_t>(count));
+  const std::size_t box_stride = static_cast<std::size_t>(postprocess_.num_anchors()) * 4;
+  const std::size_t logit_stride =
+      static_cast<std::size_t>(postprocess_.num_anchors()) * kNumClasses;
+  for (int first = 0; first < count; first += config_.max_batch) {
+    const int n = std::min(config_.max_batch, count - first);
+    for (int i = 0; i < n; ++i) preprocess(*images[first + i], i);
+    forward(n);
+    // Outputs are [n, anchors, 4] and [n, anchors, 91]: image i's rows follow image i-1's.
+    for (int i = 0; i < n; ++i) {
+      const cv::Mat& image = *images[first + i];
+      postprocess_.run(outputs_[0].ptr<float>() + static_cast<std::size_t>(i) * box_stride,
+                       outputs_[1].ptr<float>() + static_cast<std::size_t>(i) * logit_stride,
+                       image.cols, image.rows, out[static_cast<std::size_t>(first + i)]);
+    }
+  }
 }
 
 std::string SsdDetector::describe() const {
   std::ostringstream text;
   text << "SSDLite-MobileNetV2 COCO (" << config_.model_path.string() << ") on " << backend_.name
-       << " (" << backend_.reason << "), score >= " << config_.score_threshold << ", NMS IoU "
-       << config_.nms_iou << ", classes ";
+       << " (" << backend_.reason << "), batch <= " << config_.max_batch
+       << ", score >= " << config_.score_threshold << ", NMS IoU " << config_.nms_iou
+       << ", classes ";
   if (config_.classes.empty()) text << "all";
   for (std::size_t i = 0; i < config_.classes.size(); ++i) {
     const int id = config_.classes[i];

@@ -24,41 +24,69 @@ struct SsdConfig {
   BackendRequest backend{BackendRequest::automatic};
   Fp16Request fp16{Fp16Request::automatic};
   int threads{0};  // OpenCV's worker threads (process-wide: cv::setNumThreads); 0 = leave as is
+  /// The most images one forward pass takes (detect_batch); 1..kMaxBatchLimit. Above 1 the model
+  /// must have a batch dimension (scripts/fetch_model.sh exports one since model format 2).
+  int max_batch{1};
+  /// Check the files listed in the model's .sha256 (written by fetch_model.sh) before loading.
+  bool verify_checksums{true};
 };
+
+/// The largest max_batch accepted: 64 images are 69 MB of input blob, far past where batching
+/// stops paying (docs/gpu.md).
+constexpr int kMaxBatchLimit = 64;
 
 /// The anchors file that belongs to `model_path` when the config does not name one.
 std::filesystem::path default_anchors_path(const std::filesystem::path& model_path);
 
-/// One thread at a time: detect() works in the detector's own buffers.
+/// One thread at a time: detect() and detect_batch() work in the detector's own buffers.
 class SsdDetector : public Detector {
  public:
-  /// Loads the model and runs it once. Throws rtmot::InputError: ExitCode::bad_model naming the
-  /// file when the model or anchors are missing, truncated or corrupt; ExitCode::usage for a
-  /// backend that cannot be had or class ids outside 1..90.
+  /// Checks the model's checksums (when its .sha256 is there), loads it and runs it once (at
+  /// max_batch images when that is above 1). Throws rtmot::InputError: ExitCode::bad_model naming
+  /// the file when the model or anchors are missing, unreadable, damaged (checksum), truncated or
+  /// corrupt, compute non-finite values, or (max_batch > 1) the model has no batch dimension;
+  /// ExitCode::usage for a backend that cannot be had, class ids outside 1..90 or a max_batch
+  /// outside 1..kMaxBatchLimit.
   explicit SsdDetector(SsdConfig config);
   SsdDetector(const SsdDetector&) = delete;  // planes_ point into blob_
   SsdDetector& operator=(const SsdDetector&) = delete;
 
   void detect(const cv::Mat& bgr_image, std::int64_t frame_number,
               std::vector<tracker::Detection>& out) override;
+  /// One forward pass per max_batch() images; no allocation of ours once `out` has its size (a
+  /// change of batch size makes OpenCV re-plan the network's buffers: keep batches full).
+  void detect_batch(const cv::Mat* const* images, const std::int64_t* frame_numbers, int count,
+                    std::vector<std::vector<tracker::Detection>>& out) override;
+  int max_batch() const override { return config_.max_batch; }
+  /// Wall time of the last forward pass alone (setInput + forward; on CUDA it includes the upload
+  /// and the download of the outputs, which OpenCV does synchronously), for benchmarks and stats.
+  std::int64_t last_forward_ns() const { return last_forward_ns_; }
   std::string describe() const override;
 
   const BackendChoice& backend() const { return backend_; }
 
  private:
-  void preprocess(const cv::Mat& bgr_image);
+  void preprocess(const cv::Mat& bgr_image, int slot);
+  /// Runs the network on the first `count` images of blob_ (count <= max_batch).
+  void forward(int count);
+  void warm_up(int count);
 
   SsdConfig config_;
   BackendChoice backend_;
   cv::dnn::Net net_;
   SsdPostprocessor postprocess_;
   // Reused every frame (sizes fixed by the network), so steady state allocates no image buffers.
-  cv::Mat resized_;              // 300x300 BGR, 8-bit
-  cv::Mat normalized_;           // 300x300 BGR, float in [-1, 1]
-  cv::Mat blob_;                 // 1x3x300x300 RGB planes: the network input
-  std::vector<cv::Mat> planes_;  // headers on blob_'s planes, in BGR order for cv::split
+  cv::Mat resized_;     // 300x300 BGR, 8-bit
+  cv::Mat normalized_;  // 300x300 BGR, float in [-1, 1]
+  cv::Mat blob_;        // max_batch x 3 x 300 x 300 RGB planes: the network input
+  // batch_views_[n - 1]: an n x 3 x 300 x 300 header on blob_'s first n images, made once because
+  // a 4-D cv::Mat header allocates its size/step arrays.
+  std::vector<cv::Mat> batch_views_;
+  std::vector<cv::Mat> planes_;  // headers on blob_'s planes, 3 per image, in BGR order for split
+
   std::vector<cv::Mat> outputs_;
   std::vector<cv::String> output_names_;
+  std::int64_t last_forward_ns_{0};
 };
 
 }  // namespace rtmot::detector

@@ -1,10 +1,13 @@
 #pragma once
-// The real-time pipeline: four named threads joined by lock-free hand-offs (docs/architecture.md).
-//   capture --LatestFrameSlot--> detect --SpscQueue--> track --SpscQueue--> sink
-// The capture thread applies the playback mode; detect runs the Detector; track runs the Tracker on
-// the frame's pts; sink stamps sent_ns, hands the FrameResult to every TrackSink, writes the
-// annotated video if enabled and keeps the statistics.
+// The real-time pipeline: named threads joined by lock-free hand-offs (docs/architecture.md).
+//   capture (one per source) --LatestFrameSlot--> detect --SpscQueue--> track --SpscQueue--> sink
+// Each capture thread applies the playback mode to its source; detect runs the newest frame of
+// every source through the Detector as one batch; track runs each source's own Tracker on the
+// frame's pts; sink stamps sent_ns, hands each message to every consumer (message sinks, annotated
+// video) and keeps the statistics. The stages are classes of their own (capture_stage.hpp, ...)
+// sharing one RunControl (abort, first error).
 #include <atomic>
+#include <chrono>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -12,6 +15,7 @@
 
 #include "detector/detector.hpp"
 #include "messages/frame_result.hpp"
+#include "pipeline/frame_consumer.hpp"
 #include "pipeline/pipeline_report.hpp"
 #include "pipeline/playback_mode.hpp"
 #include "platform/video_source.hpp"
@@ -19,15 +23,40 @@
 
 namespace rtmot::pipeline {
 
+/// Where one stage's thread runs. The thread names (rtmot-capture, -detect, -track, -sink) are
+/// fixed: tools read them.
+struct StageThread {
+  int cpu{-1};           // pin to this CPU; -1 = let the scheduler choose
+  int fifo_priority{0};  // SCHED_FIFO priority 1..99; 0 = normal scheduling
+};
+
+struct StageThreads {
+  StageThread capture;  // every source's capture thread
+  StageThread detect;
+  StageThread track;
+  StageThread sink;
+};
+
 struct PipelineOptions {
   /// Live sources always use the latest-frame slot whatever this says (no pacing, no waiting).
   PlaybackMode playback{PlaybackMode::realtime};
   double simulated_latency_ms{250.0};
-  std::uint32_t stream_id{0};
-  std::int64_t max_frames{0};     // stop after this many captured frames; 0 = no limit
+  std::uint32_t stream_id{0};     // the single-source constructor's stream id
+  std::int64_t max_frames{0};     // per source: stop after this many captured frames; 0 = no limit
   double stats_interval_s{5.0};   // periodic log line; 0 = off
-  std::string video_file;         // annotated video output; empty = off
-  std::size_t queue_capacity{4};  // items in each of the two queues
+  std::string video_file;         // annotated video output (one source only); empty = off
+  std::size_t queue_capacity{4};  // items in each of the two queues (at least one per source)
+  /// Several sources: once one has a new frame, how long the detector waits for the others'
+  /// before it runs the batch without them.
+  std::chrono::microseconds batch_wait{5000};
+  StageThreads threads;
+};
+
+/// One source of a multi-source pipeline: its own capture thread, tracker and stream id.
+struct PipelineInput {
+  std::unique_ptr<platform::VideoSource> source;
+  tracker::TrackerConfig tracker;
+  std::uint32_t stream_id{0};
 };
 
 class Pipeline {
@@ -36,13 +65,19 @@ class Pipeline {
            std::unique_ptr<detector::Detector> detector,
            const tracker::TrackerConfig& tracker_config,
            std::vector<std::unique_ptr<messages::TrackSink>> sinks, PipelineOptions options);
+  /// Several sources through one detector (batched); the sink stage hands every message to each
+  /// consumer in order (then to the annotated video if options.video_file is set). Throws
+  /// std::invalid_argument if `inputs` is empty or a video file is asked for with more than one
+  /// source.
+  Pipeline(std::vector<PipelineInput> inputs, std::unique_ptr<detector::Detector> detector,
+           std::vector<std::unique_ptr<FrameConsumer>> consumers, PipelineOptions options);
   ~Pipeline();
   Pipeline(const Pipeline&) = delete;
   Pipeline& operator=(const Pipeline&) = delete;
 
-  /// Runs until the end of the stream, max_frames, or `stop` becoming true; then drains every frame
-  /// already captured, flushes the sinks and joins the threads. Rethrows the first exception a
-  /// stage threw (after the others stopped and the sinks were flushed). Call once.
+  /// Runs until every source ended (or max_frames), or `stop` becoming true; then drains every
+  /// frame already captured, flushes the sinks and joins the threads. Rethrows the first exception
+  /// a stage threw (after the others stopped and the sinks were flushed). Call once.
   PipelineReport run(const std::atomic<bool>& stop);
 
  private:

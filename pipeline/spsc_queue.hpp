@@ -10,11 +10,16 @@
 // happen before the consumer reads it, and the consumer's reads of a slot happen before the
 // producer refills it. Each side also caches the other's index so it touches the shared line only
 // when the cached value says "full" or "empty".
+//
+// Waiting: a consumer that finds the queue empty, or a producer that finds it full, sleeps in a
+// WakeSignal (pipeline/wake_signal.hpp) that the other side notifies after its release store. While
+// neither side sleeps, a hand-off is a few loads and stores plus one fence: no lock, no system
+// call.
 #include <atomic>
 #include <cstddef>
 #include <vector>
 
-#include "pipeline/backoff.hpp"
+#include "pipeline/wake_signal.hpp"
 
 namespace rtmot::pipeline {
 
@@ -46,24 +51,26 @@ class SpscQueue {
     return &slots_[write_.load(std::memory_order_relaxed)];
   }
 
-  /// Waits for a free slot; nullptr if `abort` became true first.
+  /// Waits (asleep) for a free slot; nullptr if `abort` became true first (see wake_all()).
   T* claim(const std::atomic<bool>& abort) {
-    Backoff backoff;
-    for (T* slot = try_claim(); slot == nullptr; slot = try_claim()) {
-      if (abort.load(std::memory_order_relaxed)) return nullptr;
-      backoff.pause();
-    }
-    return &slots_[write_.load(std::memory_order_relaxed)];
+    if (T* slot = try_claim()) return slot;
+    not_full_.wait_until(
+        [&] { return try_claim() != nullptr || abort.load(std::memory_order_relaxed); });
+    return try_claim();
   }
 
   /// Makes the claimed slot visible to the consumer.
   void publish() {
     // release: our writes into the slot happen before the consumer's acquire of write_.
     write_.store(advance(write_), std::memory_order_release);
+    not_empty_.notify();
   }
 
   /// No more items will come. Call after the last publish().
-  void close() { closed_.store(true, std::memory_order_release); }
+  void close() {
+    closed_.store(true, std::memory_order_release);
+    not_empty_.notify();
+  }
 
   // ---- consumer side (one thread) ----
 
@@ -78,22 +85,29 @@ class SpscQueue {
     return &slots_[read];
   }
 
-  /// Waits for an item; nullptr once closed and drained, or when `abort` became true.
+  /// Waits (asleep) for an item; nullptr once closed and drained, or when `abort` became true.
   T* front(const std::atomic<bool>& abort) {
-    Backoff backoff;
-    for (;;) {
-      if (T* item = try_front()) return item;
-      if (abort.load(std::memory_order_relaxed)) return nullptr;
-      // acquire pairs with close(): every publish before it is visible, so one more look suffices.
-      if (closed_.load(std::memory_order_acquire)) return try_front();
-      backoff.pause();
-    }
+    if (T* item = try_front()) return item;
+    // acquire on closed_ pairs with close(): every publish before it is visible, so one more look
+    // after seeing it suffices.
+    not_empty_.wait_until([&] {
+      return try_front() != nullptr || closed_.load(std::memory_order_acquire) ||
+             abort.load(std::memory_order_relaxed);
+    });
+    return try_front();  // null when aborted or closed and drained
   }
 
   /// Releases the front item's slot back to the producer.
   void pop() {
     // release: our reads of the slot happen before the producer's acquire of read_ and its refill.
     read_.store(advance(read_), std::memory_order_release);
+    not_full_.notify();
+  }
+
+  /// Wakes both sides so that they see an abort flag set since they went to sleep.
+  void wake_all() {
+    not_empty_.notify();
+    not_full_.notify();
   }
 
  private:
@@ -110,6 +124,8 @@ class SpscQueue {
   alignas(64) std::atomic<std::size_t> read_{0};
   std::size_t cached_write_{0};
   alignas(64) std::atomic<bool> closed_{false};
+  WakeSignal not_empty_;  // the consumer sleeps here
+  WakeSignal not_full_;   // the producer sleeps here
 };
 
 }  // namespace rtmot::pipeline

@@ -87,6 +87,8 @@ std::string pipeline_description(SourceKind kind) {
       return "rtspsrc name=src ! application/x-rtp,media=video ! decodebin" + tail;
     case SourceKind::test:
       return "videotestsrc name=src ! capsfilter name=request ! identity name=faults" + tail;
+    case SourceKind::images:
+      break;  // not GStreamer: platform/image_folder_source.hpp
   }
   throw std::logic_error("unknown source kind");
 }
@@ -113,6 +115,8 @@ void configure_pipeline(GstBin& pipeline, const VideoUri& uri, const SourceOptio
     case SourceKind::test:
       configure_test(pipeline, uri);
       break;
+    case SourceKind::images:
+      throw std::logic_error("images:// is not a GStreamer source");
   }
 
   const bool live = is_live(uri);

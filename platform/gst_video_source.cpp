@@ -10,6 +10,7 @@
 #include "common/input_error.hpp"
 #include "platform/clock.hpp"
 #include "platform/gst_pipelines.hpp"
+#include "platform/image_folder_source.hpp"
 
 namespace rtmot::platform {
 namespace {
@@ -283,7 +284,9 @@ bool GstVideoSource::adopt_caps(GstCaps* caps) {
 
 std::unique_ptr<VideoSource> open_video_source(const std::string& uri,
                                                const SourceOptions& options) {
-  return std::make_unique<GstVideoSource>(parse_video_uri(uri), options);
+  VideoUri parsed = parse_video_uri(uri);
+  if (parsed.kind == SourceKind::images) return std::make_unique<ImageFolderSource>(parsed);
+  return std::make_unique<GstVideoSource>(std::move(parsed), options);
 }
 
 }  // namespace rtmot::platform

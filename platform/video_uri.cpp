@@ -4,6 +4,7 @@
 #include <cctype>
 #include <charconv>
 #include <cstdlib>
+#include <filesystem>
 #include <set>
 
 #include "common/input_error.hpp"
@@ -122,6 +123,31 @@ TestSourceParams parse_test(const std::string& uri, const std::string& rest) {
   return params;
 }
 
+ImageFolderParams parse_images_query(const std::string& uri, const std::string& query) {
+  ImageFolderParams params;
+  std::set<std::string> seen;
+  std::size_t start = 0;
+  while (start <= query.size()) {
+    const auto amp = std::min(query.find('&', start), query.size());
+    const std::string pair = query.substr(start, amp - start);
+    start = amp + 1;
+    if (pair.empty()) continue;
+    const auto equals = pair.find('=');
+    if (equals == std::string::npos) fail(uri, pair, "expected key=value");
+    const std::string key = pair.substr(0, equals);
+    const std::string value = pair.substr(equals + 1);
+    if (!seen.insert(key).second) fail(uri, key, "given twice");
+    if (key == "fps") {
+      params.fps = parse_fps(uri, key, value);
+    } else if (key == "loop") {
+      params.loop = parse_int(uri, key, value, 1, 1'000'000);
+    } else {
+      fail(uri, key, "unknown images:// parameter (known: fps, loop)");
+    }
+  }
+  return params;
+}
+
 int hex_value(char c) {
   if (c >= '0' && c <= '9') return c - '0';
   const int lower = std::tolower(static_cast<unsigned char>(c));
@@ -154,7 +180,8 @@ VideoUri parse_video_uri(const std::string& text) {
   uri.text = text;
   const auto separator = text.find("://");
   if (separator == std::string::npos) {
-    uri.kind = SourceKind::file;
+    std::error_code error;  // a path that cannot be examined is left to the file source to report
+    uri.kind = std::filesystem::is_directory(text, error) ? SourceKind::images : SourceKind::file;
     uri.location = text;
     return uri;
   }
@@ -185,12 +212,19 @@ VideoUri parse_video_uri(const std::string& text) {
     const std::string host = rest.substr(0, rest.find('/'));
     if (host.empty() || host[0] == ':') fail(text, "host", "no host in the rtsp:// URL");
     uri.location = text;
+  } else if (scheme == "images") {
+    uri.kind = SourceKind::images;
+    const auto question = rest.find('?');
+    uri.location = percent_decode(text, rest.substr(0, question));
+    if (uri.location.empty()) fail(text, "path", "no folder after images://");
+    if (question != std::string::npos)
+      uri.images = parse_images_query(text, rest.substr(question + 1));
   } else if (scheme == "test") {
     uri.kind = SourceKind::test;
     uri.test = parse_test(text, rest);
   } else {
     fail(text, "scheme",
-         "unknown scheme '" + scheme + "' (known: file, v4l2, csi, rtsp, rtsps, test)");
+         "unknown scheme '" + scheme + "' (known: file, v4l2, csi, rtsp, rtsps, test, images)");
   }
   return uri;
 }
@@ -198,6 +232,7 @@ VideoUri parse_video_uri(const std::string& text) {
 bool is_live(const VideoUri& uri) {
   switch (uri.kind) {
     case SourceKind::file:
+    case SourceKind::images:
       return false;
     case SourceKind::test:
       return uri.test.is_live;
@@ -221,6 +256,8 @@ const char* to_string(SourceKind kind) {
       return "rtsp";
     case SourceKind::test:
       return "test";
+    case SourceKind::images:
+      return "images";
   }
   return "unknown";
 }

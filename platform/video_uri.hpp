@@ -5,7 +5,7 @@
 
 namespace rtmot::platform {
 
-enum class SourceKind { file, v4l2, csi, rtsp, test };
+enum class SourceKind { file, v4l2, csi, rtsp, test, images };
 
 /// test://PATTERN?key=value&... : GStreamer's videotestsrc plus injected faults. -1 means "off".
 struct TestSourceParams {
@@ -21,12 +21,19 @@ struct TestSourceParams {
   int eos_after{-1};  // the source ends (end-of-stream) after this many frames
 };
 
+/// images://DIR?fps=N&loop=K (platform/image_folder_source.hpp); a plain path to a folder too.
+struct ImageFolderParams {
+  double fps{30.0};  // the rate the frames' pts follow (jetson-inference's default)
+  int loop{1};       // plays the folder this many times (benchmarks on a few files)
+};
+
 struct VideoUri {
   std::string text;  // as the user wrote it
   SourceKind kind{SourceKind::file};
   std::string location;  // file path, v4l2 device, or the full rtsp:// URL
   int sensor_id{0};      // csi://N
   TestSourceParams test;
+  ImageFolderParams images;
 };
 
 /// Throws rtmot::InputError (ExitCode::source_failed) naming the URI and the offending part.

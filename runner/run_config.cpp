@@ -164,6 +164,31 @@ void read_output(Section section, OutputConfig& output) {
   section.reject_unknown();
 }
 
+// CPU_SETSIZE: the most CPUs pthread_setaffinity_np can name. A CPU this machine lacks is not a
+// configuration error (the same file runs on several boards): the thread runs unpinned, logged.
+constexpr int max_cpu = 1023;
+
+void read_stage_thread(Section section, pipeline::StageThread& thread) {
+  read_checked(
+      section, "cpu", thread.cpu, [](int v) { return v >= -1 && v <= max_cpu; },
+      "a CPU number in 0..1023, or -1 for any");
+  read_checked(
+      section, "fifo_priority", thread.fifo_priority, [](int v) { return v >= 0 && v <= 99; },
+      "a SCHED_FIFO priority in 1..99, or 0 for normal scheduling");
+  section.reject_unknown();
+}
+
+void read_threads(Section section, const std::string& file_name, pipeline::StageThreads& threads) {
+  const auto stage = [&](const char* name, pipeline::StageThread& thread) {
+    read_stage_thread(Section(section.child(name), file_name, section.field(name)), thread);
+  };
+  stage("capture", threads.capture);
+  stage("detect", threads.detect);
+  stage("track", threads.track);
+  stage("sink", threads.sink);
+  section.reject_unknown();
+}
+
 }  // namespace
 
 RunConfig parse_run_config(const std::string& yaml_text, const std::string& file_name) {
@@ -186,6 +211,7 @@ RunConfig parse_run_config(const std::string& yaml_text, const std::string& file
   read_detector(Section(top.child("detector"), file_name, "detector"), config.detector);
   read_tracker(Section(top.child("tracker"), file_name, "tracker"), config.tracker);
   read_output(Section(top.child("output"), file_name, "output"), config.output);
+  read_threads(Section(top.child("threads"), file_name, "threads"), file_name, config.threads);
   read_checked(top, "stats_interval_s", config.stats_interval_s, within(0.0, kMaxStatsInterval),
                "an interval in [0, 86400]");
   top.read("stream_id", config.stream_id);

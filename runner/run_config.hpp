@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "pipeline/pipeline.hpp"
 #include "pipeline/playback_mode.hpp"
 #include "tracker/tracker_config.hpp"
 
@@ -55,7 +56,8 @@ struct RunConfig {
   /// takes them from the source.
   tracker::TrackerConfig tracker;
   OutputConfig output;
-  double stats_interval_s{5.0};  // periodic log line; 0 = off
+  pipeline::StageThreads threads;  // per stage: CPU pinning and SCHED_FIFO priority
+  double stats_interval_s{5.0};    // periodic log line; 0 = off
   std::uint32_t stream_id{0};
   std::int64_t max_frames{0};  // stop after this many captured frames; 0 = no limit
 };

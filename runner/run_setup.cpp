@@ -75,6 +75,7 @@ pipeline::PipelineOptions make_options(const RunConfig& config) {
   options.max_frames = config.max_frames;
   options.stats_interval_s = config.stats_interval_s;
   options.video_file = config.output.video_file;
+  options.threads = config.threads;
   return options;
 }
 

@@ -7,6 +7,9 @@ and scales) and the Postprocessor (box decoding, sigmoid, slicing) are cut: Open
 them, and the C++ detector does them (see docs/model.md). The anchors the Postprocessor decodes
 against are written to a CSV beside the model.
 
+The batch dimension is dynamic ("batch"): OpenCV runs N images in one forward pass and the outputs
+are [N, 1917, 4] and [N, 1917, 91], one row block per image.
+
 Batch norms and bias adds are folded into the convolutions; TF 'SAME' padding becomes explicit
 (asymmetric where TF pads more at the end). Only the ops this graph uses are supported: anything
 else is an error naming the node, so a different model cannot be half-converted silently.
@@ -27,6 +30,7 @@ BOX_NODE = "concat"  # box encodings [1, 1917, 1, 4] (ty, tx, th, tw)
 CLASS_NODE = "concat_1"  # class logits [1, 1917, 91], background first
 ANCHOR_NODE = "Postprocessor/ExpandDims"  # [1, 1917, 4] anchors (ymin, xmin, ymax, xmax), 0..1
 INPUT_SIZE = 300
+BATCH = "batch"  # a symbolic (dynamic) batch dimension: one forward pass takes N images
 
 
 class ConversionError(Exception):
@@ -136,12 +140,14 @@ class Graph:
             return {"kind": "tensor", "name": self.emit("Clip", [x["name"]], name, min=0.0, max=6.0),
                     "shape": x["shape"]}
         if op == "Reshape":
-            # Predictor head NHWC [1,H,W,A*K] -> [1, H*W*A, K]: NCHW needs the transpose first.
+            # Predictor head NHWC [N,H,W,A*K] -> [N, H*W*A, K]: NCHW needs the transpose first.
+            # The 0 keeps the batch dimension (ONNX Reshape: 0 copies the input's dimension), so a
+            # batch of N images gives N rows of anchors; a 1 here would concatenate them.
             x = self.tensor(self.value(inputs[0]))
             shape_node = self.nodes[strip(inputs[1])]
             k = int(self.const(strip(shape_node["input"][-1])))
             t = self.emit("Transpose", [x["name"]], name + "/nhwc", perm=[0, 2, 3, 1])
-            shape = self.add_init(np.array([1, -1, k], np.int64), "shape")
+            shape = self.add_init(np.array([0, -1, k], np.int64), "shape")
             return {"kind": "flat", "name": self.emit("Reshape", [t, shape], name)}
         if op == "ConcatV2":
             parts = [self.value(i) for i in inputs[:-1]]
@@ -250,9 +256,9 @@ def convert(model_json, out_onnx, out_anchors):
     num = anchors.shape[0]
     graph = helper.make_graph(
         g.onnx_nodes, "ssdlite_mobilenet_v2_coco",
-        [helper.make_tensor_value_info("image", TensorProto.FLOAT, [1, 3, INPUT_SIZE, INPUT_SIZE])],
-        [helper.make_tensor_value_info("box_encodings", TensorProto.FLOAT, [1, num, 4]),
-         helper.make_tensor_value_info("class_logits", TensorProto.FLOAT, [1, num, 91])],
+        [helper.make_tensor_value_info("image", TensorProto.FLOAT, [BATCH, 3, INPUT_SIZE, INPUT_SIZE])],
+        [helper.make_tensor_value_info("box_encodings", TensorProto.FLOAT, [BATCH, num, 4]),
+         helper.make_tensor_value_info("class_logits", TensorProto.FLOAT, [BATCH, num, 91])],
         g.initializers)
     model = helper.make_model(graph, producer_name="rtmot tfjs_to_onnx.py",
                               opset_imports=[helper.make_opsetid("", 10)])

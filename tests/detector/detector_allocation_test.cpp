@@ -2,7 +2,6 @@
 // operator new in this executable (its own binary, so no other test is affected).
 #include <gtest/gtest.h>
 
-#include <opencv2/videoio.hpp>
 #include <vector>
 
 #include "allocation_counter.hpp"
@@ -10,6 +9,7 @@
 #include "detector/ssd_detector.hpp"
 #include "detector/ssd_postprocess.hpp"
 #include "shared_data.hpp"
+#include "vtest_frames.hpp"
 
 namespace rtmot::detector {
 namespace {
@@ -47,11 +47,9 @@ TEST(DetectorAllocation, SsdAllocatesNoImageBuffersPerFrame) {
   if (!std::filesystem::exists(model)) {
     FAIL() << "missing model " << model << ": run scripts/fetch_model.sh";
   }
-  const auto video_path = test::shared_path("data/video/vtest.avi");
-  RTMOT_REQUIRE_FILE(video_path);
-  cv::VideoCapture video(video_path.string(), cv::CAP_FFMPEG);
-  cv::Mat image;
-  ASSERT_TRUE(video.read(image));
+  const auto frames = test::vtest_frames({1});
+  ASSERT_EQ(frames.size(), 1U);
+  const cv::Mat& image = frames.at(1);
   SsdConfig config;
   config.model_path = model;
   config.backend = BackendRequest::cpu;
@@ -71,6 +69,43 @@ TEST(DetectorAllocation, SsdAllocatesNoImageBuffersPerFrame) {
   // forward()'s per-layer bookkeeping and cv::resize's tables, the same every frame and all
   // smaller than one 300x300 input image.
   std::cout << "SsdDetector::detect: " << counts[1] << " allocations, largest " << largest
+            << " bytes\n";
+  EXPECT_EQ(counts[0], counts[1]);
+  EXPECT_LT(largest, 300U * 300U * 3U);
+}
+
+TEST(DetectorAllocation, SsdBatchAllocatesNoImageBuffersPerBatch) {
+  const auto model = test::source_path("models/ssdlite_mobilenet_v2_coco.onnx");
+  if (!std::filesystem::exists(model)) {
+    FAIL() << "missing model " << model << ": run scripts/fetch_model.sh";
+  }
+  const auto frames = test::vtest_frames({1, 51, 101, 151});
+  ASSERT_EQ(frames.size(), 4U);
+  std::vector<const cv::Mat*> images;
+  std::vector<std::int64_t> numbers;
+  for (const auto& [number, image] : frames) {
+    images.push_back(&image);
+    numbers.push_back(number);
+  }
+  SsdConfig config;
+  config.model_path = model;
+  config.backend = BackendRequest::cpu;
+  config.threads = 1;
+  config.max_batch = 4;
+  SsdDetector detector(config);
+  std::vector<std::vector<tracker::Detection>> out;
+  detector.detect_batch(images.data(), numbers.data(), 4, out);  // `out` grows once
+  long counts[2] = {0, 0};
+  std::size_t largest = 0;
+  for (long& count : counts) {
+    const test::CountingScope counting;
+    detector.detect_batch(images.data(), numbers.data(), 4, out);
+    count = counting.allocations();
+    largest = counting.largest();
+  }
+  // As for one image: OpenCV's per-layer bookkeeping and cv::resize's tables, the same every
+  // batch, nothing the size of an image; our own buffers (blob, views, outputs) are reused.
+  std::cout << "SsdDetector::detect_batch(4): " << counts[1] << " allocations, largest " << largest
             << " bytes\n";
   EXPECT_EQ(counts[0], counts[1]);
   EXPECT_LT(largest, 300U * 300U * 3U);

@@ -8,13 +8,14 @@
 #include <cmath>
 #include <fstream>
 #include <map>
-#include <opencv2/videoio.hpp>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "detector/ssd_detector.hpp"
 #include "shared_data.hpp"
+#include "vtest_frames.hpp"
 
 namespace rtmot::detector {
 namespace {
@@ -26,21 +27,49 @@ struct Reference {
 
 constexpr float kReferenceThreshold = 0.3F;
 constexpr float kExtraAllowedBelow = 0.35F;  // unmatched detections must score under this
-// The reference was made on x86-64, where this import reproduces it to 0.05 px and 5e-5. On aarch64
-// OpenCV takes other SIMD (NEON) paths in decoding/resizing and in the DNN kernels, with other
-// rounding: measured under qemu, boxes move by up to 3.3 px and scores by up to 0.039. There the
-// test allows that much (the platforms' own agreement through the product is checked by
-// scripts/cross_compare_tracks.sh, to 0.5 px and 0.005).
-#if defined(__aarch64__)
-constexpr float kBoxTolerancePx = 4.F;
-constexpr float kScoreTolerance = 0.05F;
-#else
-constexpr float kBoxTolerancePx = 2.F;
-constexpr float kScoreTolerance = 0.01F;
-#endif
 constexpr int kFirstFrame = 1;
 constexpr int kFrameStep = 50;
 constexpr int kLastFrame = 751;
+
+/// How one backend may differ from the reference (made with the TF.js model on x86-64).
+struct Tolerance {
+  float box_px;
+  float score;
+};
+
+// CPU: on x86-64 this import reproduces the reference to 0.05 px and 5e-5. On aarch64 OpenCV takes
+// other SIMD (NEON) paths in decoding/resizing and in the DNN kernels, with other rounding:
+// measured under qemu, boxes move by up to 3.3 px and scores by up to 0.039. There the test allows
+// that much (the platforms' own agreement through the product is checked by
+// scripts/cross_compare_tracks.sh, to 0.5 px and 0.005).
+#if defined(__aarch64__)
+constexpr Tolerance kCpuTolerance{4.F, 0.05F};
+#else
+constexpr Tolerance kCpuTolerance{2.F, 0.01F};
+#endif
+// The reference frames were decoded by FFmpeg (swscale's YUV -> BGR); the product, and so this test
+// by default, decodes through GStreamer (videoconvert), whose pixels differ by up to 5 levels (mean
+// 2.3 in green, measured on frame 1): boxes then move by up to 3.3 px and scores by up to 0.045
+// (measured, x86-64). Frames decoded as the reference was (RTMOT_VTEST_FRAMES, docs/gpu.md) get the
+// tolerances below; GStreamer's get at least this much:
+#if defined(__aarch64__)
+constexpr Tolerance kGstDecodeTolerance{6.F, 0.08F};  // NEON rounding on top (not measured)
+#else
+constexpr Tolerance kGstDecodeTolerance{4.F, 0.05F};
+#endif
+// CUDA fp32 (cuDNN, TF32 off): measured on the H100 (docs/gpu.md) within 2 px and 0.01 like the
+// CPU.
+constexpr Tolerance kCudaTolerance{2.F, 0.01F};
+// CUDA fp16: half-precision activations move logits by up to ~0.3 (measured, docs/gpu.md).
+constexpr Tolerance kCudaFp16Tolerance{4.F, 0.05F};
+
+struct Case {
+  const char* name;
+  BackendRequest backend;
+  Fp16Request fp16;
+  Tolerance tolerance;
+  int max_batch;  // 1: detect() frame by frame; above: detect_batch() over all frames
+};
 
 std::vector<Reference> read_reference(const std::filesystem::path& path, int width, int height) {
   std::ifstream in(path);
@@ -76,41 +105,74 @@ float box_deviation(const tracker::Box& a, const tracker::Box& b) {
                    std::abs(a.y + a.h - b.y - b.h)});
 }
 
-TEST(SsdReference, ReproducesTheTfjsModelOnVtest) {
+class SsdReference : public ::testing::TestWithParam<Case> {};
+
+TEST_P(SsdReference, ReproducesTheTfjsModelOnVtest) {
+  const Case& param = GetParam();
+  Tolerance tolerance = param.tolerance;
+  if (!test::vtest_frames_decoded_as_reference()) {
+    tolerance.box_px = std::max(tolerance.box_px, kGstDecodeTolerance.box_px);
+    tolerance.score = std::max(tolerance.score, kGstDecodeTolerance.score);
+  }
   const auto model = test::source_path("models/ssdlite_mobilenet_v2_coco.onnx");
   if (!std::filesystem::exists(model)) {
     FAIL() << "missing model " << model << ": run scripts/fetch_model.sh";
   }
-  const auto video_path = test::shared_path("data/video/vtest.avi");
   const auto reference_path = test::shared_path("data/reference/ssdlite-coco-vtest-detections.csv");
-  RTMOT_REQUIRE_FILE(video_path);
   RTMOT_REQUIRE_FILE(reference_path);
+  if (param.backend == BackendRequest::cuda) {
+    const auto caps = probe_backend_capabilities();
+    if (!caps.opencv_has_cuda || caps.cuda_devices == 0) {
+      GTEST_SKIP() << "no CUDA here (OpenCV with the CUDA DNN backend and a GPU): "
+                   << "this case runs on the GPU machine (docs/gpu.md)";
+    }
+  }
 
   SsdConfig config;
   config.model_path = model;
   config.score_threshold = kReferenceThreshold;
   config.classes = {};  // all
-  config.backend = BackendRequest::cpu;
+  config.backend = param.backend;
+  config.fp16 = param.fp16;
+  config.max_batch = param.max_batch;
   SsdDetector detector(config);
+  std::cout << detector.describe() << "\n";
 
-  cv::VideoCapture video(video_path.string(), cv::CAP_FFMPEG);
-  ASSERT_TRUE(video.isOpened()) << "cannot open " << video_path << " with FFmpeg";
-  const int width = static_cast<int>(video.get(cv::CAP_PROP_FRAME_WIDTH));
-  const int height = static_cast<int>(video.get(cv::CAP_PROP_FRAME_HEIGHT));
+  std::set<int> numbers;
+  for (int frame = kFirstFrame; frame <= kLastFrame; frame += kFrameStep) numbers.insert(frame);
+  const auto frames = test::vtest_frames(numbers);
+  ASSERT_EQ(frames.size(), numbers.size());
+  const int width = frames.begin()->second.cols;
+  const int height = frames.begin()->second.rows;
   const auto reference = read_reference(reference_path, width, height);
   ASSERT_FALSE(reference.empty());
+
+  // All frames' detections first: one by one, or in batches of max_batch (the last one shorter).
+  std::vector<const cv::Mat*> images;
+  std::vector<std::int64_t> frame_numbers;
+  for (const auto& [number, image] : frames) {
+    images.push_back(&image);
+    frame_numbers.push_back(number);
+  }
+  std::vector<std::vector<tracker::Detection>> detections;
+  if (param.max_batch == 1) {
+    detections.resize(images.size());
+    for (std::size_t i = 0; i < images.size(); ++i) {
+      detector.detect(*images[i], frame_numbers[i], detections[i]);
+    }
+  } else {
+    detector.detect_batch(images.data(), frame_numbers.data(), static_cast<int>(images.size()),
+                          detections);
+  }
 
   float worst_box = 0.F;
   float worst_score = 0.F;
   float best_extra = 0.F;
   int matched = 0;
   int borderline_missing = 0;
-  cv::Mat image;
-  std::vector<tracker::Detection> found;
-  for (int frame = 1; frame <= kLastFrame; ++frame) {
-    ASSERT_TRUE(video.read(image)) << "vtest.avi ended before frame " << frame;
-    if ((frame - kFirstFrame) % kFrameStep != 0) continue;
-    detector.detect(image, frame, found);
+  for (std::size_t index = 0; index < images.size(); ++index) {
+    const int frame = static_cast<int>(frame_numbers[index]);
+    const std::vector<tracker::Detection>& found = detections[index];
     std::vector<bool> used(found.size(), false);
     // Greedy matching, best reference first, per class, by IoU.
     std::vector<const Reference*> expected;
@@ -130,7 +192,7 @@ TEST(SsdReference, ReproducesTheTfjsModelOnVtest) {
           best = static_cast<int>(i);
         }
       }
-      if (best < 0 && r->detection.score < kReferenceThreshold + kScoreTolerance) {
+      if (best < 0 && r->detection.score < kReferenceThreshold + tolerance.score) {
         ++borderline_missing;  // within the tolerance of the cut: may legitimately fall below it
         continue;
       }
@@ -147,8 +209,8 @@ TEST(SsdReference, ReproducesTheTfjsModelOnVtest) {
       const float score_dev = std::abs(d.score - r->detection.score);
       worst_box = std::max(worst_box, box_dev);
       worst_score = std::max(worst_score, score_dev);
-      EXPECT_LE(box_dev, kBoxTolerancePx) << "frame " << frame << " class " << d.class_id;
-      EXPECT_LE(score_dev, kScoreTolerance) << "frame " << frame << " class " << d.class_id;
+      EXPECT_LE(box_dev, tolerance.box_px) << "frame " << frame << " class " << d.class_id;
+      EXPECT_LE(score_dev, tolerance.score) << "frame " << frame << " class " << d.class_id;
     }
     for (std::size_t i = 0; i < found.size(); ++i) {
       if (used[i]) continue;
@@ -163,10 +225,23 @@ TEST(SsdReference, ReproducesTheTfjsModelOnVtest) {
   RecordProperty("worst_box_deviation_px", std::to_string(worst_box));
   RecordProperty("worst_score_deviation", std::to_string(worst_score));
   RecordProperty("best_unmatched_score", std::to_string(best_extra));
-  std::cout << "matched " << matched << "/" << reference.size() << ", worst box deviation "
-            << worst_box << " px, worst score deviation " << worst_score
+  std::cout << param.name << ": matched " << matched << "/" << reference.size()
+            << ", worst box deviation " << worst_box << " px, worst score deviation " << worst_score
             << ", best unmatched score " << best_extra << "\n";
 }
+
+// Batched runs take the 16 frames as batches of 8 (and 4 + 4 + 4 + 4): the per-image decoding of a
+// batch's outputs must give what one image at a time gives.
+INSTANTIATE_TEST_SUITE_P(
+    Backends, SsdReference,
+    ::testing::Values(
+        Case{"cpu", BackendRequest::cpu, Fp16Request::off, kCpuTolerance, 1},
+        Case{"cpu_batch8", BackendRequest::cpu, Fp16Request::off, kCpuTolerance, 8},
+        Case{"cuda", BackendRequest::cuda, Fp16Request::off, kCudaTolerance, 1},
+        Case{"cuda_batch8", BackendRequest::cuda, Fp16Request::off, kCudaTolerance, 8},
+        Case{"cuda_fp16", BackendRequest::cuda, Fp16Request::on, kCudaFp16Tolerance, 1},
+        Case{"cuda_fp16_batch4", BackendRequest::cuda, Fp16Request::on, kCudaFp16Tolerance, 4}),
+    [](const ::testing::TestParamInfo<Case>& info) { return std::string(info.param.name); });
 
 }  // namespace
 }  // namespace rtmot::detector

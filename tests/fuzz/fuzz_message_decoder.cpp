@@ -10,7 +10,7 @@
 #include "messages/message_format.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  using namespace rtmot::pipeline;
+  using namespace rtmot;
   static messages::DecodedMessage decoded;  // reused as a receiver reuses it
   // An exact-size heap copy, so that AddressSanitizer sees any read past the end.
   const std::vector<std::uint8_t> bytes(data, data + size);

@@ -11,7 +11,7 @@
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   if (size < 1) return 0;
   static rtmot::fuzz::MemoryFile file;
-  using rtmot::motio::MotFileKind;
+  using namespace rtmot;
   const motio::MotFileKind kinds[] = {motio::MotFileKind::detections,
                                       motio::MotFileKind::ground_truth,
                                       motio::MotFileKind::results};

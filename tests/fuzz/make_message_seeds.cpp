@@ -31,7 +31,7 @@ int main(int argc, char** argv) {
     frame.tracks.push_back({row.id, row.box, row.conf, 1, 3, row.frame});
   }
   messages::MessageEncoder encoder;
-  std::vector<std::uint8_t> buffer(pipeline::message::max_message_size);
+  std::vector<std::uint8_t> buffer(messages::message::max_message_size);
   messages::BinaryFileSink file_sink(out_dir / "messages-file.bin");
   for (const auto& [number, frame] : frames) {
     const std::size_t size = encoder.encode(frame, buffer.data(), buffer.size());
@@ -39,7 +39,7 @@ int main(int argc, char** argv) {
         .write(reinterpret_cast<const char*>(buffer.data()), static_cast<std::streamsize>(size));
     // A message cut to the safe UDP payload: exercises the truncated flag.
     const std::size_t cut =
-        encoder.encode(frame, buffer.data(), pipeline::message::safe_udp_payload / 4);
+        encoder.encode(frame, buffer.data(), messages::message::safe_udp_payload / 4);
     std::ofstream(out_dir / ("message-" + std::to_string(number) + "-truncated.bin"),
                   std::ios::binary)
         .write(reinterpret_cast<const char*>(buffer.data()), static_cast<std::streamsize>(cut));

@@ -6,6 +6,7 @@
 #include <atomic>
 #include <chrono>
 #include <cstdint>
+#include <functional>
 #include <random>
 #include <thread>
 #include <vector>
@@ -213,6 +214,90 @@ void stress(SlotMode mode, std::int64_t frames, std::uint32_t seed) {
   if (mode == SlotMode::every_frame) {
     EXPECT_EQ(taken, frames);
   }
+}
+
+// A consumer asleep in take()/front() must wake for the last item and then for close(), and a
+// sleeping side must wake when another thread sets the abort flag and wakes the hand-off. The
+// sleeper is started first and given time to fall asleep; if a wake-up were lost the join below
+// would hang and the test time out (ctest's limit), so every assertion here can fail.
+template <typename Sleep>
+void expect_wakes(Sleep sleeper, const std::function<void()>& waker) {
+  std::atomic<bool> returned{false};
+  std::thread thread([&] {
+    sleeper();
+    returned.store(true);
+  });
+  std::this_thread::sleep_for(std::chrono::milliseconds(50));  // long enough to be asleep
+  EXPECT_FALSE(returned.load()) << "must wait while nothing is there";
+  waker();
+  thread.join();
+  EXPECT_TRUE(returned.load());
+}
+
+TEST(BlockingHandoff, SleepingSlotConsumerWakesForTheLastFrameAndForClose) {
+  for (const SlotMode mode : {SlotMode::latest, SlotMode::every_frame}) {
+    LatestFrameSlot slot(mode);
+    bool took = false;
+    expect_wakes([&] { took = slot.take(never); }, [&] { publish_frame(slot, 1); });
+    EXPECT_TRUE(took);
+    EXPECT_EQ(slot.front().info.frame_number, 1);
+    expect_wakes([&] { took = slot.take(never); }, [&] { slot.close(); });
+    EXPECT_FALSE(took) << "closed and drained";
+  }
+}
+
+TEST(BlockingHandoff, SleepingQueueConsumerWakesForTheLastItemAndForClose) {
+  SpscQueue<Item> queue(2, [](Item&) {});
+  Item* got = nullptr;
+  expect_wakes([&] { got = queue.front(never); },
+               [&] {
+                 queue.try_claim()->sequence = 42;
+                 queue.publish();
+               });
+  ASSERT_NE(got, nullptr);
+  EXPECT_EQ(got->sequence, 42);
+  queue.pop();
+  expect_wakes([&] { got = queue.front(never); }, [&] { queue.close(); });
+  EXPECT_EQ(got, nullptr);
+}
+
+TEST(BlockingHandoff, SleepingProducersWakeWhenRoomIsMadeOrOnAbort) {
+  SpscQueue<Item> queue(1, [](Item&) {});
+  queue.try_claim();
+  queue.publish();  // full
+  Item* claimed = nullptr;
+  expect_wakes([&] { claimed = queue.claim(never); }, [&] { queue.pop(); });
+  EXPECT_NE(claimed, nullptr);
+  queue.publish();  // full again
+  std::atomic<bool> abort{false};
+  expect_wakes([&] { claimed = queue.claim(abort); },
+               [&] {
+                 abort.store(true);
+                 queue.wake_all();
+               });
+  EXPECT_EQ(claimed, nullptr);
+
+  LatestFrameSlot slot(SlotMode::every_frame);
+  publish_frame(slot, 1);
+  bool published = false;
+  std::atomic<bool> slot_abort{false};
+  expect_wakes([&] { published = slot.publish(slot_abort); },
+               [&] {
+                 slot_abort.store(true);
+                 slot.wake_all();
+               });
+  EXPECT_FALSE(published) << "frame 1 was never taken";
+}
+
+TEST(BlockingHandoff, OneSignalServesAConsumerOfSeveralSlots) {
+  WakeSignal any;
+  LatestFrameSlot first(SlotMode::latest, &any);
+  LatestFrameSlot second(SlotMode::latest, &any);
+  expect_wakes([&] { any.wait_until([&] { return first.fresh() || second.fresh(); }); },
+               [&] { publish_frame(second, 5); });
+  EXPECT_FALSE(first.try_take());
+  ASSERT_TRUE(second.try_take());
+  EXPECT_EQ(second.front().info.frame_number, 5);
 }
 
 TEST(HandoffStress, LatestModeNeverTearsDuplicatesOrReorders) {

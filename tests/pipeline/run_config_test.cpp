@@ -7,6 +7,7 @@
 #include <filesystem>
 
 #include "common/input_error.hpp"
+#include "runner/run_setup.hpp"
 #include "shared_data.hpp"
 
 namespace rtmot::pipeline {
@@ -116,6 +117,21 @@ TEST(RunConfig, BadValuesNameLineAndField) {
   expect_error("tracker:\n  preset: deepsort\n", 2, "tracker.preset");
   expect_error("tracker:\n  min_hits: -1\n", 2, "tracker.min_hits");
   expect_error("max_frames: -5\n", 1, "max_frames");
+}
+
+TEST(RunConfig, StageThreadsAreReadAndCheckedPerStage) {
+  const runner::RunConfig config = runner::parse_run_config(
+      "threads:\n  capture: {cpu: 0, fifo_priority: 20}\n  detect:\n    cpu: 1\n", "t.yaml");
+  EXPECT_EQ(config.threads.capture.cpu, 0);
+  EXPECT_EQ(config.threads.capture.fifo_priority, 20);
+  EXPECT_EQ(config.threads.detect.cpu, 1);
+  EXPECT_EQ(config.threads.detect.fifo_priority, 0);
+  EXPECT_EQ(config.threads.track.cpu, -1) << "unset: any CPU";
+  EXPECT_EQ(runner::make_options(config).threads.capture.fifo_priority, 20);
+  expect_error("threads:\n  detect:\n    fifo_priority: 100\n", 3, "threads.detect.fifo_priority");
+  expect_error("threads:\n  sink: {cpu: -2}\n", 2, "threads.sink.cpu");
+  expect_error("threads:\n  tracker: {cpu: 0}\n", 2, "threads.tracker");
+  expect_error("threads:\n  track: {core: 0}\n", 2, "threads.track.core");
 }
 
 TEST(RunConfig, MalformedYamlNamesTheLine) {

@@ -1,0 +1,144 @@
+// The SSD on N images per forward pass (Detector::detect_batch), per backend: what many cameras on
+// one detector gain. For each backend and batch size it times detect_batch() over vtest.avi frames
+// held in memory, and, inside it, the forward pass alone (SsdDetector::last_forward_ns), and prints
+// min / median per batch and per image. Not Google Benchmark: the numbers wanted are the min and
+// median of individual calls, per image, for a table (docs/gpu.md).
+//
+// Run: detector_batch_bench [--backends cpu,cuda,cuda-fp16] [--batches 1,2,4,8] [--iterations N]
+//                           [--threads N] [--model PATH]
+// Frames: RTMOT_BENCH_FRAMES=URI (e.g. images://DIR), else ../shared/data/video/vtest.avi through
+// GStreamer. A backend that this build or machine lacks is reported and skipped.
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "bench_frames.hpp"
+#include "common/input_error.hpp"
+#include "detector/ssd_detector.hpp"
+
+namespace {
+
+using rtmot::detector::BackendRequest;
+using rtmot::detector::Fp16Request;
+
+struct Options {
+  std::vector<std::string> backends{"cpu", "cuda", "cuda-fp16"};
+  std::vector<int> batches{1, 2, 4, 8};
+  int iterations{30};
+  int threads{0};
+  std::string model{RTMOT_MODEL_PATH};
+};
+
+std::vector<std::string> split(const std::string& text) {
+  std::vector<std::string> parts;
+  std::stringstream in(text);
+  std::string part;
+  while (std::getline(in, part, ',')) {
+    if (!part.empty()) parts.push_back(part);
+  }
+  return parts;
+}
+
+Options parse(int argc, char** argv) {
+  Options options;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    const bool has_value = i + 1 < argc;
+    if (arg == "--backends" && has_value) {
+      options.backends = split(argv[++i]);
+    } else if (arg == "--batches" && has_value) {
+      options.batches.clear();
+      for (const auto& b : split(argv[++i])) options.batches.push_back(std::stoi(b));
+    } else if (arg == "--iterations" && has_value) {
+      options.iterations = std::stoi(argv[++i]);
+    } else if (arg == "--threads" && has_value) {
+      options.threads = std::stoi(argv[++i]);
+    } else if (arg == "--model" && has_value) {
+      options.model = argv[++i];
+    } else {
+      std::cerr << "usage: detector_batch_bench [--backends cpu,cuda,cuda-fp16] "
+                   "[--batches 1,2,4,8] [--iterations N] [--threads N] [--model PATH]\n";
+      std::exit(2);
+    }
+  }
+  return options;
+}
+
+double median(std::vector<double> values) {
+  std::sort(values.begin(), values.end());
+  const std::size_t n = values.size();
+  return n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+double minimum(const std::vector<double>& values) {
+  return *std::min_element(values.begin(), values.end());
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const Options options = parse(argc, argv);
+  std::string error;
+  const std::vector<cv::Mat> frames = rtmot::bench::load_bench_frames(16, 25, error);
+  if (frames.empty()) {
+    std::cerr << "detector_batch_bench: " << error << "\n";
+    return 3;
+  }
+  std::printf("frames: %zu of %s, %dx%d; %d timed calls per row after 3 warm-up calls\n",
+              frames.size(), rtmot::bench::bench_frames_uri().c_str(), frames[0].cols,
+              frames[0].rows, options.iterations);
+  std::printf("%-10s %5s | %9s %9s | %9s %9s | %9s %9s | %8s\n", "backend", "batch", "call min",
+              "call med", "fwd min", "fwd med", "img med", "fwd/img", "images/s");
+  for (const std::string& backend : options.backends) {
+    for (const int batch : options.batches) {
+      rtmot::detector::SsdConfig config;
+      config.model_path = options.model;
+      config.backend = backend == "cpu" ? BackendRequest::cpu : BackendRequest::cuda;
+      config.fp16 = backend == "cuda-fp16" ? Fp16Request::on : Fp16Request::off;
+      config.threads = options.threads;
+      config.max_batch = batch;
+      config.score_threshold = 0.5F;
+      config.classes = {1};
+      std::unique_ptr<rtmot::detector::SsdDetector> detector;
+      try {
+        detector = std::make_unique<rtmot::detector::SsdDetector>(config);
+      } catch (const rtmot::InputError& e) {
+        std::printf("%-10s %5d | skipped: %s\n", backend.c_str(), batch, e.what());
+        break;
+      }
+      if (batch == options.batches.front()) std::printf("# %s\n", detector->describe().c_str());
+      std::vector<const cv::Mat*> images(static_cast<std::size_t>(batch));
+      std::vector<std::int64_t> numbers(static_cast<std::size_t>(batch));
+      std::vector<std::vector<rtmot::tracker::Detection>> out;
+      std::vector<double> call_ms;
+      std::vector<double> forward_ms;
+      std::size_t next = 0;
+      for (int i = -3; i < options.iterations; ++i) {
+        for (int k = 0; k < batch; ++k) {  // different frames in every call and slot
+          images[static_cast<std::size_t>(k)] = &frames[next % frames.size()];
+          numbers[static_cast<std::size_t>(k)] = static_cast<std::int64_t>(next % frames.size());
+          ++next;
+        }
+        const auto start = std::chrono::steady_clock::now();
+        detector->detect_batch(images.data(), numbers.data(), batch, out);
+        const double ms =
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+                .count();
+        if (i < 0) continue;  // warm-up
+        call_ms.push_back(ms);
+        forward_ms.push_back(static_cast<double>(detector->last_forward_ns()) * 1e-6);
+      }
+      const double call_median = median(call_ms);
+      std::printf("%-10s %5d | %9.2f %9.2f | %9.2f %9.2f | %9.2f %9.2f | %8.1f\n", backend.c_str(),
+                  batch, minimum(call_ms), call_median, minimum(forward_ms), median(forward_ms),
+                  call_median / batch, median(forward_ms) / batch, 1000.0 * batch / call_median);
+      std::fflush(stdout);
+    }
+  }
+  return 0;
+}

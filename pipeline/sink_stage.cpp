@@ -1,0 +1,78 @@
+#include "pipeline/sink_stage.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <exception>
+#include <utility>
+
+#include "platform/clock.hpp"
+
+namespace rtmot::pipeline {
+
+SinkStage::SinkStage(std::size_t inputs, SpscQueue<TrackedFrame>& input,
+                     std::vector<std::unique_ptr<FrameConsumer>> consumers, double stats_interval_s,
+                     std::function<std::int64_t(std::size_t)> captured)
+    : input_(input),
+      consumers_(std::move(consumers)),
+      interval_ns_(static_cast<std::int64_t>(stats_interval_s * 1e9)),
+      captured_(std::move(captured)),
+      streams_(inputs) {}
+
+void SinkStage::run(const std::atomic<bool>& abort) {
+  interval_start_ns_ = platform::steady_now_ns();
+  while (TrackedFrame* in = input_.front(abort)) {
+    messages::FrameResult& result = in->result;
+    result.times.sent_ns = platform::steady_now_ns();
+    std::int64_t elapsed_ns = 0;
+    if (!result.source_outage) {  // a tick is not a processed frame: no latency
+      total_.latency.record(result.times);
+      total_.last_sent_ns = result.times.sent_ns;
+      SinkCounts& stream = streams_[in->input];
+      stream.latency.record(result.times);
+      stream.last_sent_ns = result.times.sent_ns;
+      interval_e2e_.record(result.times.sent_ns - result.times.captured_ns);
+      ++interval_frames_;
+      elapsed_ns = result.times.sent_ns - interval_start_ns_;
+      if (elapsed_ns > 0 && elapsed_ns >= std::max<std::int64_t>(interval_ns_, 1'000'000'000)) {
+        recent_fps_ = static_cast<double>(interval_frames_) * 1e9 / static_cast<double>(elapsed_ns);
+      }
+    }
+    const SinkFrame frame{result, in->image, recent_fps_};
+    for (const auto& consumer : consumers_) consumer->consume(frame);
+    if (!result.source_outage && interval_ns_ > 0 && elapsed_ns >= interval_ns_) {
+      log_interval(*in, elapsed_ns);
+    }
+    input_.pop();
+  }
+}
+
+void SinkStage::log_interval(const TrackedFrame& frame, std::int64_t elapsed_ns) {
+  std::int64_t captured = 0;
+  for (std::size_t i = 0; i < streams_.size(); ++i) captured += captured_(i);
+  spdlog::info(
+      "{:.1f} fps | capture->sent p50 {:.1f} ms p95 {:.1f} ms | captured {} processed {} "
+      "dropped {}",
+      static_cast<double>(interval_frames_) * 1e9 / static_cast<double>(elapsed_ns),
+      static_cast<double>(interval_e2e_.quantile_ns(0.5)) / 1e6,
+      static_cast<double>(interval_e2e_.quantile_ns(0.95)) / 1e6, captured,
+      total_.latency.end_to_end.count(), frame.result.frames_dropped);
+  interval_e2e_.clear();
+  interval_frames_ = 0;
+  interval_start_ns_ = frame.result.times.sent_ns;
+}
+
+void SinkStage::finish() {
+  // Finish every consumer even if one fails; report the first failure.
+  std::exception_ptr first;
+  for (const auto& consumer : consumers_) {
+    try {
+      consumer->finish();
+    } catch (...) {
+      if (!first) first = std::current_exception();
+    }
+  }
+  if (first) std::rethrow_exception(first);
+}
+
+}  // namespace rtmot::pipeline

@@ -1,0 +1,55 @@
+#pragma once
+// The sink stage (thread rtmot-sink): stamps sent_ns, hands every message to each FrameConsumer in
+// order, and keeps the statistics: latencies of every processed frame, per source and overall, and
+// the periodic log line.
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <vector>
+
+#include "pipeline/frame_consumer.hpp"
+#include "pipeline/pipeline_report.hpp"
+#include "pipeline/spsc_queue.hpp"
+#include "pipeline/stage_items.hpp"
+
+namespace rtmot::pipeline {
+
+/// What the sink thread counted for one source; read after it ended.
+struct SinkCounts {
+  StageLatencies latency;
+  std::int64_t last_sent_ns{0};
+};
+
+class SinkStage {
+ public:
+  /// `captured(input)`: frames captured so far by that source, for the log line.
+  SinkStage(std::size_t inputs, SpscQueue<TrackedFrame>& input,
+            std::vector<std::unique_ptr<FrameConsumer>> consumers, double stats_interval_s,
+            std::function<std::int64_t(std::size_t)> captured);
+
+  void run(const std::atomic<bool>& abort);
+  /// Always called after run(): finishes every consumer even if one fails; throws the first error.
+  void finish();
+
+  const SinkCounts& total() const { return total_; }
+  const SinkCounts& stream(std::size_t input) const { return streams_[input]; }
+
+ private:
+  void log_interval(const TrackedFrame& frame, std::int64_t elapsed_ns);
+
+  SpscQueue<TrackedFrame>& input_;
+  std::vector<std::unique_ptr<FrameConsumer>> consumers_;
+  const std::int64_t interval_ns_;
+  std::function<std::int64_t(std::size_t)> captured_;
+
+  // Written by the sink thread only.
+  SinkCounts total_;
+  std::vector<SinkCounts> streams_;
+  LatencyHistogram interval_e2e_;
+  std::int64_t interval_start_ns_{0};
+  std::int64_t interval_frames_{0};
+  double recent_fps_{0.0};
+};
+
+}  // namespace rtmot::pipeline

@@ -1,0 +1,62 @@
+#include "pipeline/track_stage.hpp"
+
+#include <algorithm>
+#include <utility>
+
+#include "platform/clock.hpp"
+
+namespace rtmot::pipeline {
+namespace {
+
+int most_tracks(const std::vector<TrackInput>& inputs) {
+  int most = 0;
+  for (const auto& input : inputs) most = std::max(most, input.tracker.max_tracks);
+  return most;
+}
+
+}  // namespace
+
+TrackStage::TrackStage(const std::vector<TrackInput>& inputs, SpscQueue<DetectedFrame>& input,
+                       std::size_t queue_capacity, bool keep_images)
+    : input_(input),
+      keep_images_(keep_images),
+      output_(std::max(queue_capacity, inputs.size()), [&](TrackedFrame& item) {
+        item.result.tracks.reserve(static_cast<std::size_t>(most_tracks(inputs)));
+      }) {
+  streams_.reserve(inputs.size());
+  for (const auto& wanted : inputs) {
+    Stream stream;
+    stream.tracker = std::make_unique<tracker::Tracker>(wanted.tracker);
+    stream.stream_id = wanted.stream_id;
+    streams_.push_back(std::move(stream));
+  }
+}
+
+void TrackStage::run(const std::atomic<bool>& abort) {
+  while (DetectedFrame* in = input_.front(abort)) {
+    TrackedFrame* out = output_.claim(abort);
+    if (out == nullptr) return;
+    Stream& stream = streams_[in->input];
+    const double seconds = static_cast<double>(in->info.pts_ns) * 1e-9;
+    const auto& reports = stream.tracker->update(in->detections, seconds);
+    messages::FrameResult& result = out->result;
+    result.tracks.assign(reports.begin(), reports.end());  // within the reserved capacity
+    result.stream_id = stream.stream_id;
+    result.sequence = static_cast<std::uint64_t>(stream.messages++);
+    result.source_outage = in->outage;
+    result.frame_number = in->info.frame_number;
+    result.pts_ns = in->info.pts_ns;
+    // Every frame before this one that did not become a message was dropped somewhere.
+    const std::int64_t dropped = in->info.frame_number - 1 - stream.frames_processed;
+    result.frames_dropped = static_cast<std::uint32_t>(std::max<std::int64_t>(0, dropped));
+    result.times = in->times;
+    result.times.tracked_ns = platform::steady_now_ns();
+    out->input = in->input;
+    if (keep_images_) std::swap(out->image, in->image);
+    if (!in->outage) ++stream.frames_processed;
+    input_.pop();
+    output_.publish();
+  }
+}
+
+}  // namespace rtmot::pipeline

@@ -1,0 +1,47 @@
+#pragma once
+// The track stage (thread rtmot-track): one Tracker per source, each fed its own source's frames on
+// their pts; builds the FrameResult (stream id, sequence, dropped count) for the sink stage.
+#include <atomic>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "pipeline/spsc_queue.hpp"
+#include "pipeline/stage_items.hpp"
+#include "tracker/tracker.hpp"
+#include "tracker/tracker_config.hpp"
+
+namespace rtmot::pipeline {
+
+struct TrackInput {
+  tracker::TrackerConfig tracker;
+  std::uint32_t stream_id{0};
+};
+
+class TrackStage {
+ public:
+  TrackStage(const std::vector<TrackInput>& inputs, SpscQueue<DetectedFrame>& input,
+             std::size_t queue_capacity, bool keep_images);
+
+  void run(const std::atomic<bool>& abort);
+  /// Always called after run(): no more results.
+  void finish() { output_.close(); }
+  void wake_all() { output_.wake_all(); }
+
+  SpscQueue<TrackedFrame>& output() { return output_; }
+
+ private:
+  struct Stream {
+    std::unique_ptr<tracker::Tracker> tracker;
+    std::uint32_t stream_id{0};
+    std::int64_t messages{0};          // frames and outage ticks sent
+    std::int64_t frames_processed{0};  // real frames
+  };
+
+  SpscQueue<DetectedFrame>& input_;
+  const bool keep_images_;
+  std::vector<Stream> streams_;  // written by the track thread only
+  SpscQueue<TrackedFrame> output_;
+};
+
+}  // namespace rtmot::pipeline
