@@ -13,9 +13,28 @@
 #include "common/input_error.hpp"
 
 namespace rtmot {
+namespace {
+
+// Publishing by rename replaces the directory entry: right for a regular file (or a new one), wrong
+// for a device, a FIFO or a socket. Renaming over /dev/full as root replaced the device with a
+// plain file; such targets are written in place.
+OutputFile::Publish effective_publish(const std::filesystem::path& path,
+                                      OutputFile::Publish wanted) {
+  if (wanted != OutputFile::Publish::on_close) return wanted;
+  std::error_code error;
+  const auto status = std::filesystem::status(path, error);
+  if (error || !std::filesystem::exists(status) || std::filesystem::is_regular_file(status)) {
+    return wanted;
+  }
+  return OutputFile::Publish::as_written;
+}
+
+}  // namespace
 
 OutputFile::OutputFile(std::filesystem::path path, Publish publish, std::size_t buffer_bytes)
-    : path_(std::move(path)), publish_(publish), buffer_(std::max<std::size_t>(buffer_bytes, 1)) {
+    : path_(std::move(path)),
+      publish_(effective_publish(path_, publish)),
+      buffer_(std::max<std::size_t>(buffer_bytes, 1)) {
   record_ends_.reserve(1024);
   written_path_ = publish_ == Publish::on_close
                       ? std::filesystem::path(path_.string() + ".tmp-" + std::to_string(::getpid()))
