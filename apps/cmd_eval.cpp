@@ -29,7 +29,10 @@ struct EvalOptions {
 int run_eval(const EvalOptions& options) {
   platform::StopSignals signals;  // a stop ends scoring before the next sequence
   const mot::EvaluationReport report =
-      mot::evaluate(options.gt_dir, options.results_dir, options.interval, &signals.stop_flag());
+      mot::evaluate(options.gt_dir, options.results_dir, options.interval, &signals.stop_flag(),
+                    [](const mot::SequenceScore& score) {
+                      spdlog::info("{}: scored ({} frames)", score.name, score.counts.clear.frames);
+                    });
   if (report.stopped) {
     // A table of some sequences would read as the dataset's score: nothing is printed or written.
     spdlog::warn("stopped after scoring {} of {} sequences: no table printed or written",

@@ -45,7 +45,8 @@ SequenceScore pool(const std::vector<SequenceScore>& sequences) {
 }
 
 EvaluationReport evaluate(const fs::path& gt_dir, const fs::path& results_dir, int interval,
-                          const std::atomic<bool>* stop) {
+                          const std::atomic<bool>* stop,
+                          const std::function<void(const SequenceScore&)>& progress) {
   std::error_code error;
   if (!fs::is_directory(results_dir, error)) {
     throw InputError(results_dir.string(), 0, "", "is not a folder");
@@ -60,6 +61,7 @@ EvaluationReport evaluate(const fs::path& gt_dir, const fs::path& results_dir, i
     }
     report.sequences.push_back(evaluate_sequence(
         sequence.dir, motio::sequence_file(results_dir, sequence.info.name, ".txt"), interval));
+    if (progress) progress(report.sequences.back());
   }
   report.overall = pool(report.sequences);
   return report;

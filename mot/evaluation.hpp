@@ -2,6 +2,7 @@
 // Scoring result files against MOTChallenge ground truth: the file side of `rtmot eval`.
 #include <atomic>
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -32,9 +33,10 @@ SequenceScore pool(const std::vector<SequenceScore>& sequences);
 
 /// Every sequence under `gt_dir` (motio::find_sequences) against `results_dir`/<name>.txt. A
 /// missing results file is an InputError naming it. A set `stop` flag ends it before the next
-/// sequence.
+/// sequence; `progress` is called after each scored one.
 EvaluationReport evaluate(const std::filesystem::path& gt_dir,
                           const std::filesystem::path& results_dir, int interval = 1,
-                          const std::atomic<bool>* stop = nullptr);
+                          const std::atomic<bool>* stop = nullptr,
+                          const std::function<void(const SequenceScore&)>& progress = {});
 
 }  // namespace rtmot::mot
