@@ -18,6 +18,12 @@ namespace rtmot::test {
 
 namespace {
 
+#ifdef RTMOT_SANITIZED
+constexpr bool kSanitized = true;
+#else
+constexpr bool kSanitized = false;
+#endif
+
 std::string slurp(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
   std::ostringstream text;
@@ -42,7 +48,7 @@ std::string slurp(const std::filesystem::path& path) {
     const rlimit limit{file_size_limit, file_size_limit};
     ::setrlimit(RLIMIT_FSIZE, &limit);
   }
-  if (address_space_limit > 0) {
+  if (address_space_limit > 0 && !kSanitized) {
     const rlimit limit{address_space_limit, address_space_limit};
     ::setrlimit(RLIMIT_AS, &limit);
   }
