@@ -5,9 +5,11 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "apps/number_checks.hpp"
 #include "apps/subcommand.hpp"
+#include "apps/tracker_flags.hpp"
 #include "common/exit_codes.hpp"
 #include "common/input_error.hpp"
 #include "pipeline/pipeline.hpp"
@@ -22,7 +24,7 @@ namespace {
 
 struct RunOverrides {
   std::string config_file;
-  std::string source;
+  std::vector<std::string> sources;  // --source, repeatable
   std::string playback;
   double latency_ms{0.0};
   std::string udp;
@@ -34,10 +36,25 @@ struct RunOverrides {
   std::int64_t max_frames{-1};
   double stats_interval_s{-1.0};
   std::int64_t stream_id{-1};
+  TrackerFlags tracker_flags;
 };
 
 void apply(const RunOverrides& overrides, runner::RunConfig& config) {
-  if (!overrides.source.empty()) config.source.uri = overrides.source;
+  if (!overrides.sources.empty()) {
+    // Replaces the file's source(s); each keeps the file's `source` capture settings.
+    runner::SourceConfig settings = config.source;
+    settings.stream_id = -1;
+    config.sources.clear();
+    for (const std::string& uri : overrides.sources) {
+      settings.uri = uri;
+      config.sources.push_back(settings);
+    }
+    config.source = config.sources.front();
+    if (config.sources.size() == 1)
+      config.sources.clear();
+    else
+      config.source.uri.clear();
+  }
   if (!overrides.playback.empty()) {
     const auto mode = pipeline::parse_playback_mode(overrides.playback);
     if (!mode) {
@@ -59,6 +76,7 @@ void apply(const RunOverrides& overrides, runner::RunConfig& config) {
   if (overrides.max_frames >= 0) config.max_frames = overrides.max_frames;
   if (overrides.stats_interval_s >= 0.0) config.stats_interval_s = overrides.stats_interval_s;
   if (overrides.stream_id >= 0) config.stream_id = static_cast<std::uint32_t>(overrides.stream_id);
+  overrides.tracker_flags.apply(config.tracker);
 }
 
 int run(const RunOverrides& overrides) {
@@ -69,26 +87,35 @@ int run(const RunOverrides& overrides) {
   runner::validate(config);
 
   spdlog::info("board: {}", platform::describe(platform::detect_board()));
-  auto source = runner::make_source(config);
-  const platform::SourceInfo source_info = source->info();
-  spdlog::info("source: {} ({}x{} at {:.2f} fps{})", source_info.uri, source_info.width,
-               source_info.height, source_info.fps, source_info.live ? ", live" : "");
+  // Every source opens before any output: a bad URI in a list fails the run with nothing written.
+  auto inputs = runner::make_inputs(config);
+  for (const auto& input : inputs) {
+    const platform::SourceInfo& info = input.source->info();
+    spdlog::info("source: {} ({}x{} at {:.2f} fps{}), stream id {}", info.uri, info.width,
+                 info.height, info.fps, info.live ? ", live" : "", input.stream_id);
+  }
   auto detector = runner::make_detector(config);
   spdlog::info("detector: {}", detector->describe());
-  pipeline::Pipeline pipeline(std::move(source), std::move(detector),
-                              runner::complete_tracker_config(config, source_info),
-                              runner::make_sinks(config), runner::make_options(config));
+  pipeline::Pipeline pipeline(std::move(inputs), std::move(detector),
+                              pipeline::as_consumers(runner::make_sinks(config)),
+                              runner::make_options(config));
   const pipeline::PipelineReport report = pipeline.run(signals.stop_flag());
 
   spdlog::info("{}", pipeline::summary_line(report));
+  if (report.streams.size() > 1) {
+    for (const auto& stream : report.streams) spdlog::info("{}", pipeline::summary_line(stream));
+  }
   if (!config.output.report_file.empty()) {
     pipeline::write_report(report, config.output.report_file);
     spdlog::info("report written to {}", config.output.report_file);
   }
-  if (!report.source_error.empty()) {
-    spdlog::error("{}: the source failed: {}", source_info.uri, report.source_error);
-    return to_int(ExitCode::source_failed);
+  bool failed = false;
+  for (const auto& stream : report.streams) {
+    if (stream.source_error.empty()) continue;
+    spdlog::error("{}: the source failed: {}", stream.source, stream.source_error);
+    failed = true;
   }
+  if (failed) return to_int(ExitCode::source_failed);
   return to_int(ExitCode::ok);
 }
 
@@ -102,9 +129,10 @@ Subcommand add_run_command(CLI::App& parent) {
       "docs/config.md)");
   cli->add_option("--config", overrides->config_file, "YAML run configuration (configs/*.yaml)")
       ->required();
-  cli->add_option("--source", overrides->source,
+  cli->add_option("--source", overrides->sources,
                   "source URI: file path, v4l2:///dev/videoN, csi://N, rtsp://..., test://..., "
-                  "mot-seq://SEQUENCE_DIR");
+                  "mot-seq://SEQUENCE_DIR; repeat for several sources (one batched detector)")
+      ->allow_extra_args(false);  // one URI per --source
   cli->add_option("--playback", overrides->playback, "every-frame, realtime or simulated")
       ->check(CLI::IsMember({"every-frame", "realtime", "simulated"}));
   cli->add_option("--latency-ms", overrides->latency_ms, "simulated detector latency (ms)")
@@ -122,6 +150,7 @@ Subcommand add_run_command(CLI::App& parent) {
       ->check(finite_in(0.0, 86'400.0));
   cli->add_option("--stream-id", overrides->stream_id, "stream id in every message")
       ->check(CLI::Range(std::int64_t{0}, std::int64_t{4294967295}));
+  overrides->tracker_flags.add_to(*cli);
   return {cli, [overrides] { return run(*overrides); }, /*stops_on_signals=*/true};
 }
 

@@ -44,10 +44,9 @@ double ms(std::int64_t ns) {
 }
 
 pipeline::PipelineReport run_once(const runner::RunConfig& config, const std::atomic<bool>& stop) {
-  auto source = runner::make_source(config);
-  const auto tracker_config = runner::complete_tracker_config(config, source->info());
-  pipeline::Pipeline pipe(std::move(source), runner::make_detector(config), tracker_config,
-                          runner::make_sinks(config), runner::make_options(config));
+  pipeline::Pipeline pipe(runner::make_inputs(config), runner::make_detector(config),
+                          pipeline::as_consumers(runner::make_sinks(config)),
+                          runner::make_options(config));
   return pipe.run(stop);
 }
 

@@ -1,10 +1,12 @@
 // `rtmot study`: the frame-rate study. Tracks every configuration of mot/study_plan.hpp on both
-// inputs at every interval, scores each run with the `rtmot eval` scorer on the processed frames,
-// and writes tables and plots (docs/study/ is made by scripts/study.sh with this command).
+// inputs at every interval, the presets on the synthetic detectors, and the cross-validation of the
+// default's candidates (mot/study_cv.hpp); scores each run with the `rtmot eval` scorer on the
+// processed frames, and writes tables and plots (docs/study/ is made by scripts/study.sh).
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
 #include <chrono>
+#include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
@@ -13,6 +15,9 @@
 #include "apps/subcommand.hpp"
 #include "common/exit_codes.hpp"
 #include "common/input_error.hpp"
+#include "common/output_file.hpp"
+#include "mot/metrics_report.hpp"
+#include "mot/study_cv.hpp"
 #include "mot/study_dataset.hpp"
 #include "mot/study_plan.hpp"
 #include "mot/study_report.hpp"
@@ -28,6 +33,8 @@ struct StudyCommandOptions {
   int jobs{2};
   std::vector<int> intervals{mot::default_study_intervals()};
   bool quick{false};
+  bool no_synthetic{false};
+  bool no_cv{false};
   std::string only;
   std::string link_prefix;
 };
@@ -67,9 +74,39 @@ int run_study_command(const StudyCommandOptions& options) {
       }
     }
   };
-  const auto tables =
-      mot::run_study(dataset, configurations, inputs, intervals, options.jobs, progress);
-  const auto files = mot::write_study(options.out_dir, tables, options.link_prefix);
+  auto tables = mot::run_study(dataset, configurations, inputs, intervals, options.jobs, progress);
+  if (!options.no_synthetic) {
+    // The presets on detectors they were never tuned on (mot/synthetic_detector.hpp).
+    std::vector<mot::StudyConfiguration> presets;
+    for (const auto& configuration : configurations) {
+      if (configuration.group == "presets") presets.push_back(configuration);
+    }
+    spdlog::info("study: {} presets x {} synthetic detectors", presets.size(),
+                 mot::synthetic_inputs().size());
+    for (auto& table : mot::run_study(dataset, presets, mot::synthetic_inputs(), intervals,
+                                      options.jobs, progress))
+      tables.push_back(std::move(table));
+  }
+  std::string folds;
+  if (!options.no_cv && dataset.size() >= 2) {
+    const auto candidates = mot::cv_candidates(options.quick);
+    spdlog::info(
+        "study: cross-validation (one sequence and one detector left out) of {} candidates",
+        candidates.size());
+    // The public detections and every synthetic detector: each is left out in turn.
+    std::vector<mot::StudyInput> detectors = {mot::StudyInput::detections};
+    for (const auto& input : mot::synthetic_inputs()) detectors.push_back(input);
+    const auto cv = mot::cross_validate(dataset, candidates, detectors, intervals, options.jobs);
+    for (const auto& table : cv.tables) tables.push_back(table);
+    folds = mot::format_folds_markdown(cv);
+    spdlog::info("study: cross-validation chose {} on all sequences", cv.in_sample_choice);
+  }
+  auto files = mot::write_study(options.out_dir, tables, options.link_prefix);
+  if (!folds.empty()) {
+    const auto path = std::filesystem::path(options.out_dir) / "cv-folds.md";
+    write_whole_file(path, folds);
+    files.push_back(path);
+  }
   spdlog::info("study: wrote {} files under {} in {:.0f} s", files.size(), options.out_dir,
                std::chrono::duration<double>(Clock::now() - start).count());
   return to_int(ExitCode::ok);
@@ -82,7 +119,9 @@ Subcommand add_study_command(CLI::App& parent) {
   CLI::App* cli = parent.add_subcommand(
       "study",
       "Frame-rate study: every predictor x affinity, tracker option and preset at several frame "
-      "intervals, on det/det.txt and on gt/gt.txt as a perfect detector; tables and SVG plots");
+      "intervals, on det/det.txt and on gt/gt.txt as a perfect detector; the presets on five "
+      "synthetic detectors made from the ground truth; cross-validation of the default's "
+      "candidates; tables and SVG plots");
   cli->add_option("--dataset", options->dataset,
                   "a sequence folder (with seqinfo.ini) or a folder of them")
       ->required();
@@ -98,6 +137,10 @@ Subcommand add_study_command(CLI::App& parent) {
       "--quick", options->quick,
       "kalman-iou, the options, the ablation and the presets only (no predictor x affinity grid)");
   cli->add_option("--only", options->only, "only configurations whose name contains this");
+  cli->add_flag("--no-synthetic", options->no_synthetic,
+                "skip the presets on the synthetic detectors made from the ground truth");
+  cli->add_flag("--no-cv", options->no_cv,
+                "skip the leave-one-sequence-out cross-validation (with --quick: 2 candidates)");
   cli->add_option("--link-prefix", options->link_prefix,
                   "prefix of the plot links in summary.md (e.g. study/ when it is included from "
                   "docs/study.md)");

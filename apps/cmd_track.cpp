@@ -6,18 +6,20 @@
 #include <chrono>
 #include <filesystem>
 #include <memory>
-#include <optional>
 #include <string>
 
 #include "apps/number_checks.hpp"
 #include "apps/subcommand.hpp"
+#include "apps/tracker_flags.hpp"
 #include "common/exit_codes.hpp"
 #include "common/input_error.hpp"
+#include "motio/mot_files.hpp"
 #include "motio/results_writer.hpp"
 #include "motio/sequence_folders.hpp"
 #include "motio/track_runner.hpp"
 #include "platform/signals.hpp"
 #include "tracker/presets.hpp"
+#include "tracker/score_scale.hpp"
 #include "tracker/tracker_config.hpp"
 
 namespace rtmot::app {
@@ -31,28 +33,10 @@ struct TrackCommandOptions {
   std::string dataset;
   std::string out_dir;
   std::string preset{tracker::default_preset_name()};
-  std::string predictor;
-  std::string affinity;
-  std::string time_step;
-  double threshold{0.0};
-  float detection_threshold{0.0F};
-  int max_age{0};
-  int min_hits{0};
+  TrackerFlags tracker_flags;
   int interval{1};
   std::string detections{"det/det.txt"};
-  // Which of the optional overrides were given.
-  const CLI::Option* threshold_option{nullptr};
-  const CLI::Option* detection_threshold_option{nullptr};
-  const CLI::Option* max_age_option{nullptr};
-  const CLI::Option* min_hits_option{nullptr};
 };
-
-template <typename Value>
-Value parsed(const std::optional<Value>& value, const char* option, const std::string& text) {
-  if (!value)
-    throw InputError("command line", 0, option, "unknown value '" + text + "'", ExitCode::usage);
-  return *value;
-}
 
 // The preset first, then every option given on the command line.
 tracker::TrackerConfig make_config(const TrackCommandOptions& options) {
@@ -64,26 +48,19 @@ tracker::TrackerConfig make_config(const TrackCommandOptions& options) {
         ExitCode::usage);
   }
   tracker::TrackerConfig config = *preset;
-  if (!options.predictor.empty()) {
-    config.predictor =
-        parsed(tracker::parse_predictor(options.predictor), "--predictor", options.predictor);
-  }
-  if (!options.affinity.empty()) {
-    config.affinity =
-        parsed(tracker::parse_affinity(options.affinity), "--affinity", options.affinity);
-    config.affinity_threshold = tracker::default_threshold(config.affinity);
-  }
-  if (!options.time_step.empty()) {
-    config.time_step =
-        parsed(tracker::parse_time_step(options.time_step), "--time-step", options.time_step);
-  }
-  if (options.threshold_option->count() > 0) config.affinity_threshold = options.threshold;
-  if (options.detection_threshold_option->count() > 0) {
-    config.detection_threshold = options.detection_threshold;
-  }
-  if (options.max_age_option->count() > 0) config.max_age = options.max_age;
-  if (options.min_hits_option->count() > 0) config.min_hits = options.min_hits;
+  options.tracker_flags.apply(config);
   return config;
+}
+
+// A detections file whose scores do not fit the configuration's absolute cuts gets one warning
+// naming the file and the range seen (tracker/score_scale.hpp); the run goes on.
+void warn_on_score_scale(const fs::path& file, const tracker::TrackerConfig& config) {
+  if (file.filename() == "gt.txt") return;  // the perfect detector: every score is 1
+  tracker::ScoreRange range;
+  for (const auto& row : motio::read_mot_file(file, motio::MotFileKind::detections))
+    range.include(row.conf);
+  if (const auto warning = tracker::score_scale_warning(config, range))
+    spdlog::warn("{}: {}", file.string(), *warning);
 }
 
 double hz(int frames, double seconds) {
@@ -106,6 +83,7 @@ int run_track(const TrackCommandOptions& options) {
   double total_seconds = 0.0;
   int written = 0;
   for (const auto& sequence : sequences) {
+    warn_on_score_scale(sequence.dir / options.detections, track_options.config);
     using Clock = std::chrono::steady_clock;
     auto next_report = Clock::now() + std::chrono::duration<double>(kProgressEverySeconds);
     const auto progress = [&](int frame, int length) {
@@ -153,26 +131,7 @@ Subcommand add_track_command(CLI::App& parent) {
          "--preset", options->preset,
          "starting configuration (" + tracker::preset_names() + "); options below override it")
       ->capture_default_str();
-  cli->add_option("--predictor", options->predictor, "kalman, stationary or particle")
-      ->check(CLI::IsMember({"kalman", "stationary", "particle"}));
-  cli->add_option("--affinity", options->affinity,
-                  "iou, linear or exponential (sets its usual --threshold)")
-      ->check(CLI::IsMember({"iou", "linear", "exponential"}));
-  options->threshold_option =
-      cli->add_option("--threshold", options->threshold, "minimum affinity for a match")
-          ->check(finite_in(-1e12, 1e12));
-  options->detection_threshold_option =
-      cli->add_option("--detection-threshold", options->detection_threshold,
-                      "drop detections scoring below this")
-          ->check(finite_in(0.0, 1.0));
-  options->max_age_option =
-      cli->add_option("--max-age", options->max_age, "frames a track survives without a match")
-          ->check(integer_in(0, motio::kMaxFrame));
-  options->min_hits_option =
-      cli->add_option("--min-hits", options->min_hits, "matches before a track is reported")
-          ->check(integer_in(0, motio::kMaxFrame));
-  cli->add_option("--time-step", options->time_step, "per-update or elapsed")
-      ->check(CLI::IsMember({"per-update", "elapsed"}));
+  options->tracker_flags.add_to(*cli);
   cli->add_option("--interval", options->interval,
                   "process frames 1, 1+N, 1+2N, ... only (frame numbers and times kept)")
       ->check(integer_in(1, motio::kMaxFrame))

@@ -5,7 +5,10 @@
 // median of individual calls, per image, for a table (docs/gpu.md).
 //
 // Run: detector_batch_bench [--backends cpu,cuda,cuda-fp16] [--batches 1,2,4,8] [--iterations N]
-//                           [--threads N] [--model PATH]
+//                           [--threads N] [--model PATH] [--vary]
+// --vary: every other call one image short (batch, batch - 1, batch, ...), as a multi-source
+// pipeline's batches are when a camera is late: shows what OpenCV's re-planning on a change of
+// input shape costs.
 // Frames: RTMOT_BENCH_FRAMES=URI (e.g. images://DIR), else ../shared/data/video/vtest.avi through
 // GStreamer. A backend that this build or machine lacks is reported and skipped.
 #include <algorithm>
@@ -32,6 +35,7 @@ struct Options {
   int iterations{30};
   int threads{0};
   std::string model{RTMOT_MODEL_PATH};
+  bool vary{false};
 };
 
 std::vector<std::string> split(const std::string& text) {
@@ -60,9 +64,11 @@ Options parse(int argc, char** argv) {
       options.threads = std::stoi(argv[++i]);
     } else if (arg == "--model" && has_value) {
       options.model = argv[++i];
+    } else if (arg == "--vary") {
+      options.vary = true;
     } else {
       std::cerr << "usage: detector_batch_bench [--backends cpu,cuda,cuda-fp16] "
-                   "[--batches 1,2,4,8] [--iterations N] [--threads N] [--model PATH]\n";
+                   "[--batches 1,2,4,8] [--iterations N] [--threads N] [--model PATH] [--vary]\n";
       std::exit(2);
     }
   }
@@ -119,13 +125,14 @@ int main(int argc, char** argv) {
       std::vector<double> forward_ms;
       std::size_t next = 0;
       for (int i = -3; i < options.iterations; ++i) {
-        for (int k = 0; k < batch; ++k) {  // different frames in every call and slot
+        const int count = options.vary && batch > 1 && i % 2 != 0 ? batch - 1 : batch;
+        for (int k = 0; k < count; ++k) {  // different frames in every call and slot
           images[static_cast<std::size_t>(k)] = &frames[next % frames.size()];
           numbers[static_cast<std::size_t>(k)] = static_cast<std::int64_t>(next % frames.size());
           ++next;
         }
         const auto start = std::chrono::steady_clock::now();
-        detector->detect_batch(images.data(), numbers.data(), batch, out);
+        detector->detect_batch(images.data(), numbers.data(), count, out);
         const double ms =
             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
                 .count();
@@ -134,9 +141,15 @@ int main(int argc, char** argv) {
         forward_ms.push_back(static_cast<double>(detector->last_forward_ns()) * 1e-6);
       }
       const double call_median = median(call_ms);
-      std::printf("%-10s %5d | %9.2f %9.2f | %9.2f %9.2f | %9.2f %9.2f | %8.1f\n", backend.c_str(),
-                  batch, minimum(call_ms), call_median, minimum(forward_ms), median(forward_ms),
-                  call_median / batch, median(forward_ms) / batch, 1000.0 * batch / call_median);
+      // With --vary the calls hold batch - 0.5 images on average.
+      const bool varied = options.vary && batch > 1;
+      const double per_call = varied ? batch - 0.5 : batch;
+      const std::string label =
+          varied ? std::to_string(batch) + "/" + std::to_string(batch - 1) : std::to_string(batch);
+      std::printf("%-10s %5s | %9.2f %9.2f | %9.2f %9.2f | %9.2f %9.2f | %8.1f\n", backend.c_str(),
+                  label.c_str(), minimum(call_ms), call_median, minimum(forward_ms),
+                  median(forward_ms), call_median / per_call, median(forward_ms) / per_call,
+                  1000.0 * per_call / call_median);
       std::fflush(stdout);
     }
   }

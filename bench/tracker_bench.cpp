@@ -97,8 +97,8 @@ void BM_ModelMot15(benchmark::State& state) {
   config.predictor = static_cast<PredictorKind>(state.range(0));
   config.affinity = static_cast<AffinityKind>(state.range(1));
   config.affinity_threshold = rtmot::tracker::default_threshold(config.affinity);
-  state.SetLabel(std::string(to_string(config.predictor)) + "/" +
-                 std::string(to_string(config.affinity)));
+  state.SetLabel(std::string(rtmot::tracker::kPredictorNames.name(config.predictor)) + "/" +
+                 std::string(rtmot::tracker::kAffinityNames.name(config.affinity)));
   track_all(state, config);
 }
 // Every predictor with every affinity. (Apply rather than ArgsProduct: Ubuntu 20.04's

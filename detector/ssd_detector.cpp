@@ -115,10 +115,10 @@ SsdDetector::SsdDetector(SsdConfig config)
   const int blob_shape[] = {batch, 3, kInputSize, kInputSize};
   blob_.create(4, blob_shape, CV_32F);
   blob_.setTo(0.F);
-  for (int n = 1; n <= batch; ++n) {
-    const int view_shape[] = {n, 3, kInputSize, kInputSize};
-    batch_views_.emplace_back(4, view_shape, CV_32F, blob_.data);
-  }
+  const int single_shape[] = {1, 3, kInputSize, kInputSize};
+  single_view_ = cv::Mat(4, single_shape, CV_32F, blob_.data);
+  batch_view_ = blob_;
+  if (batch > 1) batch_net_ = load_network(config_.model_path, backend_);
   // cv::split writes channel k (BGR order) into planes_[3 * image + k]; they point at the RGB
   // planes 2, 1, 0 of that image.
   for (int image = 0; image < batch; ++image) {
@@ -129,8 +129,8 @@ SsdDetector::SsdDetector(SsdConfig config)
   // One forward pass now (at the largest batch, which also sizes OpenCV's buffers for it): it
   // checks the model against its anchors and moves the one-off costs (layer allocation, CUDA
   // context, cuDNN plans) out of the first frame.
-  warm_up(batch);
-  if (batch > 1) warm_up(1);  // single images too (a batch-1 pass re-plans the network)
+  warm_up(1);
+  if (batch > 1) warm_up(batch);
   // The choice and its reason are logged by whoever builds the pipeline (describe()), once.
 }
 
@@ -141,7 +141,8 @@ void SsdDetector::warm_up(int count) {
     throw model_error(config_.model_path, "the model does not run: " + e.msg);
   }
   const auto anchors = static_cast<std::size_t>(postprocess_.num_anchors());
-  const auto images = static_cast<std::size_t>(count);
+  const int pass = count == 1 ? 1 : config_.max_batch;  // images the network computed
+  const auto images = static_cast<std::size_t>(pass);
   if (outputs_.size() != 2 || outputs_[0].total() != images * anchors * 4 ||
       outputs_[1].total() != images * anchors * kNumClasses) {
     throw model_error(config_.model_path,
@@ -149,10 +150,10 @@ void SsdDetector::warm_up(int count) {
                           " anchors x (4 box codes, 91 classes): wrong model or anchors file");
   }
   // A model exported for one image per pass concatenates a batch's anchors into one row.
-  if (outputs_[0].dims < 3 || outputs_[0].size[0] != count || outputs_[1].size[0] != count) {
+  if (outputs_[0].dims < 3 || outputs_[0].size[0] != pass || outputs_[1].size[0] != pass) {
     throw model_error(config_.model_path,
                       "the model takes one image per pass (exported before batching), max_batch " +
-                          std::to_string(count) +
+                          std::to_string(pass) +
                           " needs a batch dimension: run "
                           "scripts/fetch_model.sh again");
   }
@@ -169,13 +170,16 @@ void SsdDetector::warm_up(int count) {
 
 void SsdDetector::forward(int count) {
   const auto start = std::chrono::steady_clock::now();
-  net_.setInput(batch_views_[static_cast<std::size_t>(count - 1)]);
+  // Each network always sees the same input shape: a new shape would make OpenCV re-plan (and
+  // re-allocate) every layer. Slots count.. of a padded batch hold earlier images; their outputs
+  // are not read.
+  cv::dnn::Net& net = count == 1 ? net_ : batch_net_;
+  net.setInput(count == 1 ? single_view_ : batch_view_);
   // What OpenCV still allocates per frame (measured, OpenCV 4.6, CPU, 1 thread): forward() makes
   // about 1000 small heap allocations (per-layer bookkeeping: Mat vectors, scratch of at most
   // 64 KB) and returns headers on the network's own output blobs. No buffer the size of an image
-  // or blob: those above are reused. A batch size other than the last one's makes OpenCV re-plan
-  // (and re-allocate) every layer's buffers.
-  net_.forward(outputs_, output_names_);
+  // or blob: those above are reused.
+  net.forward(outputs_, output_names_);
   last_forward_ns_ =
       std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - start)
           .count();

@@ -1,5 +1,8 @@
 #pragma once
-// Intersection over union in double precision, as the devkit computes it (no +1 pixel).
+// Intersection over union in double precision, as the devkit computes it (no +1 pixel). The
+// product's IoU is tracker::iou (tracker/box_geometry.hpp, float, as SORT); the scorer keeps its
+// own because it must reproduce the devkit's numbers to the printed digit, and a float IoU moves
+// pairs that sit exactly at the 0.5 match threshold.
 #include <algorithm>
 
 #include "tracker/box.hpp"

@@ -1,7 +1,10 @@
 #include "mot/study_dataset.hpp"
 
+#include <fmt/format.h>
+
 #include "mot/prepared_sequence.hpp"
 #include "mot/scorer.hpp"
+#include "mot/synthetic_detector.hpp"
 #include "motio/sequence_folders.hpp"
 #include "motio/track_runner.hpp"
 
@@ -10,7 +13,40 @@ namespace rtmot::mot {
 namespace fs = std::filesystem;
 
 std::string_view to_string(StudyInput input) {
-  return input == StudyInput::detections ? "det" : "gt";
+  switch (input.kind) {
+    case StudyInput::Kind::detections:
+      return "det";
+    case StudyInput::Kind::ground_truth:
+      return "gt";
+    case StudyInput::Kind::synthetic:
+      return synthetic_detectors().at(static_cast<std::size_t>(input.synthetic)).name;
+  }
+  return "?";
+}
+
+std::string input_title(StudyInput input) {
+  switch (input.kind) {
+    case StudyInput::Kind::detections:
+      return "det/det.txt";
+    case StudyInput::Kind::ground_truth:
+      return "gt/gt.txt (perfect detector)";
+    case StudyInput::Kind::synthetic: {
+      const auto& spec = synthetic_detectors().at(static_cast<std::size_t>(input.synthetic));
+      return fmt::format(
+          "{} (synthetic: {} scores, misses {:g} in runs of {:g}, {:g} random FP "
+          "per frame + {} clutter sites at {:g}, jitter {:g})",
+          spec.name, kScoreScaleNames.name(spec.scale), spec.miss_rate, spec.miss_run_frames,
+          spec.false_per_frame, spec.clutter_sites, spec.clutter_rate, spec.jitter);
+    }
+  }
+  return "?";
+}
+
+std::vector<StudyInput> synthetic_inputs() {
+  std::vector<StudyInput> inputs;
+  for (std::size_t i = 0; i < synthetic_detectors().size(); ++i)
+    inputs.push_back(StudyInput::synthetic_detector(static_cast<int>(i)));
+  return inputs;
 }
 
 std::vector<LoadedSequence> load_study_dataset(const fs::path& dataset) {
@@ -24,6 +60,10 @@ std::vector<LoadedSequence> load_study_dataset(const fs::path& dataset) {
         motio::read_mot_file(gt_file, motio::MotFileKind::ground_truth, sequence.info.length);
     sequence.detections = motio::load_detections(dir / "det" / "det.txt", sequence.info);
     sequence.gt_detections = motio::load_detections(gt_file, sequence.info);
+    for (const auto& spec : synthetic_detectors()) {
+      sequence.synthetic.push_back(motio::FrameDetections::from_frames(synthesize_detections(
+          spec, sequence.gt_rows, sequence.info, static_cast<int>(sequences.size()))));
+    }
     sequences.push_back(std::move(sequence));
   }
   return sequences;
@@ -34,9 +74,12 @@ SequenceCounts track_and_count(const LoadedSequence& sequence, StudyInput input,
   motio::TrackOptions options;
   options.config = config;
   options.interval = interval;
-  const motio::TrackRun run = motio::track_detections(
-      input == StudyInput::detections ? sequence.detections : sequence.gt_detections, sequence.info,
-      options);
+  const motio::FrameDetections& detections =
+      input.kind == StudyInput::Kind::detections ? sequence.detections
+      : input.kind == StudyInput::Kind::ground_truth
+          ? sequence.gt_detections
+          : sequence.synthetic.at(static_cast<std::size_t>(input.synthetic));
+  const motio::TrackRun run = motio::track_detections(detections, sequence.info, options);
   PrepareOptions prepare;
   prepare.interval = interval;
   prepare.sequence_length = sequence.info.length;

@@ -3,6 +3,7 @@
 // detection inputs are read once, then every configuration is tracked and scored from memory.
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "mot/metrics.hpp"
@@ -15,18 +16,39 @@
 namespace rtmot::mot {
 
 /// Where a run's detections come from.
-enum class StudyInput {
-  detections,    // det/det.txt: the public detector
-  ground_truth,  // gt/gt.txt without its ids: a perfect detector
-};
+struct StudyInput {
+  enum class Kind {
+    detections,    // det/det.txt: the public detector
+    ground_truth,  // gt/gt.txt without its ids: a perfect detector
+    synthetic,     // the ground truth through synthetic_detectors()[synthetic]
+  };
+  Kind kind{Kind::detections};
+  int synthetic{-1};
 
+  static const StudyInput detections;
+  static const StudyInput ground_truth;
+  static StudyInput synthetic_detector(int index) { return {Kind::synthetic, index}; }
+  friend bool operator==(const StudyInput& a, const StudyInput& b) {
+    return a.kind == b.kind && a.synthetic == b.synthetic;
+  }
+  friend bool operator!=(const StudyInput& a, const StudyInput& b) { return !(a == b); }
+};
+inline const StudyInput StudyInput::detections{StudyInput::Kind::detections, -1};
+inline const StudyInput StudyInput::ground_truth{StudyInput::Kind::ground_truth, -1};
+
+/// "det", "gt" or the synthetic detector's name: file-name safe.
 std::string_view to_string(StudyInput input);
+/// "det/det.txt", "gt/gt.txt (perfect detector)", or the synthetic detector's recipe.
+std::string input_title(StudyInput input);
+/// Every synthetic detector, in synthetic_detectors() order.
+std::vector<StudyInput> synthetic_inputs();
 
 struct LoadedSequence {
   motio::SequenceInfo info;
   std::vector<motio::MotRow> gt_rows;
-  motio::FrameDetections detections;     // det/det.txt
-  motio::FrameDetections gt_detections;  // gt/gt.txt
+  motio::FrameDetections detections;              // det/det.txt
+  motio::FrameDetections gt_detections;           // gt/gt.txt
+  std::vector<motio::FrameDetections> synthetic;  // [i]: synthetic_detectors()[i] from gt/gt.txt
 };
 
 /// Every sequence under `dataset` (a sequence folder or a folder of them). Throws InputError.

@@ -1,8 +1,11 @@
 #include "mot/study_plan.hpp"
 
+#include <fmt/format.h>
+
 #include <utility>
 
 #include "tracker/presets.hpp"
+#include "tracker/tracker_options.hpp"
 
 namespace rtmot::mot {
 namespace {
@@ -24,34 +27,32 @@ TrackerConfig grid_config(PredictorKind predictor, AffinityKind affinity) {
 }
 
 std::string grid_name(PredictorKind predictor, AffinityKind affinity) {
-  return std::string(tracker::to_string(predictor)) + "-" +
-         std::string(tracker::to_string(affinity));
+  return std::string(tracker::kPredictorNames.name(predictor)) + "-" +
+         std::string(tracker::kAffinityNames.name(affinity));
 }
 
-template <typename Change>
-StudyConfiguration option(const std::string& suffix, Change change) {
-  TrackerConfig config = grid_config(PredictorKind::kalman, AffinityKind::iou);
-  change(config);
-  return {"kalman-iou+" + suffix, "options", config};
+// One tracker option (or a few) on top of kalman-iou, by the options table's names and values.
+StudyConfiguration option(
+    const std::string& suffix,
+    const std::vector<std::pair<std::string_view, std::string_view>>& values) {
+  return {"kalman-iou+" + suffix, "options",
+          tracker::with_options(grid_config(PredictorKind::kalman, AffinityKind::iou), values)};
 }
 
 std::vector<StudyConfiguration> option_configurations() {
   return {
+      // det.txt scores are 0.5..1: split the pool at 0.7.
       option("second-round",
-             [](TrackerConfig& c) {
-               c.second_round = true;  // det.txt scores are 0.5..1: split the pool at 0.7
-               c.detection_threshold = 0.7F;
-               c.low_score = 0.5F;
-             }),
-      option("oru", [](TrackerConfig& c) { c.observation_centric_reupdate = true; }),
-      option("widened-gate", [](TrackerConfig& c) { c.time_widened_gate = true; }),
-      option("cascade", [](TrackerConfig& c) { c.recent_tracks_first = true; }),
-      option("confirm-by-duration", [](TrackerConfig& c) { c.confirm_by_duration = true; }),
-      option("coast-1", [](TrackerConfig& c) { c.min_coast_updates = 1; }),
-      option("max-age-3", [](TrackerConfig& c) { c.max_age = 3; }),
-      option("max-age-10", [](TrackerConfig& c) { c.max_age = 10; }),
-      option("min-hits-1", [](TrackerConfig& c) { c.min_hits = 1; }),
-      option("det-0.7", [](TrackerConfig& c) { c.detection_threshold = 0.7F; }),
+             {{"second_round", "true"}, {"detection_threshold", "0.7"}, {"low_score", "0.5"}}),
+      option("oru", {{"observation_centric_reupdate", "true"}}),
+      option("widened-gate", {{"time_widened_gate", "true"}}),
+      option("cascade", {{"recent_tracks_first", "true"}}),
+      option("confirm-by-duration", {{"confirm_by_duration", "true"}}),
+      option("coast-1", {{"min_coast_updates", "1"}}),
+      option("max-age-3", {{"max_age", "3"}}),
+      option("max-age-10", {{"max_age", "10"}}),
+      option("min-hits-1", {{"min_hits", "1"}}),
+      option("det-0.7", {{"detection_threshold", "0.7"}}),
   };
 }
 
@@ -70,18 +71,23 @@ std::vector<StudyConfiguration> ablation_configurations() {
       ablation("-per-update", [&](TrackerConfig& c) { c.time_step = sort.time_step; }),
       ablation("-threshold",
                [&](TrackerConfig& c) { c.affinity_threshold = sort.affinity_threshold; }),
-      ablation("-det", [&](TrackerConfig& c) { c.detection_threshold = sort.detection_threshold; }),
+      ablation("-split",
+               [](TrackerConfig& c) {
+                 c.score_range_cut = 0.0;
+                 c.second_round = false;
+               }),
+      ablation("-split+det-0.85",
+               [](TrackerConfig& c) {  // the former default's absolute cut, tuned on MOT15
+                 c.score_range_cut = 0.0;
+                 c.second_round = false;
+                 c.detection_threshold = 0.85F;
+               }),
       ablation("-max-age", [&](TrackerConfig& c) { c.max_age = sort.max_age; }),
       ablation("-min-hits", [&](TrackerConfig& c) { c.min_hits = sort.min_hits; }),
       ablation("-duration", [](TrackerConfig& c) { c.confirm_by_duration = false; }),
       ablation("-coast", [](TrackerConfig& c) { c.min_coast_updates = 0; }),
       ablation("-gate", [](TrackerConfig& c) { c.time_widened_gate = false; }),
       ablation("+oru", [](TrackerConfig& c) { c.observation_centric_reupdate = true; }),
-      ablation("+second-round",
-               [](TrackerConfig& c) {
-                 c.second_round = true;
-                 c.low_score = 0.5F;
-               }),
       ablation("+cascade", [](TrackerConfig& c) { c.recent_tracks_first = true; }),
   };
 }
@@ -111,6 +117,65 @@ std::vector<StudyConfiguration> study_configurations(bool quick) {
     configurations.push_back({"preset-" + std::string(preset.name), "presets", preset.make()});
   }
   return configurations;
+}
+
+std::vector<StudyConfiguration> cv_candidates(bool quick) {
+  // A score cut: the options that set it; "split" keeps the detections below it for the second
+  // round (ByteTrack's use of low scores, with the split relative to the stream's scores).
+  struct Choice {
+    std::string name;
+    std::vector<std::pair<std::string_view, std::string_view>> options;
+  };
+  const auto split = [](std::string name, std::string_view option, std::string_view value) {
+    return Choice{std::move(name) + "-split",
+                  {{option, value}, {"second_round", "true"}, {"low_score", "-1e30"}}};
+  };
+  const std::vector<Choice> cuts =
+      quick ? std::vector<Choice>{{"none", {}}, split("quantile-0.3", "score_quantile", "0.3")}
+            : std::vector<Choice>{{"none", {}},
+                                  split("quantile-0.2", "score_quantile", "0.2"),
+                                  split("quantile-0.3", "score_quantile", "0.3"),
+                                  split("range-0.5", "score_range_cut", "0.5")};
+  const auto flag = [](std::string name, std::string_view option) {
+    return std::vector<Choice>{{name + "-on", {{option, "true"}}},
+                               {name + "-off", {{option, "false"}}}};
+  };
+  const auto values = [quick](std::string name, std::string_view option,
+                              std::vector<std::string_view> all) {
+    std::vector<Choice> choices;
+    for (const auto value : all) {
+      choices.push_back({name + "-" + std::string(value), {{option, value}}});
+      if (quick) break;
+    }
+    return choices;
+  };
+  // Every combination of one choice per dimension, on top of SORT with elapsed time steps and one
+  // update of coasting.
+  const std::vector<std::vector<Choice>> dimensions = {
+      cuts,
+      quick ? std::vector<Choice>{{"duration-on", {{"confirm_by_duration", "true"}}}}
+            : flag("duration", "confirm_by_duration"),
+      quick ? std::vector<Choice>{{"gate-on", {{"time_widened_gate", "true"}}}}
+            : flag("gate", "time_widened_gate"),
+      values("iou", "affinity_threshold", {"0.2", "0.3"}),
+      values("age", "max_age", {"20", "30"}),
+  };
+  std::vector<StudyConfiguration> candidates = {
+      {"", "cv",
+       tracker::with_options(
+           TrackerConfig::sort_preset(),
+           {{"time_step", "elapsed"}, {"min_coast_updates", "1"}, {"min_hits", "2"}})}};
+  for (const auto& dimension : dimensions) {
+    std::vector<StudyConfiguration> grown;
+    for (const auto& partial : candidates) {
+      for (const auto& choice : dimension) {
+        grown.push_back({partial.name.empty() ? choice.name : partial.name + "_" + choice.name,
+                         "cv", tracker::with_options(partial.config, choice.options)});
+      }
+    }
+    candidates = std::move(grown);
+  }
+  return candidates;
 }
 
 std::vector<int> default_study_intervals() {

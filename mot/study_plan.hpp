@@ -20,6 +20,12 @@ struct StudyConfiguration {
 /// and the presets only.
 std::vector<StudyConfiguration> study_configurations(bool quick);
 
+/// The candidates cross-validation chooses the default preset from: the default's mechanisms
+/// (elapsed time steps, widened gate, confirmation by duration, one update of coasting) with
+/// every combination of score cut (none, relative to the score range, by quantile), max_age,
+/// IoU threshold and min_hits. `quick`: a few of them, for tests.
+std::vector<StudyConfiguration> cv_candidates(bool quick);
+
 /// 1, 2, 3, 5, 10, 15, 30.
 std::vector<int> default_study_intervals();
 

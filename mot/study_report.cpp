@@ -40,9 +40,21 @@ std::string joined(const std::vector<std::string>& parts, const std::string& sep
   return out;
 }
 
+std::string short_title(StudyInput input) {
+  if (input == StudyInput::detections) return "det/det.txt";
+  if (input == StudyInput::ground_truth) return "gt/gt.txt";
+  return std::string(to_string(input));
+}
+
+// What a plot's title says of its input.
+std::string plot_subject(StudyInput input) {
+  if (input == StudyInput::detections) return "detections";
+  if (input == StudyInput::ground_truth) return "ground truth as detector";
+  return std::string(to_string(input));
+}
+
 std::string table_title(const StudyTable& table) {
-  return fmt::format("{} on {}", table.configuration.name,
-                     table.input == StudyInput::detections ? "det/det.txt" : "gt/gt.txt");
+  return fmt::format("{} on {}", table.configuration.name, short_title(table.input));
 }
 
 struct PlottedMetric {
@@ -94,8 +106,10 @@ std::vector<fs::path> write_study(const fs::path& out_dir, const std::vector<Stu
 
   std::string summary;
   std::map<std::pair<std::string, std::string>, std::vector<const StudyTable*>> by_plot;
+  std::map<std::string, StudyInput> input_named;
   for (const auto& table : tables) {
     const std::string input(to_string(table.input));
+    input_named.emplace(input, table.input);
     const fs::path base = out_dir / "tables" / input / table.configuration.name;
     write(fs::path(base.string() + ".csv"), format_study_csv(table));
     write(fs::path(base.string() + ".md"), format_study_markdown(table));
@@ -105,12 +119,11 @@ std::vector<fs::path> write_study(const fs::path& out_dir, const std::vector<Stu
   std::string plots_section;
   for (const auto& [key, group_tables] : by_plot) {
     const auto& [input, group] = key;
-    plots_section += fmt::format("\n### {} on {}\n\n", group,
-                                 input == "det" ? "det/det.txt" : "gt/gt.txt (perfect detector)");
+    plots_section += fmt::format("\n### {} on {}\n\n", group, input_title(input_named.at(input)));
     for (const auto& metric : kPlottedMetrics) {
       LinePlot plot;
       plot.title = fmt::format("{} vs frame interval, {} ({})", metric.label, group,
-                               input == "det" ? "detections" : "ground truth as detector");
+                               plot_subject(input_named.at(input)));
       plot.x_label = "interval (process every N-th frame; log scale)";
       plot.y_label = metric.label;
       plot.log_x = true;

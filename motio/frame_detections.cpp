@@ -32,6 +32,17 @@ FrameDetections::FrameDetections(const std::vector<MotRow>& rows, float min_scor
   }
 }
 
+FrameDetections FrameDetections::from_frames(
+    std::vector<std::vector<tracker::Detection>> by_frame) {
+  FrameDetections sparse;
+  for (std::size_t i = 0; i < by_frame.size(); ++i) {
+    if (by_frame[i].empty()) continue;
+    sparse.frames_.push_back(static_cast<int>(i + 1));
+    sparse.detections_.push_back(std::move(by_frame[i]));
+  }
+  return sparse;
+}
+
 const std::vector<tracker::Detection>& FrameDetections::at(std::int64_t frame) const {
   static const std::vector<tracker::Detection> none;
   const auto found = std::lower_bound(frames_.begin(), frames_.end(), frame,

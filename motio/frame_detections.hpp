@@ -19,6 +19,9 @@ class FrameDetections {
   explicit FrameDetections(const std::vector<MotRow>& rows,
                            float min_score = std::numeric_limits<float>::lowest());
 
+  /// Detections already grouped by frame: `by_frame[f - 1]` holds frame f's (kept as they are).
+  static FrameDetections from_frames(std::vector<std::vector<tracker::Detection>> by_frame);
+
   /// Frame `frame`'s detections (1-based); empty for a frame without any, or outside the file.
   const std::vector<tracker::Detection>& at(std::int64_t frame) const;
   /// The last frame holding a detection, 0 if none.

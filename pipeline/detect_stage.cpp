@@ -79,18 +79,16 @@ bool DetectStage::detect_and_hand_on(const std::atomic<bool>& abort) {
   for (const std::size_t input : batch_) {
     const FrameSlotItem& frame = inputs_[input]->front();
     if (frame.outage) continue;
-    images_.push_back(frame.image);  // a header: shares the slot's pixels
+    images_.push_back(&frame.image);  // the slot's own buffer, untouched until our next take
     numbers_.push_back(frame.info.frame_number);
   }
   if (!images_.empty()) {
     const std::int64_t start_ns = steady_now_ns();
-    // TODO(engine): detector::Detector::detect_batch once it lands on main; until then one call
-    // per picture (what its default implementation does).
-    for (std::size_t k = 0; k < images_.size(); ++k) {
-      detector_->detect(images_[k], numbers_[k], detections_[k]);
-    }
+    // One call for the whole batch: the SSD runs up to max_batch() pictures per forward pass and
+    // splits larger batches itself.
+    detector_->detect_batch(images_.data(), numbers_.data(), static_cast<int>(images_.size()),
+                            detections_);
     counts_.busy_ns += steady_now_ns() - start_ns;
-    images_.clear();  // drop the extra references to the slots' pictures
     counts_.frames += static_cast<std::int64_t>(images_.size());
     ++counts_.batches;
   }

@@ -5,8 +5,8 @@
 //
 // Batching: the stage sleeps until any source publishes; then, while some source still open has no
 // new frame, it waits for it at most `batch_wait` (then runs without it: a slow or dead camera
-// never holds the others back longer than that). Batch size is 1..N as frames arrive, cut into
-// chunks of the detector's max_batch().
+// never holds the others back longer than that). Batch size is 1..N as frames arrive; the detector
+// splits batches larger than its max_batch() itself.
 #include <atomic>
 #include <chrono>
 #include <cstdint>
@@ -64,7 +64,7 @@ class DetectStage {
   // Scratch, sized once for every input: the frames of the current batch.
   std::vector<std::size_t> batch_;      // input indexes
   std::vector<std::int64_t> taken_ns_;  // per input
-  std::vector<cv::Mat> images_;         // headers of the batch's pictures (no pixel copy)
+  std::vector<const cv::Mat*> images_;  // the batch's pictures, in the slots (no copy)
   std::vector<std::int64_t> numbers_;   // their frame numbers
   std::vector<std::vector<tracker::Detection>> detections_;  // per picture, reserved
   DetectCounts counts_;

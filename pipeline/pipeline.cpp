@@ -40,6 +40,7 @@ struct Pipeline::Stages {
   std::unique_ptr<DetectStage> detect;
   std::unique_ptr<TrackStage> track;
   std::unique_ptr<SinkStage> sink;
+  std::vector<std::uint32_t> stream_ids;  // per input
 
   Stages(std::vector<PipelineInput> inputs, std::unique_ptr<detector::Detector> detector,
          std::vector<std::unique_ptr<FrameConsumer>> consumers, PipelineOptions options_in)
@@ -59,6 +60,7 @@ struct Pipeline::Stages {
           std::make_unique<CaptureStage>(std::move(input.source), capture, &frames_ready));
       slots.push_back(&captures.back()->slot());
       trackers.push_back({input.tracker, input.stream_id});
+      stream_ids.push_back(input.stream_id);
       max_detections =
           std::max(max_detections, static_cast<std::size_t>(input.tracker.max_detections));
     }
@@ -76,7 +78,7 @@ struct Pipeline::Stages {
           options.video_file, captures.front()->source().info().fps));
     }
     sink = std::make_unique<SinkStage>(
-        captures.size(), track->output(), std::move(consumers), options.stats_interval_s,
+        stream_ids, track->output(), std::move(consumers), options.stats_interval_s,
         [this](std::size_t input) { return captures[input]->frames_captured(); });
     // A stage asleep in a hand-off must wake to see an abort.
     control.on_abort([this] {
@@ -98,15 +100,32 @@ PipelineReport Pipeline::Stages::report() const {
   for (std::size_t i = 0; i < captures.size(); ++i) {
     const CaptureStage& capture = *captures[i];
     const CaptureCounts counts = capture.counts();
-    report.source += (i == 0 ? "" : ", ") + capture.source().info().uri;
-    report.frames_captured += counts.frames_captured;
-    report.frames_lost += counts.frames_lost;
-    report.source_outages += counts.outages;
-    if (report.source_error.empty()) report.source_error = counts.source_error;
+    const SinkCounts& sent = sink->stream(i);
+    StreamReport stream;
+    stream.stream_id = stream_ids[i];
+    stream.source = capture.source().info().uri;
+    stream.frames_captured = counts.frames_captured;
+    stream.frames_processed = sent.latency.end_to_end.count();
+    stream.frames_dropped = stream.frames_captured - stream.frames_processed;
+    stream.frames_lost = counts.frames_lost;
+    stream.source_outages = counts.outages;
+    stream.source_error = counts.source_error;
+    if (stream.frames_processed > 0 && sent.last_sent_ns > counts.first_capture_ns) {
+      stream.fps = static_cast<double>(stream.frames_processed) * 1e9 /
+                   static_cast<double>(sent.last_sent_ns - counts.first_capture_ns);
+    }
+    stream.latency = sent.latency;
+
+    report.source += (i == 0 ? "" : ", ") + stream.source;
+    report.frames_captured += stream.frames_captured;
+    report.frames_lost += stream.frames_lost;
+    report.source_outages += stream.source_outages;
+    if (report.source_error.empty()) report.source_error = stream.source_error;
     if (counts.first_capture_ns != 0 &&
         (first_capture_ns == 0 || counts.first_capture_ns < first_capture_ns)) {
       first_capture_ns = counts.first_capture_ns;
     }
+    report.streams.push_back(std::move(stream));
   }
   const SinkCounts& total = sink->total();
   report.frames_processed = total.latency.end_to_end.count();
@@ -120,6 +139,7 @@ PipelineReport Pipeline::Stages::report() const {
     report.detector_fps =
         static_cast<double>(detected.frames) * 1e9 / static_cast<double>(detected.busy_ns);
   }
+  report.detector_batches = detected.batches;
   report.latency = total.latency;
   return report;
 }

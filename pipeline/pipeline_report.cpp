@@ -26,6 +26,22 @@ nlohmann::json to_json(const LatencyHistogram& histogram) {
           {"max_ms", to_ms(static_cast<double>(histogram.max_ns()))}};
 }
 
+nlohmann::json to_json(const StageLatencies& latency) {
+  return {{"queued", to_json(latency.queued)},
+          {"detect", to_json(latency.detect)},
+          {"track", to_json(latency.track)},
+          {"send", to_json(latency.send)},
+          {"end_to_end", to_json(latency.end_to_end)}};
+}
+
+std::string latency_text(const LatencyHistogram& e2e) {
+  return fmt::format("capture->sent ms p50 {:.1f} p95 {:.1f} p99 {:.1f} max {:.1f}",
+                     to_ms(static_cast<double>(e2e.quantile_ns(0.5))),
+                     to_ms(static_cast<double>(e2e.quantile_ns(0.95))),
+                     to_ms(static_cast<double>(e2e.quantile_ns(0.99))),
+                     to_ms(static_cast<double>(e2e.max_ns())));
+}
+
 }  // namespace
 
 void StageLatencies::record(const messages::FrameTimes& times) {
@@ -45,37 +61,57 @@ void StageLatencies::clear() {
 }
 
 nlohmann::json to_json(const PipelineReport& report) {
-  return {{"source", report.source},
-          {"detector", report.detector},
-          {"playback", report.playback},
-          {"frames",
-           {{"captured", report.frames_captured},
-            {"processed", report.frames_processed},
-            {"dropped", report.frames_dropped},
-            {"lost_by_source", report.frames_lost}}},
-          {"source_outages", report.source_outages},
-          {"wall_seconds", report.wall_seconds},
-          {"fps", report.fps},
-          {"detector_fps", report.detector_fps},
-          {"latency",
-           {{"queued", to_json(report.latency.queued)},
-            {"detect", to_json(report.latency.detect)},
-            {"track", to_json(report.latency.track)},
-            {"send", to_json(report.latency.send)},
-            {"end_to_end", to_json(report.latency.end_to_end)}}}};
+  nlohmann::json json = {{"source", report.source},
+                         {"detector", report.detector},
+                         {"playback", report.playback},
+                         {"frames",
+                          {{"captured", report.frames_captured},
+                           {"processed", report.frames_processed},
+                           {"dropped", report.frames_dropped},
+                           {"lost_by_source", report.frames_lost}}},
+                         {"source_outages", report.source_outages},
+                         {"wall_seconds", report.wall_seconds},
+                         {"fps", report.fps},
+                         {"detector_fps", report.detector_fps},
+                         {"detector_batches", report.detector_batches},
+                         {"latency", to_json(report.latency)}};
+  if (report.streams.size() > 1) {
+    nlohmann::json streams = nlohmann::json::array();
+    for (const StreamReport& stream : report.streams) {
+      streams.push_back({{"stream_id", stream.stream_id},
+                         {"source", stream.source},
+                         {"frames",
+                          {{"captured", stream.frames_captured},
+                           {"processed", stream.frames_processed},
+                           {"dropped", stream.frames_dropped},
+                           {"lost_by_source", stream.frames_lost}}},
+                         {"source_outages", stream.source_outages},
+                         {"source_error", stream.source_error},
+                         {"fps", stream.fps},
+                         {"latency", to_json(stream.latency)}});
+    }
+    json["streams"] = std::move(streams);
+  }
+  return json;
 }
 
 std::string summary_line(const PipelineReport& report) {
-  const auto& e2e = report.latency.end_to_end;
   return fmt::format(
       "frames captured {} processed {} dropped {} lost {} | source outages {} | {:.2f} fps "
-      "(detector {:.2f} fps) "
-      "over {:.2f} s | capture->sent ms p50 {:.1f} p95 {:.1f} p99 {:.1f} max {:.1f}",
+      "(detector {:.2f} fps) over {:.2f} s | {}",
       report.frames_captured, report.frames_processed, report.frames_dropped, report.frames_lost,
       report.source_outages, report.fps, report.detector_fps, report.wall_seconds,
-      to_ms(static_cast<double>(e2e.quantile_ns(0.5))),
-      to_ms(static_cast<double>(e2e.quantile_ns(0.95))),
-      to_ms(static_cast<double>(e2e.quantile_ns(0.99))), to_ms(static_cast<double>(e2e.max_ns())));
+      latency_text(report.latency.end_to_end));
+}
+
+std::string summary_line(const StreamReport& stream) {
+  return fmt::format(
+      "stream {} ({}): frames captured {} processed {} dropped {} lost {} | source outages {} | "
+      "{:.2f} fps | {}{}",
+      stream.stream_id, stream.source, stream.frames_captured, stream.frames_processed,
+      stream.frames_dropped, stream.frames_lost, stream.source_outages, stream.fps,
+      latency_text(stream.latency.end_to_end),
+      stream.source_error.empty() ? "" : " | source failed: " + stream.source_error);
 }
 
 void write_report(const PipelineReport& report, const std::string& path) {

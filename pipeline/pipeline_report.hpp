@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "messages/frame_result.hpp"
 #include "pipeline/latency_histogram.hpp"
@@ -22,6 +23,20 @@ struct StageLatencies {
   void clear();
 };
 
+/// One source of a run (every run has at least one).
+struct StreamReport {
+  std::uint32_t stream_id{0};
+  std::string source;
+  std::int64_t frames_captured{0};
+  std::int64_t frames_processed{0};
+  std::int64_t frames_dropped{0};
+  std::int64_t frames_lost{0};
+  std::int64_t source_outages{0};
+  std::string source_error;
+  double fps{0.0};  // processed / (its last sent - its first capture)
+  StageLatencies latency;
+};
+
 struct PipelineReport {
   std::string source;
   std::string detector;
@@ -33,14 +48,21 @@ struct PipelineReport {
   double wall_seconds{0.0};          // first capture -> last sent
   double fps{0.0};                   // processed / wall_seconds
   double detector_fps{0.0};          // processed / time the detector spent detecting
+  std::int64_t detector_batches{0};  // detector runs; processed / this = mean batch size
   std::int64_t source_outages{0};    // times a live source went down and was reopened
   std::string source_error;          // why the source ended with an error; empty = it did not
   StageLatencies latency;
+  /// Per source, in input order. The totals above are over all of them (frames, outages, the first
+  /// source error; fps = all processed frames / wall time).
+  std::vector<StreamReport> streams;
 };
 
+/// The JSON report; "streams" (per source) only when there are several.
 nlohmann::json to_json(const PipelineReport& report);
 /// One line: counts, fps, e2e p50/p95/p99/max.
 std::string summary_line(const PipelineReport& report);
+/// The same for one source, prefixed with its stream id and URI.
+std::string summary_line(const StreamReport& stream);
 /// Writes to_json(report) to `path`; throws rtmot::InputError if the file cannot be written.
 void write_report(const PipelineReport& report, const std::string& path);
 

@@ -23,8 +23,9 @@ struct SinkCounts {
 
 class SinkStage {
  public:
-  /// `captured(input)`: frames captured so far by that source, for the log line.
-  SinkStage(std::size_t inputs, SpscQueue<TrackedFrame>& input,
+  /// `stream_ids`: per input. `captured(input)`: frames captured so far by that source, for the
+  /// log line.
+  SinkStage(std::vector<std::uint32_t> stream_ids, SpscQueue<TrackedFrame>& input,
             std::vector<std::unique_ptr<FrameConsumer>> consumers, double stats_interval_s,
             std::function<std::int64_t(std::size_t)> captured);
 
@@ -44,6 +45,7 @@ class SinkStage {
   std::function<std::int64_t(std::size_t)> captured_;
 
   // Written by the sink thread only.
+  const std::vector<std::uint32_t> stream_ids_;
   SinkCounts total_;
   std::vector<SinkCounts> streams_;
   LatencyHistogram interval_e2e_;

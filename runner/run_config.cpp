@@ -12,6 +12,7 @@
 #include "runner/sequence_clock_source.hpp"
 #include "runner/yaml_section.hpp"
 #include "tracker/presets.hpp"
+#include "tracker/tracker_options.hpp"
 
 namespace rtmot::runner {
 namespace {
@@ -34,7 +35,31 @@ void read_source(Section section, SourceConfig& source) {
   read_checked(section, "height", source.height, within(0, kMaxImageSide),
                "a size in [0, " + std::to_string(kMaxImageSide) + "]");
   read_checked(section, "fps", source.fps, within(0.0, kMaxFps), "a rate in [0, 1000]");
+  read_checked(
+      section, "stream_id", source.stream_id,
+      [](std::int64_t v) { return v >= 0 && v <= std::int64_t{0xFFFFFFFF}; },
+      "a stream id in 0..4294967295");
   section.reject_unknown();
+}
+
+// `sources:` a list whose entries are a URI or a mapping with the keys of `source`.
+void read_sources(Section& top, const std::string& file_name, std::vector<SourceConfig>& sources) {
+  const YAML::Node list = top.child("sources");
+  if (!list.IsDefined() || list.IsNull()) return;
+  if (!list.IsSequence()) top.fail(list, "sources", "expected a list of sources");
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const YAML::Node entry = list[i];
+    const std::string field = "sources[" + std::to_string(i) + "]";
+    SourceConfig source;
+    if (entry.IsScalar()) {
+      source.uri = entry.Scalar();
+    } else {
+      read_source(Section(entry, file_name, field), source);
+    }
+    if (source.uri.empty()) throw InputError(file_name, line_of(entry), field, "no uri given");
+    sources.push_back(source);
+  }
+  if (sources.empty()) top.fail(list, "sources", "the list is empty");
 }
 
 void read_playback(Section section, PlaybackConfig& playback) {
@@ -84,17 +109,6 @@ void read_detector(Section section, DetectorConfig& detector) {
   section.reject_unknown();
 }
 
-template <typename Parse, typename Enum>
-bool read_enum(Section& section, const std::string& key, Parse parse,
-               const std::string& expectation, Enum& out) {
-  std::string text;
-  if (!section.read(key, text)) return false;
-  const auto parsed = parse(text);
-  if (!parsed) section.fail(*section.find(key), key, "expected " + expectation);
-  out = *parsed;
-  return true;
-}
-
 void read_tracker(Section section, tracker::TrackerConfig& config) {
   // Without a preset the pipeline starts from the default (best measured) one, as `rtmot track`.
   std::string preset{tracker::default_preset_name()};
@@ -107,48 +121,28 @@ void read_tracker(Section section, tracker::TrackerConfig& config) {
   config.frame_rate = 0.0;  // still "from the source" unless set below
   config.image_width = 0.F;
   config.image_height = 0.F;
-  // A preset's detection_threshold was tuned on MOTChallenge detection scores (Faster R-CNN); in
-  // the pipeline the detector's own score_threshold is the one confidence cut unless this is set
-  // below.
-  config.detection_threshold = 0.F;
-  read_enum(section, "predictor", tracker::parse_predictor, "kalman, stationary or particle",
-            config.predictor);
-  const bool affinity_given = read_enum(section, "affinity", tracker::parse_affinity,
-                                        "iou, linear or exponential", config.affinity);
-  const bool threshold_given = section.read("affinity_threshold", config.affinity_threshold);
-  // A new affinity without its own threshold gets that affinity's usual one.
-  if (affinity_given && !threshold_given)
-    config.affinity_threshold = tracker::default_threshold(config.affinity);
-  read_checked(section, "detection_threshold", config.detection_threshold, unit_interval,
-               "a score in [0, 1]");
-  read_checked(
-      section, "max_age", config.max_age, [](int v) { return v >= 0; }, "an age >= 0");
-  read_checked(
-      section, "min_hits", config.min_hits, [](int v) { return v >= 0; }, "a count >= 0");
-  read_enum(section, "time_step", tracker::parse_time_step, "per_update or elapsed",
-            config.time_step);
-  read_checked(
-      section, "frame_rate", config.frame_rate, [](double v) { return v > 0.0; }, "a rate > 0");
-  read_checked(
-      section, "image_width", config.image_width, [](float v) { return v > 0.F; }, "a width > 0");
-  read_checked(
-      section, "image_height", config.image_height, [](float v) { return v > 0.F; },
-      "a height > 0");
-  section.read("second_round", config.second_round);
-  read_checked(section, "low_score", config.low_score, unit_interval, "a score in [0, 1]");
-  section.read("observation_centric_reupdate", config.observation_centric_reupdate);
-  section.read("time_widened_gate", config.time_widened_gate);
-  read_checked(
-      section, "particle_count", config.particle_count, [](int v) { return v > 0; }, "a count > 0");
-  std::int64_t seed = static_cast<std::int64_t>(config.seed);
-  read_checked(
-      section, "seed", seed, [](std::int64_t v) { return v >= 0; }, "a seed >= 0");
-  config.seed = static_cast<std::uint64_t>(seed);
-  read_checked(
-      section, "max_tracks", config.max_tracks, [](int v) { return v > 0; }, "a count > 0");
-  read_checked(
-      section, "max_detections", config.max_detections, [](int v) { return v > 0; }, "a count > 0");
+  // No preset assumes a score scale (the default's cut is relative to the stream's own scores),
+  // so the preset applies here as in `rtmot track`; the detector's score_threshold is the
+  // detector's own cut, made before the tracker sees anything.
+  // Every other key is an option of the one table (tracker/tracker_options.hpp), read as text so
+  // that the YAML file and the command line accept exactly the same values.
+  for (const auto& option : tracker::tracker_options()) {
+    std::string text;
+    if (!section.read(option.name, text)) continue;
+    if (!option.set(config, text)) {
+      section.fail(*section.find(option.name), option.name, "expected " + option.expected);
+    }
+  }
   section.reject_unknown();
+  // Ranges that only fail together (frame_rate may still come from the source: checked later).
+  tracker::TrackerConfig check = config;
+  if (check.frame_rate <= 0.0) check.frame_rate = 1.0;
+  if (const auto problem = tracker::config_problem(check)) {
+    for (const char* key : {"particle_count", "max_tracks"}) {
+      if (const auto where = section.find(key)) section.fail(*where, key, *problem);
+    }
+    section.fail(YAML::Node{}, "", *problem);
+  }
 }
 
 void read_output(Section section, OutputConfig& output) {
@@ -207,6 +201,10 @@ RunConfig parse_run_config(const std::string& yaml_text, const std::string& file
   Section top(root, file_name, "");
   if (root.IsNull()) throw InputError(file_name, 0, "", "the configuration is empty");
   read_source(Section(top.child("source"), file_name, "source"), config.source);
+  read_sources(top, file_name, config.sources);
+  if (!config.sources.empty() && !config.source.uri.empty()) {
+    top.fail(*top.find("sources"), "sources", "give either source.uri or sources, not both");
+  }
   read_playback(Section(top.child("playback"), file_name, "playback"), config.playback);
   read_detector(Section(top.child("detector"), file_name, "detector"), config.detector);
   read_tracker(Section(top.child("tracker"), file_name, "tracker"), config.tracker);
@@ -225,18 +223,42 @@ RunConfig load_run_config(const std::string& path) {
   return parse_run_config(read_text_file(path, kMaxConfigBytes), path);
 }
 
+std::vector<SourceConfig> source_list(const RunConfig& config) {
+  return config.sources.empty() ? std::vector<SourceConfig>{config.source} : config.sources;
+}
+
+std::uint32_t stream_id_of(const RunConfig& config, std::size_t index) {
+  const SourceConfig& source = source_list(config).at(index);
+  if (source.stream_id >= 0) return static_cast<std::uint32_t>(source.stream_id);
+  return config.stream_id + static_cast<std::uint32_t>(index);
+}
+
 void validate(const RunConfig& config) {
   const auto missing = [&](const std::string& field, const std::string& problem) {
     throw InputError(config.file, 0, field, problem);
   };
-  if (config.source.uri.empty()) missing("source.uri", "no source given (or use --source URI)");
+  if (config.source.uri.empty() && config.sources.empty()) {
+    missing("source.uri", "no source given (or use --source URI)");
+  }
+  const auto sources = source_list(config);
+  std::set<std::uint32_t> stream_ids;
+  for (std::size_t i = 0; i < sources.size(); ++i) {
+    if (!stream_ids.insert(stream_id_of(config, i)).second) {
+      missing("sources[" + std::to_string(i) + "].stream_id",
+              "stream id " + std::to_string(stream_id_of(config, i)) + " is used twice");
+    }
+  }
+  if (sources.size() > 1 && !config.output.video_file.empty()) {
+    missing("output.video_file", "the annotated video needs a single source");
+  }
   if (config.detector.kind == "ssd" && config.detector.model.empty()) {
     missing("detector.model", "the ssd detector needs a model file");
   }
   if (config.detector.kind == "replay" && config.detector.det_file.empty()) {
     missing("detector.det_file", "the replay detector needs a det.txt file");
   }
-  if (is_sequence_uri(config.source.uri)) {
+  for (const SourceConfig& source : sources) {
+    if (!is_sequence_uri(source.uri)) continue;
     if (config.detector.kind == "ssd") {
       missing("detector.kind", "a mot-seq:// source has no images: use the replay detector");
     }

@@ -19,6 +19,8 @@ struct SourceConfig {
   int width{0};     // requested camera size; 0 = the source's default
   int height{0};
   double fps{0.0};
+  /// Stream id in this source's messages; -1 = the top-level stream_id + the source's index.
+  std::int64_t stream_id{-1};
 };
 
 struct PlaybackConfig {
@@ -48,8 +50,10 @@ struct OutputConfig {
 };
 
 struct RunConfig {
-  std::string file;  // where it was read from (for messages)
-  SourceConfig source;
+  std::string file;     // where it was read from (for messages)
+  SourceConfig source;  // one source (`source:`, or one --source)
+  std::vector<SourceConfig>
+      sources;  // several (`sources:` or --source repeated); replaces `source`
   PlaybackConfig playback;
   DetectorConfig detector;
   /// frame_rate, image_width and image_height are 0 unless the file sets them: then the pipeline
@@ -61,6 +65,11 @@ struct RunConfig {
   std::uint32_t stream_id{0};
   std::int64_t max_frames{0};  // stop after this many captured frames; 0 = no limit
 };
+
+/// The sources to run: `sources` if given, else the one `source`.
+std::vector<SourceConfig> source_list(const RunConfig& config);
+/// The stream id of source `index` of source_list().
+std::uint32_t stream_id_of(const RunConfig& config, std::size_t index);
 
 /// Reads a YAML run configuration. Relative paths in it stay as written (relative to the cwd).
 RunConfig load_run_config(const std::string& path);

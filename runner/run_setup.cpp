@@ -1,5 +1,9 @@
 #include "runner/run_setup.hpp"
 
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+
 #include "common/input_error.hpp"
 #include "detector/dnn_backend.hpp"
 #include "detector/replay_detector.hpp"
@@ -7,22 +11,65 @@
 #include "messages/binary_file_sink.hpp"
 #include "messages/jsonl_sink.hpp"
 #include "messages/udp_sink.hpp"
+#include "motio/mot_files.hpp"
 #include "runner/host_port.hpp"
 #include "runner/source_factory.hpp"
+#include "tracker/score_scale.hpp"
 
 namespace rtmot::runner {
-std::unique_ptr<platform::VideoSource> make_source(const RunConfig& config) {
+namespace {
+
+std::unique_ptr<platform::VideoSource> open_configured(const SourceConfig& source) {
   platform::SourceOptions options;
-  options.width = config.source.width;
-  options.height = config.source.height;
-  options.fps = config.source.fps;
-  return open_source(config.source.uri, options);
+  options.width = source.width;
+  options.height = source.height;
+  options.fps = source.fps;
+  return open_source(source.uri, options);
 }
+
+}  // namespace
+
+std::unique_ptr<platform::VideoSource> make_source(const RunConfig& config) {
+  return open_configured(source_list(config).front());
+}
+
+std::vector<pipeline::PipelineInput> make_inputs(const RunConfig& config) {
+  const std::vector<SourceConfig> sources = source_list(config);
+  std::vector<pipeline::PipelineInput> inputs(sources.size());
+  for (std::size_t i = 0; i < sources.size(); ++i) {
+    inputs[i].source = open_configured(sources[i]);
+    inputs[i].tracker = complete_tracker_config(config, inputs[i].source->info());
+    inputs[i].stream_id = stream_id_of(config, i);
+  }
+  return inputs;
+}
+
+namespace {
+
+// A replayed detections file is cut twice on absolute scores: by the detector's score_threshold
+// and by the tracker's own cuts. Both assume [0, 1] scores; a file on another scale gets one
+// warning naming it and the range seen (tracker/score_scale.hpp). The SSD's scores are its own
+// sigmoid in [0, 1], where its threshold was chosen, so it needs none.
+void warn_on_score_scale(const DetectorConfig& detector, const tracker::TrackerConfig& tracker) {
+  tracker::ScoreRange range;
+  for (const auto& row : motio::read_mot_file(detector.det_file, motio::MotFileKind::detections))
+    range.include(row.conf);
+  tracker::TrackerConfig cuts = tracker;
+  cuts.detection_threshold = std::max(cuts.detection_threshold, detector.score_threshold);
+  if (const auto warning = tracker::score_scale_warning(cuts, range))
+    spdlog::warn("{}: {} (detector.score_threshold {})", detector.det_file, *warning,
+                 detector.score_threshold);
+}
+
+}  // namespace
 
 std::unique_ptr<detector::Detector> make_detector(const RunConfig& config) {
   const DetectorConfig& wanted = config.detector;
   if (wanted.kind == "replay") {
-    return std::make_unique<detector::ReplayDetector>(wanted.det_file, wanted.score_threshold);
+    auto replay =
+        std::make_unique<detector::ReplayDetector>(wanted.det_file, wanted.score_threshold);
+    warn_on_score_scale(wanted, config.tracker);
+    return replay;
   }
   detector::SsdConfig ssd;
   ssd.model_path = wanted.model;
@@ -34,6 +81,10 @@ std::unique_ptr<detector::Detector> make_detector(const RunConfig& config) {
   ssd.backend = detector::parse_backend_request(wanted.backend).value();
   ssd.fp16 = detector::parse_fp16_request(wanted.fp16).value();
   ssd.threads = wanted.threads;
+  // One forward pass takes one frame of every source (the detect stage batches them): without
+  // this the SSD would split each batch into single images again.
+  ssd.max_batch = static_cast<int>(
+      std::clamp<std::size_t>(source_list(config).size(), 1, detector::kMaxBatchLimit));
   return std::make_unique<detector::SsdDetector>(ssd);
 }
 

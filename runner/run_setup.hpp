@@ -12,7 +12,12 @@
 
 namespace rtmot::runner {
 
+/// The first (or only) source.
 std::unique_ptr<platform::VideoSource> make_source(const RunConfig& config);
+/// Every source of source_list(), opened in order (a source that cannot be opened throws its
+/// InputError, naming its URI, before anything else is opened), each with its tracker
+/// configuration completed from that source and its stream id.
+std::vector<pipeline::PipelineInput> make_inputs(const RunConfig& config);
 std::unique_ptr<detector::Detector> make_detector(const RunConfig& config);
 /// UDP, binary file and JSON lines, in that order, as configured.
 std::vector<std::unique_ptr<messages::TrackSink>> make_sinks(const RunConfig& config);

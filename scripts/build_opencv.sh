@@ -162,7 +162,9 @@ log "OpenCV source $found_version ($stage/opencv)"
 modules="core,imgproc,imgcodecs,dnn"
 args=(
   -DCMAKE_BUILD_TYPE=Release -DCMAKE_INSTALL_PREFIX="$prefix"
-  -DBUILD_SHARED_LIBS=ON -DOPENCV_GENERATE_PKGCONFIG=ON
+  -DBUILD_SHARED_LIBS=ON -DOPENCV_GENERATE_PKGCONFIG=OFF
+  # CMake 4 refuses cmake_minimum_required() below 3.5, which parts of OpenCV 4.10 still say.
+  -DCMAKE_POLICY_VERSION_MINIMUM=3.5
   # C++17 like rtmot (and as CUDA 13 requires of code that includes its headers).
   -DCMAKE_CXX_STANDARD=17
   # Nothing but the libraries: no tests, apps, bindings or docs.

@@ -17,8 +17,8 @@ struct TrackerPreset {
 
 const std::vector<TrackerPreset>& tracker_presets();
 std::optional<tracker::TrackerConfig> find_preset(std::string_view name);
-/// The preset `rtmot track` and `rtmot run` start from: the best configuration `rtmot study`
-/// measured on MOT15-train ("rtmot"; "sort" stays available as exact SORT).
+/// The preset `rtmot track` and `rtmot run` start from: the configuration `rtmot study`'s
+/// cross-validation chooses ("rtmot"; "sort" stays exact SORT, "bytetrack" ByteTrack's defaults).
 std::string_view default_preset_name();
 /// "sort, ..." for help texts and error messages.
 std::string preset_names();

@@ -8,49 +8,23 @@
 #include "tracker/association.hpp"
 #include "tracker/box_geometry.hpp"
 #include "tracker/predictor.hpp"
+#include "tracker/score_cut.hpp"
+#include "tracker/track.hpp"
 
 namespace rtmot::tracker {
 namespace {
 
-// One track slot. Slots never move: a live track keeps its slot (and particle storage) for life.
-struct Track {
-  Predictor predictor;
-  // OC-SORT needs the Kalman state as it was right after the last observation.
-  KalmanPredictor at_last_observation{Box{0.F, 0.F, 1.F, 1.F}};
-  Box last_observation;
-  Box predicted;
-  std::int32_t id{0};
-  std::int32_t hit_streak{0};
-  std::int32_t age{0};
-  std::int32_t steps_since_update{0};  // sort.py's time_since_update, in calls
-  double frames_since_update{0.0};     // the same in nominal frames (equal with per_update)
-  double streak_frames{0.0};           // nominal frames covered by the current hit streak
-  float score{0.F};
-  std::int32_t class_id{0};
-  bool matched{false};
-};
-
 constexpr int kTypicalSceneSize = 64;
+// The relative score cut remembers this many recent scores: about 100 frames of a MOT15 scene,
+// enough for a stable quantile, short enough to follow a scene that changes.
+constexpr int kScoreWindow = 1024;
 // Timestamps of nominal frames (f / rate) do not subtract to exactly one period in floating
 // point; a track one frame late must not die of a rounding error in the last bit.
 constexpr double kFrameTolerance = 1e-6;
 
-struct Match {
-  int detection;
-  int track;  // position in the live order
-};
-
 const TrackerConfig& validated(const TrackerConfig& config) {
-  if (config.max_tracks < 1 || config.max_detections < 1)
-    throw std::invalid_argument("tracker: max_tracks and max_detections must be >= 1");
-  if (config.predictor == PredictorKind::particle && config.particle_count < 1)
-    throw std::invalid_argument("tracker: particle_count must be >= 1");
-  if (config.max_age < 0 || config.min_hits < 0 || config.min_coast_updates < 0)
-    throw std::invalid_argument("tracker: max_age, min_hits and min_coast_updates must be >= 0");
-  if (config.time_step == TimeStep::elapsed && !(config.frame_rate > 0.0))
-    throw std::invalid_argument("tracker: frame_rate must be > 0 with elapsed time steps");
-  if (!std::isfinite(config.affinity_threshold))
-    throw std::invalid_argument("tracker: affinity_threshold must be finite");
+  if (const auto problem = config_problem(config))
+    throw std::invalid_argument("tracker: " + *problem);
   return config;
 }
 
@@ -61,12 +35,15 @@ bool usable(const Detection& detection) {
 
 }  // namespace
 
+// The update is a sequence of named passes over a table of track slots (see update()). Every
+// buffer below is sized at construction; a pass only clears and refills them.
 struct Tracker::State {
   explicit State(const TrackerConfig& c)
       : config(validated(c)),
         // MOT15 peaks at 16 detections a frame: a 64 x 64 workspace rarely has to grow.
         associator(std::min(c.max_detections, kTypicalSceneSize),
-                   std::min(c.max_tracks, kTypicalSceneSize)) {
+                   std::min(c.max_tracks, kTypicalSceneSize)),
+        score_cut(c.score_quantile, c.score_range_cut, kScoreWindow) {
     const auto tracks = static_cast<std::size_t>(config.max_tracks);
     const auto detections = static_cast<std::size_t>(config.max_detections);
     slots.resize(tracks);
@@ -79,17 +56,16 @@ struct Tracker::State {
     low.reserve(detections);
     rest.reserve(detections);
     rest_index.reserve(detections);
-    reports.reserve(tracks);
-    matches.reserve(std::min(tracks, detections));
-    detection_matched.reserve(detections);
-    track_matched.reserve(tracks);
-    unmatched_tracks.reserve(tracks);
+    high_taken.reserve(detections);
+    positions.reserve(tracks);
     candidates.reserve(tracks);
     round_matches.reserve(std::min(tracks, detections));
+    reports.reserve(tracks);
     restart();
   }
 
   void restart() {
+    for (const int slot : order) slots[slot].state = TrackState::deleted;
     order.clear();
     free_slots.clear();
     for (int s = config.max_tracks - 1; s >= 0; --s) free_slots.push_back(s);
@@ -97,7 +73,24 @@ struct Tracker::State {
     frame_count = 0;
     elapsed_frames = 0.0;
     has_previous_time = false;
+    score_cut.reset();
     reports.clear();
+  }
+
+  // One frame: predict, associate in up to three rounds, start tracks, settle states and report.
+  const std::vector<TrackReport>& update(const std::vector<Detection>& detections,
+                                         double time_seconds) {
+    ++frame_count;
+    const double dt = step_length(time_seconds);
+    if (frame_count > 1) elapsed_frames += dt;
+    split_by_score(detections);
+    predict_tracks(dt);
+    first_round();
+    if (config.recent_tracks_first) cascade_round();
+    if (config.second_round && !low.empty()) second_round();
+    start_tracks();
+    settle_and_report();
+    return reports;
   }
 
   double step_length(double time_seconds) {
@@ -109,20 +102,26 @@ struct Tracker::State {
     return std::isfinite(dt) ? std::max(dt, 0.0) : 1.0;
   }
 
-  void split_detections(const std::vector<Detection>& detections) {
+  // High-score detections may start and continue tracks; low ones (ByteTrack) only continue them.
+  // High means at or above both the absolute and the relative cut.
+  void split_by_score(const std::vector<Detection>& detections) {
     high.clear();
     low.clear();
+    const float cut = std::max(config.detection_threshold, score_cut.observe(detections));
     for (const Detection& detection : detections) {
       if (!usable(detection)) continue;
-      if (detection.score >= config.detection_threshold) {
+      if (detection.score >= cut) {
         if (static_cast<int>(high.size()) < config.max_detections) high.push_back(detection);
       } else if (config.second_round && detection.score >= config.low_score) {
         if (static_cast<int>(low.size()) < config.max_detections) low.push_back(detection);
       }
     }
+    high_taken.assign(high.size(), 0);
   }
 
-  void predict_all(double dt) {
+  // Every live track advances by `dt` nominal frames and starts the update coasting; a track
+  // whose prediction is no longer finite is deleted.
+  void predict_tracks(double dt) {
     std::size_t kept = 0;
     for (const int slot : order) {
       Track& track = slots[slot];
@@ -135,7 +134,7 @@ struct Tracker::State {
       track.streak_frames += dt;
       ++track.steps_since_update;
       track.frames_since_update += dt;
-      track.matched = false;
+      track.state = TrackState::coasting;
       if (is_finite(track.predicted)) {
         order[kept++] = slot;
       } else {
@@ -145,10 +144,56 @@ struct Tracker::State {
     order.resize(kept);
   }
 
-  // Runs one association round of `detections` against the live tracks at `positions`, and
-  // appends the matches with live positions.
-  void associate_round(const std::vector<Detection>& detections,
-                       const std::vector<int>& positions) {
+  // SORT's association: the high-score detections against every live track (with the cascade,
+  // against the tracks matched in the previous update only).
+  void first_round() {
+    positions.clear();
+    for (int t = 0; t < static_cast<int>(order.size()); ++t) {
+      if (!config.recent_tracks_first || slots[order[t]].steps_since_update == 1)
+        positions.push_back(t);
+    }
+    associate(high, [&](int d) {
+      high_taken[static_cast<std::size_t>(d)] = 1;
+      return d;
+    });
+  }
+
+  // DeepSORT's matching cascade in two levels: the tracks lost for a while (whose gate is wide and
+  // whose prediction is poor) only get the detections the recently matched tracks left over.
+  void cascade_round() {
+    rest.clear();
+    rest_index.clear();
+    for (std::size_t d = 0; d < high.size(); ++d) {
+      if (high_taken[d]) continue;
+      rest.push_back(high[d]);
+      rest_index.push_back(static_cast<int>(d));
+    }
+    collect_coasting_tracks();
+    associate(rest, [&](int r) {
+      const int d = rest_index[static_cast<std::size_t>(r)];
+      high_taken[static_cast<std::size_t>(d)] = 1;
+      return d;
+    });
+  }
+
+  // ByteTrack: low-score detections may only continue the tracks the rounds before left coasting.
+  void second_round() {
+    collect_coasting_tracks();
+    associate(low, [](int d) { return d; });
+  }
+
+  void collect_coasting_tracks() {
+    positions.clear();
+    for (int t = 0; t < static_cast<int>(order.size()); ++t) {
+      if (slots[order[t]].state == TrackState::coasting) positions.push_back(t);
+    }
+  }
+
+  // One association round of `detections` against the tracks at `positions` (indices into
+  // `order`); each match corrects its track at once. `take(d)` marks detection d as used and
+  // returns its index in `high` or `low` (the cascade associates a subset of `high`).
+  template <typename Take>
+  void associate(const std::vector<Detection>& detections, Take take) {
     candidates.clear();
     for (const int position : positions) {
       const Track& track = slots[order[position]];
@@ -156,25 +201,16 @@ struct Tracker::State {
     }
     round_matches.clear();
     associator.associate(config, detections, candidates, round_matches);
-    for (const AssociationMatch& m : round_matches)
-      matches.push_back(Match{m.detection, positions[m.candidate]});
+    for (const AssociationMatch& m : round_matches) {
+      take(m.detection);
+      correct_track(slots[order[positions[m.candidate]]], detections[m.detection]);
+    }
   }
 
-  void apply(const Match& match, const Detection& detection) {
-    Track& track = slots[order[match.track]];
+  void correct_track(Track& track, const Detection& detection) {
     auto* kalman = std::get_if<KalmanPredictor>(&track.predictor);
     if (config.observation_centric_reupdate && kalman != nullptr && track.steps_since_update > 1) {
-      // OC-SORT's ORU: replay the lost frames from the last observation along a straight line to
-      // the new one, so the velocity is learnt from observations instead of from the coasting.
-      KalmanPredictor replay = track.at_last_observation;
-      const int steps = track.steps_since_update;
-      const double dt = track.frames_since_update / steps;
-      for (int i = 1; i <= steps; ++i) {
-        replay.predict(dt);
-        replay.update(interpolate(track.last_observation, detection.box,
-                                  static_cast<float>(i) / static_cast<float>(steps)));
-      }
-      *kalman = replay;
+      reupdate_from_observations(track, *kalman, detection.box);
     } else {
       correct(track.predictor, detection.box);
     }
@@ -186,7 +222,28 @@ struct Tracker::State {
     track.frames_since_update = 0.0;
     ++track.hit_streak;
     track.score = detection.score;
-    track.matched = true;
+    track.state = TrackState::tentative;  // settle_and_report() decides whether it is confirmed
+  }
+
+  // OC-SORT's ORU: replay the lost frames from the last observation along a straight line to the
+  // new one, so the velocity is learnt from observations instead of from the coasting.
+  static void reupdate_from_observations(Track& track, KalmanPredictor& kalman, const Box& found) {
+    KalmanPredictor replay = track.at_last_observation;
+    const int steps = track.steps_since_update;
+    const double dt = track.frames_since_update / steps;
+    for (int i = 1; i <= steps; ++i) {
+      replay.predict(dt);
+      replay.update(interpolate(track.last_observation, found,
+                                static_cast<float>(i) / static_cast<float>(steps)));
+    }
+    kalman = replay;
+  }
+
+  // Every high-score detection that no round took starts a tentative track.
+  void start_tracks() {
+    for (std::size_t d = 0; d < high.size(); ++d) {
+      if (!high_taken[d]) start_track(high[d]);
+    }
   }
 
   void start_track(const Detection& detection) {
@@ -223,101 +280,22 @@ struct Tracker::State {
     track.frames_since_update = 0.0;
     track.score = detection.score;
     track.class_id = detection.class_id;
-    track.matched = true;  // sort.py reports a newborn track in the first min_hits frames
+    // sort.py reports a newborn track in the first min_hits frames: it counts as matched now.
+    track.state = TrackState::tentative;
     order.push_back(slot);
   }
 
-  void release(int slot) {
-    slots[slot].predictor.emplace<std::monostate>();
-    free_slots.push_back(slot);
-  }
-
-  const std::vector<TrackReport>& update(const std::vector<Detection>& detections,
-                                         double time_seconds) {
-    ++frame_count;
-    const double dt = step_length(time_seconds);
-    if (frame_count > 1) elapsed_frames += dt;
-    split_detections(detections);
-    predict_all(dt);
-
-    matches.clear();
-    unmatched_tracks.clear();
-    for (int t = 0; t < static_cast<int>(order.size()); ++t) {
-      if (!config.recent_tracks_first || slots[order[t]].steps_since_update == 1)
-        unmatched_tracks.push_back(t);
-    }
-    associate_round(high, unmatched_tracks);
-    detection_matched.assign(high.size(), 0);
-    track_matched.assign(order.size(), 0);
-    if (config.recent_tracks_first) associate_older_tracks();
-    mark_matches();
-    for (const Match& match : matches) apply(match, high[match.detection]);
-
-    if (config.second_round && !low.empty()) {
-      // ByteTrack: low-score detections may only continue tracks the first round left unmatched.
-      collect_unmatched_tracks();
-      matches.clear();
-      associate_round(low, unmatched_tracks);
-      for (const Match& match : matches) apply(match, low[match.detection]);
-    }
-
-    for (std::size_t d = 0; d < high.size(); ++d) {
-      if (!detection_matched[d]) start_track(high[d]);
-    }
-
-    report_and_retire();
-    return reports;
-  }
-
-  void mark_matches() {
-    for (const Match& match : matches) {
-      detection_matched[match.detection] = 1;
-      track_matched[match.track] = 1;
-    }
-  }
-
-  // The tracks (indices into `order`) that no match has claimed yet.
-  void collect_unmatched_tracks() {
-    unmatched_tracks.clear();
-    for (int t = 0; t < static_cast<int>(order.size()); ++t) {
-      if (!track_matched[t]) unmatched_tracks.push_back(t);
-    }
-  }
-
-  bool confirmed(const Track& track) const {
-    if (track.hit_streak >= config.min_hits || frame_count <= config.min_hits) return true;
-    if (!config.confirm_by_duration) return false;
-    // The streak's first frame is the birth (or re-match) itself, hence the one frame less than
-    // hits; at full rate this is exactly the hit count.
-    return track.hit_streak >= 1 && (track.streak_frames + kFrameTolerance >= config.min_hits ||
-                                     elapsed_frames + kFrameTolerance < config.min_hits);
-  }
-
-  // DeepSORT's matching cascade in two levels: the tracks lost for a while (whose gate is wide and
-  // whose prediction is poor) only get the detections the recently matched tracks left over.
-  void associate_older_tracks() {
-    mark_matches();
-    rest.clear();
-    rest_index.clear();
-    for (std::size_t d = 0; d < high.size(); ++d) {
-      if (detection_matched[d]) continue;
-      rest.push_back(high[d]);
-      rest_index.push_back(static_cast<int>(d));
-    }
-    collect_unmatched_tracks();
-    const std::size_t first_round = matches.size();
-    associate_round(rest, unmatched_tracks);
-    for (std::size_t m = first_round; m < matches.size(); ++m) {
-      matches[m].detection = rest_index[static_cast<std::size_t>(matches[m].detection)];
-    }
-  }
-
-  void report_and_retire() {
+  // A matched track is confirmed by its run of matches (or, in the first frames, by sort.py's
+  // warm-up); confirmed tracks are reported; tracks coasting for too long are deleted.
+  void settle_and_report() {
     reports.clear();
     std::size_t kept = 0;
     for (const int slot : order) {
-      const Track& track = slots[slot];
-      if (track.matched && confirmed(track)) {
+      Track& track = slots[slot];
+      if (track.matched_now()) {
+        track.state = confirmed(track) ? TrackState::confirmed : TrackState::tentative;
+      }
+      if (track.state == TrackState::confirmed) {
         reports.push_back(TrackReport{track.id, current_box(track.predictor), track.score,
                                       track.class_id, track.hit_streak, track.age});
       }
@@ -331,23 +309,39 @@ struct Tracker::State {
     order.resize(kept);
   }
 
+  bool confirmed(const Track& track) const {
+    if (track.hit_streak >= config.min_hits || frame_count <= config.min_hits) return true;
+    if (!config.confirm_by_duration) return false;
+    // The streak's first frame is the birth (or re-match) itself, hence the one frame less than
+    // hits; at full rate this is exactly the hit count.
+    return track.hit_streak >= 1 && (track.streak_frames + kFrameTolerance >= config.min_hits ||
+                                     elapsed_frames + kFrameTolerance < config.min_hits);
+  }
+
+  void release(int slot) {
+    slots[slot].predictor.emplace<std::monostate>();
+    slots[slot].state = TrackState::deleted;
+    free_slots.push_back(slot);
+  }
+
   TrackerConfig config;
+  // The track table: slots, the free ones, and the live ones oldest first (sort.py's list order).
   std::vector<Track> slots;
   std::vector<int> free_slots;
-  std::vector<int> order;  // live slots, oldest first (sort.py's list order)
-  std::vector<Particle> particles;
+  std::vector<int> order;
+  std::vector<Particle> particles;  // two buffers per slot for the particle predictor
+  // One update's detections by role, and the association rounds' workspace.
   std::vector<Detection> high;
   std::vector<Detection> low;
-  std::vector<Detection> rest;  // the cascade's second level: detections left by the first
-  std::vector<int> rest_index;  // their index in `high`
+  std::vector<char> high_taken;  // high[d] was matched by a round
+  std::vector<Detection> rest;   // the cascade's second level: detections left by the first
+  std::vector<int> rest_index;   // their index in `high`
+  std::vector<int> positions;    // the round's tracks, as indices into `order`
   std::vector<AssociationCandidate> candidates;
   std::vector<AssociationMatch> round_matches;
-  std::vector<Match> matches;
-  std::vector<char> detection_matched;
-  std::vector<char> track_matched;
-  std::vector<int> unmatched_tracks;
   std::vector<TrackReport> reports;
   Associator associator;
+  ScoreCut score_cut;
   std::int32_t next_id{1};
   int frame_count{0};
   double elapsed_frames{0.0};  // nominal frames since the first update

@@ -1,11 +1,17 @@
 #include "tracker/tracker_config.hpp"
 
+#include <cmath>
+#include <limits>
+
+#include "tracker/tracker_limits.hpp"
+
 namespace rtmot::tracker {
 
 TrackerConfig with_every_option(TrackerConfig base) {
   base.second_round = true;
   base.detection_threshold = 0.6F;
   base.low_score = 0.3F;
+  base.score_quantile = 0.2;
   base.observation_centric_reupdate = true;
   base.time_widened_gate = true;
   base.recent_tracks_first = true;
@@ -20,7 +26,9 @@ TrackerConfig TrackerConfig::sort_preset() {
   config.predictor = PredictorKind::kalman;
   config.affinity = AffinityKind::iou;
   config.affinity_threshold = default_threshold(AffinityKind::iou);
-  config.detection_threshold = 0.0F;
+  config.detection_threshold = std::numeric_limits<float>::lowest();  // sort.py keeps every row
+  config.score_quantile = 0.0;
+  config.score_range_cut = 0.0;
   config.max_age = 1;
   config.min_hits = 3;
   config.time_step = TimeStep::per_update;
@@ -39,58 +47,36 @@ double default_threshold(AffinityKind affinity) {
   return 0.3;
 }
 
-std::string_view to_string(PredictorKind kind) {
-  switch (kind) {
-    case PredictorKind::kalman:
-      return "kalman";
-    case PredictorKind::stationary:
-      return "stationary";
-    case PredictorKind::particle:
-      return "particle";
+std::optional<std::string> config_problem(const TrackerConfig& config) {
+  const auto within = [](auto value, auto low, auto high) { return value >= low && value <= high; };
+  if (!within(config.max_tracks, 1, limits::kMaxCapacity) ||
+      !within(config.max_detections, 1, limits::kMaxCapacity))
+    return "max_tracks and max_detections must be in [1, " + std::to_string(limits::kMaxCapacity) +
+           "]";
+  if (config.predictor == PredictorKind::particle) {
+    if (!within(config.particle_count, 1, limits::kMaxParticles))
+      return "particle_count must be in [1, " + std::to_string(limits::kMaxParticles) + "]";
+    // Every slot owns two buffers of particles, allocated up front.
+    if (static_cast<long long>(config.max_tracks) * config.particle_count >
+        limits::kMaxParticleStorage)
+      return "max_tracks x particle_count must be at most " +
+             std::to_string(limits::kMaxParticleStorage) +
+             " (the particles are allocated up front)";
   }
-  return "unknown";
-}
-
-std::string_view to_string(AffinityKind kind) {
-  switch (kind) {
-    case AffinityKind::iou:
-      return "iou";
-    case AffinityKind::linear:
-      return "linear";
-    case AffinityKind::exponential:
-      return "exponential";
-  }
-  return "unknown";
-}
-
-std::string_view to_string(TimeStep step) {
-  switch (step) {
-    case TimeStep::per_update:
-      return "per_update";
-    case TimeStep::elapsed:
-      return "elapsed";
-  }
-  return "unknown";
-}
-
-std::optional<PredictorKind> parse_predictor(std::string_view text) {
-  for (auto kind : {PredictorKind::kalman, PredictorKind::stationary, PredictorKind::particle}) {
-    if (text == to_string(kind)) return kind;
-  }
-  return std::nullopt;
-}
-
-std::optional<AffinityKind> parse_affinity(std::string_view text) {
-  if (text == "exp") return AffinityKind::exponential;  // C++SORT's short name
-  for (auto kind : {AffinityKind::iou, AffinityKind::linear, AffinityKind::exponential}) {
-    if (text == to_string(kind)) return kind;
-  }
-  return std::nullopt;
-}
-
-std::optional<TimeStep> parse_time_step(std::string_view text) {
-  if (text == "per_update" || text == "per-update") return TimeStep::per_update;
-  if (text == "elapsed") return TimeStep::elapsed;
+  if (!within(config.max_age, 0, limits::kMaxFrames) ||
+      !within(config.min_hits, 0, limits::kMaxFrames) ||
+      !within(config.min_coast_updates, 0, limits::kMaxFrames))
+    return "max_age, min_hits and min_coast_updates must be in [0, " +
+           std::to_string(limits::kMaxFrames) + "]";
+  if (config.time_step == TimeStep::elapsed && !(config.frame_rate > 0.0))
+    return "frame_rate must be > 0 with elapsed time steps";
+  if (!std::isfinite(config.affinity_threshold)) return "affinity_threshold must be finite";
+  if (std::isnan(config.detection_threshold) || std::isnan(config.low_score))
+    return "detection_threshold and low_score must be numbers";
+  if (!(config.score_quantile >= 0.0 && config.score_quantile <= limits::kMaxScoreQuantile))
+    return "score_quantile must be in [0, " + std::to_string(limits::kMaxScoreQuantile) + "]";
+  if (!(config.score_range_cut >= 0.0 && config.score_range_cut <= limits::kMaxScoreQuantile))
+    return "score_range_cut must be in [0, " + std::to_string(limits::kMaxScoreQuantile) + "]";
   return std::nullopt;
 }
 

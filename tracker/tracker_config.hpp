@@ -1,13 +1,23 @@
 #pragma once
 // Everything that parameterises a Tracker. Plain values: copy it, compare it, print it.
 #include <cstdint>
+#include <limits>
 #include <optional>
-#include <string_view>
+#include <string>
+
+#include "tracker/enum_names.hpp"
 
 namespace rtmot::tracker {
 
 enum class PredictorKind { kalman, stationary, particle };
 enum class AffinityKind { iou, linear, exponential };
+
+inline constexpr auto kPredictorNames = make_enum_names<PredictorKind>(
+    std::pair{PredictorKind::kalman, "kalman"}, std::pair{PredictorKind::stationary, "stationary"},
+    std::pair{PredictorKind::particle, "particle"});
+inline constexpr auto kAffinityNames = make_enum_names<AffinityKind>(
+    std::pair{AffinityKind::iou, "iou"}, std::pair{AffinityKind::linear, "linear"},
+    std::pair{AffinityKind::exponential, "exponential"});
 
 /// How the predictors advance between two updates.
 enum class TimeStep {
@@ -15,14 +25,25 @@ enum class TimeStep {
   elapsed,     // by the real time between updates, in units of the nominal frame period
 };
 
+inline constexpr auto kTimeStepNames = make_enum_names<TimeStep>(
+    std::pair{TimeStep::per_update, "per_update"}, std::pair{TimeStep::elapsed, "elapsed"});
+
 struct TrackerConfig {
   PredictorKind predictor{PredictorKind::kalman};
   AffinityKind affinity{AffinityKind::iou};
   /// Minimum affinity for a match. Meaning depends on `affinity`: IoU 0.3, linear 10000 (after
   /// inversion, larger is more similar), exponential 0.5. See default_threshold().
   double affinity_threshold{0.3};
-  /// Detections scoring below this are dropped before anything else.
-  float detection_threshold{0.0F};
+  /// Detections scoring below this absolute score are low (dropped, or second-round only). The
+  /// lowest float by default: an absolute cut assumes one detector's score scale.
+  float detection_threshold{std::numeric_limits<float>::lowest()};
+  /// Detections scoring below this quantile of the stream's recent scores (tracker/score_cut.hpp)
+  /// are low too: a cut that holds on any score scale. 0 = off.
+  double score_quantile{0.0};
+  /// Detections scoring below low + f x (high - low) of the recent scores' 1st..99th percentile
+  /// range are low too (tracker/score_cut.hpp): a cut that holds on any affine score scale. 0 =
+  /// off.
+  double score_range_cut{0.0};
   /// A track is deleted after more than `max_age` nominal frames without a match.
   int max_age{1};
   /// A track is reported once it has `min_hits` consecutive matches.
@@ -77,11 +98,9 @@ TrackerConfig with_every_option(TrackerConfig base);
 /// The usual threshold for an affinity, as in C++SORT.
 double default_threshold(AffinityKind affinity);
 
-std::string_view to_string(PredictorKind kind);
-std::string_view to_string(AffinityKind kind);
-std::string_view to_string(TimeStep step);
-std::optional<PredictorKind> parse_predictor(std::string_view text);
-std::optional<AffinityKind> parse_affinity(std::string_view text);
-std::optional<TimeStep> parse_time_step(std::string_view text);
+/// What makes `config` unusable as a whole (ranges that only fail together, e.g. the particle
+/// storage of max_tracks x particle_count); nullopt when it is usable. Each value's own range is
+/// checked where it is parsed (tracker/tracker_options.hpp).
+std::optional<std::string> config_problem(const TrackerConfig& config);
 
 }  // namespace rtmot::tracker

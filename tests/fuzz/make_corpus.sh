@@ -35,6 +35,8 @@ for f in "$root"/configs/*.yaml; do
 done
 printf 'source:\n  uri: test://ball\ndetector:\n  kind: ssd\n  model: models/x.onnx\n' \
   >"$out/run_config/minimal.yaml"
+printf 'sources:\n  - a.avi\n  - {uri: rtsp://cam/1, width: 640, stream_id: 3}\nstream_id: 2\nthreads:\n  capture: {cpu: 0, fifo_priority: 20}\n  sink: {cpu: -1}\ndetector:\n  kind: replay\n  det_file: d.txt\n' \
+  >"$out/run_config/sources_threads.yaml"
 
 # Addresses as configurations give them.
 i=0

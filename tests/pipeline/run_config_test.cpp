@@ -134,6 +134,68 @@ TEST(RunConfig, StageThreadsAreReadAndCheckedPerStage) {
   expect_error("threads:\n  track: {core: 0}\n", 2, "threads.track.core");
 }
 
+TEST(RunConfig, SourcesListGivesEachItsStreamId) {
+  const runner::RunConfig config = runner::parse_run_config(
+      "stream_id: 10\nsources:\n  - a.avi\n  - {uri: rtsp://cam/1, width: 640, stream_id: 3}\n"
+      "  - uri: b.avi\n",
+      "s.yaml");
+  const auto sources = runner::source_list(config);
+  ASSERT_EQ(sources.size(), 3U);
+  EXPECT_EQ(sources[0].uri, "a.avi");
+  EXPECT_EQ(sources[1].uri, "rtsp://cam/1");
+  EXPECT_EQ(sources[1].width, 640);
+  EXPECT_EQ(runner::stream_id_of(config, 0), 10U) << "top-level id + index";
+  EXPECT_EQ(runner::stream_id_of(config, 1), 3U) << "its own";
+  EXPECT_EQ(runner::stream_id_of(config, 2), 12U);
+  EXPECT_EQ(
+      runner::source_list(runner::parse_run_config("source: {uri: x.avi}\n", "one.yaml")).size(),
+      1U);
+}
+
+TEST(RunConfig, SourcesListMistakesNameTheEntry) {
+  expect_error("sources: a.avi\n", 1, "sources");
+  expect_error("sources: []\n", 1, "sources");
+  expect_error("sources:\n  - a.avi\n  - {uri: b.avi, fsp: 3}\n", 3, "sources[1].fsp");
+  expect_error("sources:\n  - {width: 3}\n", 2, "sources[0]");
+  expect_error("source: {uri: a.avi}\nsources: [b.avi]\n", 2, "sources");
+  const auto invalid = [](const std::string& yaml, const std::string& field) {
+    runner::RunConfig config = runner::parse_run_config(yaml, "v.yaml");
+    config.detector.model = "m.onnx";
+    try {
+      runner::validate(config);
+      ADD_FAILURE() << "expected an InputError for " << field;
+    } catch (const InputError& error) {
+      EXPECT_EQ(error.field(), field) << error.what();
+    }
+  };
+  invalid("sources:\n  - {uri: a.avi, stream_id: 1}\n  - {uri: b.avi, stream_id: 1}\n",
+          "sources[1].stream_id");
+  invalid("sources: [a.avi, b.avi]\noutput: {video_file: v.avi}\n", "output.video_file");
+}
+
+// Every tracker key is read through the one options table: values a typed conversion would take
+// (NaN, a count written as a float, a count that would allocate gigabytes) are refused where read.
+TEST(RunConfig, TrackerRangesAreCheckedWhereRead) {
+  expect_error("tracker:\n  affinity_threshold: .nan\n", 2, "tracker.affinity_threshold");
+  expect_error("tracker:\n  max_tracks: 2147483647\n", 2, "tracker.max_tracks");
+  expect_error("tracker:\n  max_tracks: 1e6\n", 2, "tracker.max_tracks");
+  expect_error("tracker:\n  particle_count: 2147483647\n", 2, "tracker.particle_count");
+  expect_error("tracker:\n  affinity: exp\n", 2, "tracker.affinity");
+  expect_error("tracker:\n  max_tracks: 10000\n  predictor: particle\n  particle_count: 5000\n", 4,
+               "tracker.particle_count");
+}
+
+TEST(RunConfig, EveryTrackerOptionCanBeSetFromYaml) {
+  const auto config = runner::parse_run_config(
+      "tracker:\n  preset: sort\n  recent_tracks_first: true\n  confirm_by_duration: true\n"
+      "  min_coast_updates: 2\n  time_step: elapsed\n",
+      "t.yaml");
+  EXPECT_TRUE(config.tracker.recent_tracks_first);
+  EXPECT_TRUE(config.tracker.confirm_by_duration);
+  EXPECT_EQ(config.tracker.min_coast_updates, 2);
+  EXPECT_EQ(config.tracker.time_step, tracker::TimeStep::elapsed);
+}
+
 TEST(RunConfig, MalformedYamlNamesTheLine) {
   expect_error("source:\n  uri: [a.avi\n", 3, "");
 }

@@ -1,14 +1,16 @@
 // End to end on MOT15-train's public detections, scored by the mot scorer: the rtmot preset
-// (the study's best) against the exact SORT preset, at full rate and when only every 5th or
-// 10th frame is processed. The figures are in docs/results.md.
+// (chosen by cross-validation over sequences and detectors) against the exact SORT preset, at
+// full rate and when only every 5th or 10th frame is processed; and the default's independence
+// of the detector's score scale. The figures are in docs/results.md.
 #include <gtest/gtest.h>
 
 #include <memory>
 #include <string>
 
+#include "mot/metrics.hpp"
 #include "mot/study_dataset.hpp"
-#include "tracker/presets.hpp"
 #include "shared_data.hpp"
+#include "tracker/presets.hpp"
 
 namespace rtmot::mot {
 namespace {
@@ -55,8 +57,32 @@ TEST_F(PresetVsSort, BeatsSortAtFullRate) {
   RecordProperty("rtmot_IDF1", std::to_string(best.idf1));
   EXPECT_NEAR(sort.mota, 39.9, 0.05);  // the SORT preset stays exactly SORT
   EXPECT_NEAR(sort.idf1, 45.9, 0.05);
-  EXPECT_GE(best.mota, 42.0);
-  EXPECT_GE(best.idf1, 50.0);
+  // Chosen without the absolute 0.85 cut tuned on these scores, the default gives up a little
+  // MOTA at full rate (39.5 against SORT's 39.9; docs/results.md says why that is the honest
+  // figure) and keeps a clear lead in IDF1.
+  EXPECT_GE(best.mota, sort.mota - 1.0);
+  EXPECT_GE(best.idf1, sort.idf1 + 3.0);
+}
+
+// The same detections on another score scale (a DPM's margins, an affine image of these scores)
+// give the default the same tracks: no setting of it assumes a scale.
+TEST_F(PresetVsSort, DefaultTracksDoNotDependOnTheScoreScale) {
+  REQUIRE_DATASET();
+  LoadedSequence rescaled = (*dataset_)[8];  // TUD-Campus
+  ASSERT_EQ(rescaled.info.name, "TUD-Campus");
+  for (auto& frame : rescaled.detections) {
+    for (auto& detection : frame) detection.score = 11.F * (detection.score - 0.5F) - 0.5F;
+  }
+  const auto config = *tracker::find_preset(tracker::default_preset_name());
+  for (const int interval : {1, 5}) {
+    const Metrics original =
+        summarize(track_and_count((*dataset_)[8], StudyInput::detections, config, interval));
+    const Metrics dpm =
+        summarize(track_and_count(rescaled, StudyInput::detections, config, interval));
+    EXPECT_EQ(original.false_positives, dpm.false_positives) << interval;
+    EXPECT_EQ(original.false_negatives, dpm.false_negatives) << interval;
+    EXPECT_EQ(original.id_switches, dpm.id_switches) << interval;
+  }
 }
 
 class PresetVsSortAtInterval : public PresetVsSort, public ::testing::WithParamInterface<int> {};

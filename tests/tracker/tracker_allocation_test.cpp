@@ -56,8 +56,8 @@ INSTANTIATE_TEST_SUITE_P(
                        ::testing::Values(AffinityKind::iou, AffinityKind::linear,
                                          AffinityKind::exponential)),
     [](const auto& info) {
-      return std::string(to_string(std::get<0>(info.param))) + "_" +
-             std::string(to_string(std::get<1>(info.param)));
+      return std::string(kPredictorNames.name(std::get<0>(info.param))) + "_" +
+             std::string(kAffinityNames.name(std::get<1>(info.param)));
     });
 
 }  // namespace

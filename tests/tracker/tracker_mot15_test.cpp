@@ -85,8 +85,8 @@ TEST_F(Mot15, EveryPredictorAndAffinityGivesPlausibleTracks) {
       config.affinity_threshold = default_threshold(affinity);
       config.particle_count = 50;
       const RunSummary summary = run(sequence_, config);
-      const std::string what =
-          std::string(to_string(predictor)) + "/" + std::string(to_string(affinity));
+      const std::string what = std::string(kPredictorNames.name(predictor)) + "/" +
+                               std::string(kAffinityNames.name(affinity));
       // With max_age 1 every model fragments tracks (SORT itself makes about six tracks per
       // person on this scene), but each must report roughly as many boxes as people are in view.
       EXPECT_GE(summary.ids.size(), truth_.ids.size()) << what;

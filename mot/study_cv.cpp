@@ -1,0 +1,173 @@
+#include "mot/study_cv.hpp"
+
+#include <fmt/format.h>
+
+#include <atomic>
+#include <exception>
+#include <mutex>
+#include <stdexcept>
+#include <thread>
+
+#include "mot/metrics.hpp"
+#include "mot/sequence_counts.hpp"
+
+namespace rtmot::mot {
+namespace {
+
+// counts[candidate][input][interval][sequence], every run once.
+using Counts = std::vector<std::vector<std::vector<std::vector<SequenceCounts>>>>;
+// use[input][sequence]: which runs a score pools.
+using Mask = std::vector<std::vector<bool>>;
+
+Counts count_everything(const std::vector<LoadedSequence>& dataset,
+                        const std::vector<StudyConfiguration>& candidates,
+                        const std::vector<StudyInput>& inputs, const std::vector<int>& intervals,
+                        int jobs) {
+  const std::size_t n_s = dataset.size();
+  const std::size_t n_i = intervals.size();
+  const std::size_t n_d = inputs.size();
+  Counts counts(candidates.size(), std::vector<std::vector<std::vector<SequenceCounts>>>(
+                                       n_d, std::vector<std::vector<SequenceCounts>>(
+                                                n_i, std::vector<SequenceCounts>(n_s))));
+  const std::size_t total = candidates.size() * n_d * n_i * n_s;
+  // As run_study: each run writes only its own preallocated cell; join() publishes them.
+  std::atomic<std::size_t> next{0};
+  std::exception_ptr failure;
+  std::mutex failure_mutex;
+  const auto work = [&] {
+    for (std::size_t run = next++; run < total; run = next++) {
+      const std::size_t s = run % n_s;
+      const std::size_t i = (run / n_s) % n_i;
+      const std::size_t d = (run / (n_s * n_i)) % n_d;
+      const std::size_t c = run / (n_s * n_i * n_d);
+      try {
+        counts[c][d][i][s] =
+            track_and_count(dataset[s], inputs[d], candidates[c].config, intervals[i]);
+      } catch (...) {
+        const std::lock_guard<std::mutex> lock(failure_mutex);
+        if (!failure) failure = std::current_exception();
+        next = total;
+      }
+    }
+  };
+  std::vector<std::thread> workers;
+  const int threads = std::max(1, std::min(jobs, static_cast<int>(total)));
+  for (int t = 1; t < threads; ++t) workers.emplace_back(work);
+  work();
+  for (auto& worker : workers) worker.join();
+  if (failure) std::rethrow_exception(failure);
+  return counts;
+}
+
+// The candidate's metrics per interval, pooled over the runs `use` marks.
+std::vector<Metrics> pooled(const Counts& counts, std::size_t candidate, const Mask& use) {
+  const auto& by_input = counts[candidate];
+  std::vector<Metrics> by_interval;
+  for (std::size_t i = 0; i < by_input.front().size(); ++i) {
+    SequenceCounts total;
+    for (std::size_t d = 0; d < by_input.size(); ++d) {
+      for (std::size_t s = 0; s < by_input[d][i].size(); ++s) {
+        if (use[d][s]) total += by_input[d][i][s];
+      }
+    }
+    by_interval.push_back(summarize(total));
+  }
+  return by_interval;
+}
+
+// The best candidate on the runs `use` marks; the first of equals.
+std::size_t choose(const Counts& counts, const Mask& use) {
+  std::size_t best = 0;
+  double best_score = -1e300;
+  for (std::size_t c = 0; c < counts.size(); ++c) {
+    const double score = selection_score(pooled(counts, c, use));
+    if (score > best_score) {
+      best = c;
+      best_score = score;
+    }
+  }
+  return best;
+}
+
+StudyTable table_of(const std::string& name, StudyInput input, const std::vector<int>& intervals,
+                    const std::vector<Metrics>& by_interval, const tracker::TrackerConfig& config) {
+  StudyTable table{StudyConfiguration{name, "cv", config}, input, {}};
+  for (std::size_t i = 0; i < intervals.size(); ++i)
+    table.rows.push_back(StudyRow{intervals[i], by_interval[i]});
+  return table;
+}
+
+}  // namespace
+
+double selection_score(const std::vector<Metrics>& by_interval) {
+  if (by_interval.empty()) return 0.0;
+  double sum = 0.0;
+  for (const Metrics& m : by_interval) sum += 0.5 * (m.mota + m.idf1);
+  return sum / static_cast<double>(by_interval.size());
+}
+
+CrossValidation cross_validate(const std::vector<LoadedSequence>& dataset,
+                               const std::vector<StudyConfiguration>& candidates,
+                               const std::vector<StudyInput>& inputs,
+                               const std::vector<int>& intervals, int jobs) {
+  if (dataset.size() < 2 || candidates.empty() || inputs.empty() || intervals.empty())
+    throw std::invalid_argument(
+        "cross-validation needs two sequences, a candidate, a detector "
+        "and an interval");
+  const Counts counts = count_everything(dataset, candidates, inputs, intervals, jobs);
+  const std::size_t n_s = dataset.size();
+  const std::size_t n_d = inputs.size();
+
+  CrossValidation cv;
+  const Mask everything(n_d, std::vector<bool>(n_s, true));
+  const std::size_t in_sample = choose(counts, everything);
+  cv.in_sample_choice = candidates[in_sample].name;
+  for (std::size_t c = 0; c < candidates.size(); ++c)
+    cv.in_sample_scores.emplace_back(candidates[c].name,
+                                     selection_score(pooled(counts, c, everything)));
+
+  for (std::size_t d = 0; d < n_d; ++d) {
+    std::vector<SequenceCounts> held_out(intervals.size());
+    for (std::size_t k = 0; k < n_s; ++k) {
+      // Train on the other sequences through the other detectors (the same one if it is alone).
+      Mask train(n_d, std::vector<bool>(n_s, true));
+      for (std::size_t e = 0; e < n_d; ++e) {
+        if (e == d && n_d > 1) train[e].assign(n_s, false);
+        train[e][k] = false;
+      }
+      const std::size_t chosen = choose(counts, train);
+      for (std::size_t i = 0; i < intervals.size(); ++i) held_out[i] += counts[chosen][d][i][k];
+      cv.folds.push_back(FoldChoice{dataset[k].info.name, std::string(to_string(inputs[d])),
+                                    candidates[chosen].name});
+    }
+    std::vector<Metrics> held_out_metrics;
+    for (const auto& total : held_out) held_out_metrics.push_back(summarize(total));
+    // The held-out table has no single configuration: it carries the in-sample choice's, which
+    // is what the folds estimate.
+    cv.tables.push_back(table_of("cv-held-out", inputs[d], intervals, held_out_metrics,
+                                 candidates[in_sample].config));
+    Mask this_input(n_d, std::vector<bool>(n_s, false));
+    this_input[d].assign(n_s, true);
+    cv.tables.push_back(table_of("cv-in-sample", inputs[d], intervals,
+                                 pooled(counts, in_sample, this_input),
+                                 candidates[in_sample].config));
+  }
+  return cv;
+}
+
+std::string format_folds_markdown(const CrossValidation& cv) {
+  std::string out = fmt::format(
+      "Chosen on every sequence and detector (in-sample): `{}`\n\n| held-out detector | held-out "
+      "sequence | chosen on the rest | same as in-sample |\n|---|---|---|:---:|\n",
+      cv.in_sample_choice);
+  for (const auto& fold : cv.folds) {
+    out += fmt::format("| {} | {} | `{}` | {} |\n", fold.detector, fold.held_out, fold.chosen,
+                       fold.chosen == cv.in_sample_choice ? "yes" : "no");
+  }
+  out += "\n| candidate | selection score on everything |\n|---|---:|\n";
+  for (const auto& [name, score] : cv.in_sample_scores)
+    out += fmt::format("| `{}` | {:.2f} |\n", name, score);
+  return out;
+}
+
+}  // namespace rtmot::mot

@@ -1,0 +1,47 @@
+#pragma once
+// Choosing a configuration honestly: cross-validation with the study's runner, leaving out one
+// sequence and one detector at a time. For each (sequence, detector), the candidate with the best
+// score on the other sequences seen through the other detectors is chosen and scored on the one
+// left out; the left-out scores, pooled per detector, estimate how the choice does on scenes and
+// on a detector it was not chosen on (docs/study.md, "cross-validation"). With one detector it
+// is leave-one-sequence-out.
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "mot/study_dataset.hpp"
+#include "mot/study_plan.hpp"
+#include "mot/study_runner.hpp"
+
+namespace rtmot::mot {
+
+struct FoldChoice {
+  std::string held_out;  // the sequence left out
+  std::string detector;  // the detector (study input) left out
+  std::string chosen;    // the candidate the rest chose
+};
+
+struct CrossValidation {
+  /// Group "cv", per detector: "cv-held-out" (each sequence tracked by its fold's choice,
+  /// pooled) and "cv-in-sample" (the choice made on everything, scored on that detector).
+  std::vector<StudyTable> tables;
+  std::vector<FoldChoice> folds;
+  std::string in_sample_choice;
+  /// Each candidate's selection score on everything, in candidate order.
+  std::vector<std::pair<std::string, double>> in_sample_scores;
+};
+
+/// The selection score: the mean over `intervals` of (MOTA + IDF1) / 2, pooled over sequences.
+double selection_score(const std::vector<Metrics>& by_interval);
+
+/// Over `dataset` (at least two sequences) and `inputs` (the detectors). Runs every candidate on
+/// every sequence, detector and interval once, on `jobs` threads.
+CrossValidation cross_validate(const std::vector<LoadedSequence>& dataset,
+                               const std::vector<StudyConfiguration>& candidates,
+                               const std::vector<StudyInput>& inputs,
+                               const std::vector<int>& intervals, int jobs);
+
+/// The folds as a Markdown table.
+std::string format_folds_markdown(const CrossValidation& cv);
+
+}  // namespace rtmot::mot

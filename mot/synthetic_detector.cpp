@@ -1,0 +1,155 @@
+#include "mot/synthetic_detector.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <random>
+
+namespace rtmot::mot {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// Uniforms and normals from the engine's raw 64-bit output (see the header for why).
+class Random {
+ public:
+  explicit Random(std::uint64_t seed) : engine_(seed) {}
+  double uniform() { return static_cast<double>(engine_() >> 11) * 0x1.0p-53; }
+  double normal() {
+    // Box-Muller; 1 - u keeps the logarithm finite.
+    const double u = 1.0 - uniform();
+    const double v = uniform();
+    return std::sqrt(-2.0 * std::log(u)) * std::cos(2.0 * kPi * v);
+  }
+  bool chance(double p) { return uniform() < p; }
+  int poisson(double mean) {
+    // Knuth's product of uniforms: exact, and fast for the small means used here.
+    const double limit = std::exp(-mean);
+    int count = 0;
+    for (double product = uniform(); product > limit; product *= uniform()) ++count;
+    return count;
+  }
+  int index(std::size_t size) {
+    return static_cast<int>(std::min(static_cast<double>(size) - 1.0,
+                                     std::floor(uniform() * static_cast<double>(size))));
+  }
+
+ private:
+  std::mt19937_64 engine_;
+};
+
+double sigmoid(double z) {
+  return 1.0 / (1.0 + std::exp(-z));
+}
+
+float scaled(ScoreScale scale, double z) {
+  switch (scale) {
+    case ScoreScale::frcnn:
+      return static_cast<float>(0.5 + 0.5 * sigmoid(z));
+    case ScoreScale::sigmoid:
+      return static_cast<float>(sigmoid(z - 1.0));
+    case ScoreScale::dpm:
+      return static_cast<float>(1.2 * z + 0.5);
+    case ScoreScale::percent:
+      return static_cast<float>(100.0 * sigmoid(z));
+    case ScoreScale::logit:
+      return static_cast<float>(2.0 * z);
+  }
+  return static_cast<float>(z);
+}
+
+bool scored(const motio::MotRow& row) {
+  return row.conf != 0.F && (row.class_id < 0 || row.class_id == 1);
+}
+
+tracker::Box jittered(Random& random, const tracker::Box& box, double jitter) {
+  const double w = box.w * std::exp(jitter * random.normal());
+  const double h = box.h * std::exp(jitter * random.normal());
+  const double cx = box.center_x() + jitter * box.w * random.normal();
+  const double cy = box.center_y() + jitter * box.h * random.normal();
+  return tracker::Box{static_cast<float>(cx - 0.5 * w), static_cast<float>(cy - 0.5 * h),
+                      static_cast<float>(w), static_cast<float>(h)};
+}
+
+// A false positive shaped like a random person of the sequence, anywhere in the image.
+tracker::Box random_box(Random& random, const std::vector<tracker::Box>& shapes,
+                        const motio::SequenceInfo& info) {
+  const tracker::Box& shape = shapes[static_cast<std::size_t>(random.index(shapes.size()))];
+  const double x = random.uniform() * std::max(1.0, info.width - static_cast<double>(shape.w));
+  const double y = random.uniform() * std::max(1.0, info.height - static_cast<double>(shape.h));
+  return tracker::Box{static_cast<float>(x), static_cast<float>(y), shape.w, shape.h};
+}
+
+}  // namespace
+
+const std::vector<SyntheticDetectorSpec>& synthetic_detectors() {
+  // name, miss rate, miss run, random FP/frame, clutter sites, clutter rate, jitter, separation,
+  // latent floor, scale, seed
+  static const std::vector<SyntheticDetectorSpec> specs = {
+      {"synth-frcnn", 0.25, 4.0, 1.5, 3, 0.3, 0.05, 1.5, -1.0, ScoreScale::frcnn, 101},
+      {"synth-dpm", 0.35, 6.0, 3.0, 4, 0.4, 0.08, 1.2, -1.0, ScoreScale::dpm, 102},
+      {"synth-ssd", 0.45, 8.0, 0.8, 2, 0.2, 0.06, 2.0, -1.0, ScoreScale::sigmoid, 103},
+      {"synth-clean", 0.10, 2.0, 0.3, 1, 0.1, 0.02, 2.5, -1.0, ScoreScale::percent, 104},
+      {"synth-noisy", 0.30, 3.0, 5.0, 6, 0.5, 0.12, 0.8, -1.0, ScoreScale::logit, 105},
+  };
+  return specs;
+}
+
+std::vector<std::vector<tracker::Detection>> synthesize_detections(
+    const SyntheticDetectorSpec& spec, const std::vector<motio::MotRow>& gt_rows,
+    const motio::SequenceInfo& info, int sequence_index) {
+  Random random(spec.seed * 1000003ULL + static_cast<std::uint64_t>(sequence_index));
+  std::vector<std::vector<tracker::Detection>> frames(static_cast<std::size_t>(info.length));
+
+  std::vector<const motio::MotRow*> rows;
+  std::vector<tracker::Box> shapes;
+  for (const auto& row : gt_rows) {
+    if (!scored(row) || row.frame < 1 || row.frame > info.length) continue;
+    rows.push_back(&row);
+    shapes.push_back(row.box);
+  }
+  // Frame by frame, so a track's miss run carries over from one frame to the next.
+  std::stable_sort(rows.begin(), rows.end(), [](const motio::MotRow* a, const motio::MotRow* b) {
+    return a->frame < b->frame;
+  });
+  if (shapes.empty()) return frames;
+
+  const auto emit = [&](int frame, const tracker::Box& box, double z) {
+    if (z < spec.latent_floor || !(box.w > 0.F) || !(box.h > 0.F)) return;
+    frames[static_cast<std::size_t>(frame - 1)].push_back(
+        tracker::Detection{box, scaled(spec.scale, z), 1});
+  };
+
+  // Misses as a two-state chain per track: a run ends with chance 1 / run length; one starts
+  // with the chance that makes `miss_rate` the long-run share of boxes missed.
+  std::map<int, int> missing_until;  // track id -> last frame of its current miss run
+  const double run_frames = std::max(1.0, spec.miss_run_frames);
+  const double run_end_chance = 1.0 / run_frames;
+  const double miss_rate = std::clamp(spec.miss_rate, 0.0, 0.95);
+  const double run_start_chance = miss_rate / (run_frames * (1.0 - miss_rate));
+  for (const motio::MotRow* row : rows) {
+    int& until = missing_until[row->id];
+    if (row->frame <= until) continue;
+    if (random.chance(run_start_chance)) {
+      int length = 1;
+      while (!random.chance(run_end_chance)) ++length;
+      until = row->frame + length - 1;
+      continue;
+    }
+    emit(row->frame, jittered(random, row->box, spec.jitter), spec.separation + random.normal());
+  }
+
+  std::vector<tracker::Box> clutter;
+  for (int s = 0; s < spec.clutter_sites; ++s) clutter.push_back(random_box(random, shapes, info));
+  for (int frame = 1; frame <= info.length; ++frame) {
+    const int count = random.poisson(spec.false_per_frame);
+    for (int i = 0; i < count; ++i) emit(frame, random_box(random, shapes, info), random.normal());
+    for (const auto& site : clutter) {
+      if (random.chance(spec.clutter_rate))
+        emit(frame, jittered(random, site, spec.jitter), random.normal());
+    }
+  }
+  return frames;
+}
+
+}  // namespace rtmot::mot

@@ -1,0 +1,91 @@
+// Cross-validation on two real MOT15 sequences and two detectors: each fold's choice is the best
+// candidate on what the fold may see, and the held-out table is exactly that choice's score on
+// what the fold left out.
+#include "mot/study_cv.hpp"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "mot/metrics.hpp"
+#include "shared_data.hpp"
+
+namespace rtmot::mot {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::vector<LoadedSequence> two_sequences() {
+  const fs::path dir = fs::temp_directory_path() / ("rtmot-cv-test-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  for (const char* name : {"TUD-Campus", "TUD-Stadtmitte"}) {
+    const fs::path link = dir / name;
+    if (!fs::exists(link))
+      fs::create_directory_symlink(test::shared_path("data/mot15-train") / name, link);
+  }
+  auto dataset = load_study_dataset(dir);
+  fs::remove_all(dir);
+  return dataset;
+}
+
+Metrics score(const std::vector<const LoadedSequence*>& sequences, StudyInput input,
+              const tracker::TrackerConfig& config, int interval) {
+  SequenceCounts total;
+  for (const auto* s : sequences) total += track_and_count(*s, input, config, interval);
+  return summarize(total);
+}
+
+TEST(CrossValidation, FoldsChooseOnWhatTheyMaySeeAndScoreWhatTheyLeftOut) {
+  RTMOT_REQUIRE_FILE(test::shared_path("data/mot15-train/TUD-Stadtmitte"));
+  const auto dataset = two_sequences();
+  ASSERT_EQ(dataset.size(), 2U);
+  const auto candidates = cv_candidates(true);
+  ASSERT_GE(candidates.size(), 2U);
+  const std::vector<StudyInput> inputs = {StudyInput::detections,
+                                          StudyInput::synthetic_detector(0)};
+  const std::vector<int> intervals = {1, 5};
+  const CrossValidation cv = cross_validate(dataset, candidates, inputs, intervals, 2);
+
+  ASSERT_EQ(cv.folds.size(), 4U);
+  ASSERT_EQ(cv.tables.size(), 4U);  // held-out and in-sample, per detector
+  const auto find = [&](const std::string& name) {
+    for (const auto& c : candidates) {
+      if (c.name == name) return c.config;
+    }
+    ADD_FAILURE() << name;
+    return candidates.front().config;
+  };
+
+  // The fold that leaves out TUD-Campus through the public detections sees only TUD-Stadtmitte
+  // through the synthetic detector: its choice must be the best there.
+  const FoldChoice& fold = cv.folds[0];
+  EXPECT_EQ(fold.held_out, "TUD-Campus");
+  EXPECT_EQ(fold.detector, "det");
+  double best = -1e300;
+  std::string best_name;
+  for (const auto& c : candidates) {
+    std::vector<Metrics> by_interval;
+    for (const int i : intervals)
+      by_interval.push_back(score({&dataset[1]}, inputs[1], c.config, i));
+    const double s = selection_score(by_interval);
+    if (s > best) best = s, best_name = c.name;
+  }
+  EXPECT_EQ(fold.chosen, best_name);
+
+  // The held-out table on det pools each fold's choice on its own left-out sequence.
+  const StudyTable& held_out = cv.tables[0];
+  EXPECT_EQ(held_out.configuration.name, "cv-held-out");
+  EXPECT_EQ(held_out.input, StudyInput::detections);
+  for (std::size_t i = 0; i < intervals.size(); ++i) {
+    SequenceCounts total =
+        track_and_count(dataset[0], inputs[0], find(cv.folds[0].chosen), intervals[i]);
+    total += track_and_count(dataset[1], inputs[0], find(cv.folds[1].chosen), intervals[i]);
+    const Metrics expected = summarize(total);
+    EXPECT_DOUBLE_EQ(held_out.rows[i].metrics.mota, expected.mota);
+    EXPECT_DOUBLE_EQ(held_out.rows[i].metrics.idf1, expected.idf1);
+  }
+  EXPECT_FALSE(format_folds_markdown(cv).empty());
+}
+
+}  // namespace
+}  // namespace rtmot::mot

@@ -1,0 +1,143 @@
+// The relative score cuts: the same detections on another score scale get the same cut, so the
+// same detections are kept; and the warning for absolute cuts on a scale they were not set on.
+#include "tracker/score_cut.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <random>
+#include <vector>
+
+#include "tracker/score_scale.hpp"
+#include "tracker/tracker.hpp"
+#include "tracker/tracker_config.hpp"
+
+namespace rtmot::tracker {
+namespace {
+
+// A detector's frames: 8 detections each, latent confidences from two overlapping populations.
+std::vector<std::vector<float>> latent_frames(int frames) {
+  std::mt19937 engine(7);
+  std::normal_distribution<float> truth(1.5F, 1.F);
+  std::normal_distribution<float> clutter(0.F, 1.F);
+  std::vector<std::vector<float>> out(static_cast<std::size_t>(frames));
+  for (auto& frame : out) {
+    for (int i = 0; i < 6; ++i) frame.push_back(truth(engine));
+    for (int i = 0; i < 2; ++i) frame.push_back(clutter(engine));
+  }
+  return out;
+}
+
+template <typename Scale>
+std::vector<std::vector<bool>> kept_by(ScoreCut cut, const std::vector<std::vector<float>>& latent,
+                                       Scale scale) {
+  std::vector<std::vector<bool>> kept;
+  for (const auto& frame : latent) {
+    std::vector<Detection> detections;
+    for (const float z : frame) detections.push_back(Detection{Box{0, 0, 10, 10}, scale(z), 1});
+    const float threshold = cut.observe(detections);
+    std::vector<bool> row;
+    for (const auto& d : detections) row.push_back(d.score >= threshold);
+    kept.push_back(row);
+  }
+  return kept;
+}
+
+int count_kept(const std::vector<std::vector<bool>>& kept) {
+  int n = 0;
+  for (const auto& row : kept) {
+    for (const bool k : row) n += k ? 1 : 0;
+  }
+  return n;
+}
+
+TEST(ScoreCut, QuantileKeepsTheSameDetectionsOnAnyMonotoneScale) {
+  const auto latent = latent_frames(300);
+  const auto frcnn = kept_by(ScoreCut(0.2, 0.0, 1024), latent,
+                             [](float z) { return 0.5F + 0.5F / (1.F + std::exp(-z)); });
+  const auto dpm =
+      kept_by(ScoreCut(0.2, 0.0, 1024), latent, [](float z) { return 1.2F * z + 0.5F; });
+  const auto cubic = kept_by(ScoreCut(0.2, 0.0, 1024), latent, [](float z) { return z * z * z; });
+  EXPECT_EQ(frcnn, dpm);
+  EXPECT_EQ(frcnn, cubic);
+  // About a fifth is cut once the window has filled.
+  EXPECT_NEAR(count_kept(frcnn) / (300.0 * 8.0), 0.8, 0.03);
+}
+
+TEST(ScoreCut, RangeCutKeepsTheSameDetectionsOnAnyAffineScale) {
+  const auto latent = latent_frames(300);
+  const auto a = kept_by(ScoreCut(0.0, 0.5, 1024), latent, [](float z) { return z; });
+  const auto b =
+      kept_by(ScoreCut(0.0, 0.5, 1024), latent, [](float z) { return 40.F * z + 100.F; });
+  // Affine images of floats can round a score across the cut; allow a handful in 2400.
+  int differ = 0;
+  for (std::size_t f = 0; f < a.size(); ++f) {
+    for (std::size_t i = 0; i < a[f].size(); ++i) differ += a[f][i] != b[f][i] ? 1 : 0;
+  }
+  EXPECT_LE(differ, 5);
+  EXPECT_LT(count_kept(a), 300 * 8);
+  EXPECT_GT(count_kept(a), 300 * 8 / 3);
+}
+
+TEST(ScoreCut, DisabledOrConstantScoresCutNothing) {
+  ScoreCut off(0.0, 0.0, 1024);
+  const std::vector<Detection> frame = {Detection{Box{0, 0, 1, 1}, -3.F, 1},
+                                        Detection{Box{0, 0, 1, 1}, 7.F, 1}};
+  EXPECT_EQ(off.observe(frame), std::numeric_limits<float>::lowest());
+  // A detector that gives every box the same score (a perfect one, or the ground truth) loses
+  // nothing to either cut.
+  ScoreCut both(0.3, 0.7, 1024);
+  const std::vector<Detection> same(10, Detection{Box{0, 0, 1, 1}, 1.F, 1});
+  for (int f = 0; f < 50; ++f) EXPECT_LE(both.observe(same), 1.F);
+}
+
+TEST(ScoreCut, TheTrackerUsesItAndStaysExactSortWithoutIt) {
+  // Two detections of one object per frame, far apart in score: with the cut, the low one never
+  // starts a track.
+  TrackerConfig config = TrackerConfig::sort_preset();
+  config.min_hits = 1;
+  TrackerConfig cut = config;
+  cut.score_quantile = 0.6;  // half the scores are 0.1: the cut sits on 0.9
+  Tracker plain(config);
+  Tracker with_cut(cut);
+  int plain_reports = 0;
+  int cut_reports = 0;
+  for (int f = 0; f < 30; ++f) {
+    const std::vector<Detection> detections = {Detection{Box{10.F + f, 10, 20, 40}, 0.9F, 1},
+                                               Detection{Box{300.F - f, 10, 20, 40}, 0.1F, 1}};
+    plain_reports += static_cast<int>(plain.update(detections, f / 30.0).size());
+    cut_reports += static_cast<int>(with_cut.update(detections, f / 30.0).size());
+  }
+  EXPECT_EQ(plain_reports, 60);
+  EXPECT_EQ(cut_reports, 30);
+}
+
+TEST(ScoreScale, WarnsWhenAnAbsoluteCutMeetsAnotherScale) {
+  ScoreRange dpm;
+  for (const float s : {-0.6F, 0.2F, 4.8F}) dpm.include(s);
+  ScoreRange frcnn;
+  for (const float s : {0.5F, 0.97F, 1.F}) frcnn.include(s);
+  ScoreRange low;
+  for (const float s : {0.05F, 0.2F}) low.include(s);
+
+  TrackerConfig absolute = TrackerConfig::sort_preset();
+  absolute.detection_threshold = 0.85F;
+  const auto warning = score_scale_warning(absolute, dpm);
+  ASSERT_TRUE(warning.has_value());
+  EXPECT_NE(warning->find("[-0.6, 4.8]"), std::string::npos) << *warning;
+  EXPECT_FALSE(score_scale_warning(absolute, frcnn).has_value());
+  ASSERT_TRUE(score_scale_warning(absolute, low).has_value());
+  EXPECT_NE(score_scale_warning(absolute, low)->find("drops every detection"), std::string::npos);
+
+  // Relative cuts and no cut fit every scale.
+  TrackerConfig relative = TrackerConfig::sort_preset();
+  relative.score_quantile = 0.2;
+  relative.score_range_cut = 0.7;
+  EXPECT_FALSE(score_scale_warning(relative, dpm).has_value());
+  EXPECT_FALSE(score_scale_warning(TrackerConfig::sort_preset(), dpm).has_value());
+  EXPECT_FALSE(score_scale_warning(absolute, ScoreRange{}).has_value()) << "nothing seen";
+}
+
+}  // namespace
+}  // namespace rtmot::tracker

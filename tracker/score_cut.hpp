@@ -1,0 +1,46 @@
+#pragma once
+// Confidence cuts relative to the stream's own recent scores, so that no setting assumes a score
+// scale (a Faster R-CNN's 0.5..1, a DPM's -0.5..5, an SSD's sigmoid):
+// - by quantile: detections below the q-quantile of the recent scores are "low" (any monotone
+//   rescaling of the scores gives the same cut);
+// - by range: below low + f x (high - low), where low and high are the 1st and 99th percentiles
+//   of the recent scores (any affine rescaling gives the same cut; unlike the quantile it keeps
+//   more of a sequence whose detections are mostly confident).
+// Causal: the cut for a frame depends on that frame and the ones before only, so `rtmot run` and
+// `rtmot track` agree.
+#include <cstdint>
+#include <vector>
+
+#include "tracker/box.hpp"
+
+namespace rtmot::tracker {
+
+class ScoreCut {
+ public:
+  /// `quantile` and `range_fraction` in [0, 1); 0 disables that cut. `window`: how many recent
+  /// scores are remembered.
+  ScoreCut(double quantile, double range_fraction, int window);
+
+  /// Adds the finite scores of `detections` to the window; returns the cut for this frame
+  /// (the lowest float when disabled or nothing was seen). Allocates nothing.
+  float observe(const std::vector<Detection>& detections);
+
+  void reset();
+
+ private:
+  void recompute();
+
+  float order_statistic(double quantile);
+
+  double quantile_;
+  double range_fraction_;
+  std::vector<float> window_;   // ring buffer of the last scores
+  std::vector<float> scratch_;  // nth_element works on a copy
+  std::size_t filled_{0};
+  std::size_t next_{0};
+  std::int64_t seen_{0};
+  std::int64_t next_recompute_{1};
+  float cut_;
+};
+
+}  // namespace rtmot::tracker
