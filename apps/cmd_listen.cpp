@@ -11,6 +11,7 @@
 #include <thread>
 #include <vector>
 
+#include "apps/number_checks.hpp"
 #include "apps/subcommand.hpp"
 #include "common/input_error.hpp"
 #include "detector/coco_labels.hpp"
@@ -61,6 +62,8 @@ const char* describe(messages::Arrival arrival) {
       return " (duplicate)";
     case messages::Arrival::restart:
       return " (sender restarted)";
+    case messages::Arrival::clash:
+      return " (CLASH: another sender uses this stream id)";
   }
   return "";
 }
@@ -95,6 +98,12 @@ void print_summary(const messages::ListenerStats& stats, double elapsed_s) {
   fmt::print("summary{}: {} messages, {} corrupt, {} streams\n",
              elapsed_s >= 0 ? fmt::format(" after {:.1f} s", elapsed_s) : std::string(),
              stats.received(), stats.corrupt(), stats.streams().size());
+  if (stats.evicted_streams() > 0) {
+    fmt::print(
+        "  {} more streams ({} messages) not listed: evicted, least recently heard first, to keep "
+        "at most {} streams\n",
+        stats.evicted_streams(), stats.evicted_messages(), stats.streams().size());
+  }
   for (const auto& [id, stream] : stats.streams()) {
     const auto& seq = stream.sequences;
     fmt::print(
@@ -104,6 +113,12 @@ void print_summary(const messages::ListenerStats& stats, double elapsed_s) {
         stream.truncated, to_ms(static_cast<double>(stream.latency_min_ns)),
         to_ms(stream.latency_mean_ns()), to_ms(static_cast<double>(stream.latency_max_ns)),
         stream.last_frames_dropped);
+    if (seq.clashes() > 0) {
+      fmt::print(
+          "  stream {}: CLASH: {} messages no single sender could have sent (sequence and "
+          "timestamp disagree): two senders use stream id {}; they are not counted above\n",
+          id, seq.clashes(), id);
+    }
   }
   if (stats.corrupt() > 0) {
     fmt::print("  corrupt by reason:");
@@ -270,10 +285,10 @@ Subcommand add_listen_command(CLI::App& parent) {
                   "stop after this many datagrams/records (0 = no limit)");
   auto* duration = cli->add_option("--duration", options->duration_s,
                                    "stop after this many seconds (0 = no limit)")
-                       ->check(CLI::NonNegativeNumber);
+                       ->check(finite_in(0.0, 1e9));
   cli->add_option("--stats-every", options->stats_every_s,
                   "print running counts every S seconds (0 = never)")
-      ->check(CLI::NonNegativeNumber)
+      ->check(finite_in(0.0, 1e9))
       ->capture_default_str();
   cli->add_option("--jsonl", options->jsonl_path,
                   "also write every valid message to this JSON-lines file");

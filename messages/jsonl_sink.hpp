@@ -7,9 +7,9 @@
 #include <filesystem>
 #include <string_view>
 
+#include "common/output_file.hpp"
 #include "messages/frame_result.hpp"
 #include "messages/message_format.hpp"
-#include "messages/message_output_file.hpp"
 
 namespace rtmot::messages {
 
@@ -40,7 +40,7 @@ class JsonlSink : public TrackSink {
   /// Creates/truncates `path`; throws InputError naming it if it cannot. `labels` names the
   /// classes in each track's "label" (nullptr: none).
   explicit JsonlSink(const std::filesystem::path& path, ClassLabelFn labels = nullptr);
-  /// Flushes and closes (errors are logged: destructors do not throw).
+  /// Writes its whole buffered lines and closes (flush() reports errors; destructors do not).
   ~JsonlSink() override = default;
 
   /// Throws InputError naming the file if the stream failed.
@@ -52,7 +52,7 @@ class JsonlSink : public TrackSink {
  private:
   void write_line(const FrameResult& frame, std::uint32_t total_track_count, bool truncated);
 
-  MessageOutputFile file_;
+  OutputFile file_;
   ClassLabelFn labels_;
   fmt::memory_buffer
       line_;  // reused: formatting allocates nothing once it has held the longest line

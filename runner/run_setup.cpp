@@ -5,39 +5,30 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <opencv2/core/utility.hpp>
 
 #include "common/input_error.hpp"
 #include "detector/coco_labels.hpp"
 #include "detector/dnn_backend.hpp"
 #include "detector/replay_detector.hpp"
-#include "motio/mot_files.hpp"
-#include "tracker/score_scale.hpp"
 #include "detector/ssd_detector.hpp"
 #include "messages/binary_file_sink.hpp"
 #include "messages/jsonl_sink.hpp"
 #include "messages/udp_sink.hpp"
+#include "motio/mot_files.hpp"
 #include "outputs/annotated_video.hpp"
 #include "outputs/mqtt_publisher.hpp"
 #include "outputs/overlay.hpp"
 #include "outputs/video_stream.hpp"
 #include "outputs/video_target.hpp"
 #include "platform/host_port.hpp"
+#include "runner/host_port.hpp"
 #include "runner/progress_sink.hpp"
 #include "runner/source_factory.hpp"
+#include "tracker/score_scale.hpp"
 
 namespace rtmot::runner {
 namespace {
-
-platform::HostPort parse_udp_target(const RunConfig& config) {
-  std::string problem;
-  const auto target = platform::parse_host_port(config.output.udp, problem);
-  if (!target) {
-    throw InputError(
-        config.file, 0, "output.udp",
-        "expected HOST:PORT or [IPV6]:PORT, got '" + config.output.udp + "': " + problem);
-  }
-  return *target;
-}
 
 std::unique_ptr<platform::VideoSource> open_configured(const SourceConfig& source) {
   platform::SourceOptions options;
@@ -86,7 +77,8 @@ void warn_on_score_scale(const DetectorConfig& detector, const tracker::TrackerC
 std::unique_ptr<detector::Detector> make_detector(const RunConfig& config) {
   const DetectorConfig& wanted = config.detector;
   if (wanted.kind == "replay") {
-    auto replay = std::make_unique<detector::ReplayDetector>(wanted.det_file, wanted.score_threshold);
+    auto replay =
+        std::make_unique<detector::ReplayDetector>(wanted.det_file, wanted.score_threshold);
     warn_on_score_scale(wanted, config.tracker);
     return replay;
   }
@@ -99,7 +91,16 @@ std::unique_ptr<detector::Detector> make_detector(const RunConfig& config) {
   // Both were checked by the config parser.
   ssd.backend = detector::parse_backend_request(wanted.backend).value();
   ssd.fp16 = detector::parse_fp16_request(wanted.fp16).value();
-  ssd.threads = wanted.threads;
+  // 0 ("automatic") is made explicit. Left to itself, a TBB build of OpenCV (Debian's, ours) runs
+  // its DNN in TBB's automatic arena, sized by TBB: it ignores OpenCV's own OPENCV_FOR_THREADS_NUM
+  // (measured) and, depending on the TBB version, a container's CPU quota (docker --cpus), so it
+  // can run more workers than the CPUs we may use, and a layer split over them waits for its
+  // slowest part. OpenCV's CPU count honours the affinity mask, cpusets and the cgroup quota; on a
+  // machine without either both give the same count (measured: no difference on the 2-core CI
+  // machine).
+  ssd.threads = wanted.threads > 0 ? wanted.threads : std::max(1, cv::getNumberOfCPUs());
+  spdlog::info("detector threads: {}{}", ssd.threads,
+               wanted.threads > 0 ? "" : " (the CPUs this process may use)");
   // One forward pass takes one frame of every source (the detect stage batches them): without
   // this the SSD would split each batch into single images again.
   ssd.max_batch = static_cast<int>(
@@ -124,7 +125,9 @@ RunOutputs make_outputs(const RunConfig& config, std::vector<pipeline::PipelineI
                        std::filesystem::exists(path, error) ? " (replaces the existing file)" : "");
   };
   if (!output.udp.empty()) {
-    const platform::HostPort target = parse_udp_target(config);
+    // Checked when the file was read (with its line) or the override given.
+    const HostPort target =
+        parse_host_port(output.udp, config.file, 0, "output.udp", ExitCode::bad_input);
     auto sink = std::make_unique<messages::UdpSink>(target.host, target.port);
     const messages::UdpSink* udp = sink.get();
     probes.push_back(
