@@ -13,32 +13,12 @@
 #include "messages/jsonl_sink.hpp"
 #include "messages/udp_sink.hpp"
 #include "motio/mot_files.hpp"
+#include "runner/host_port.hpp"
 #include "runner/source_factory.hpp"
 #include "tracker/score_scale.hpp"
 
 namespace rtmot::runner {
 namespace {
-
-struct HostPort {
-  std::string host;
-  std::uint16_t port{0};
-};
-
-HostPort parse_host_port(const RunConfig& config) {
-  const std::string& text = config.output.udp;
-  const auto colon = text.rfind(':');
-  const auto bad = [&] {
-    return InputError(config.file, 0, "output.udp", "expected HOST:PORT, got '" + text + "'");
-  };
-  if (colon == std::string::npos || colon == 0 || colon + 1 == text.size()) throw bad();
-  int port = 0;
-  for (const char c : text.substr(colon + 1)) {
-    if (c < '0' || c > '9' || port > 65535) throw bad();
-    port = port * 10 + (c - '0');
-  }
-  if (port < 1 || port > 65535) throw bad();
-  return {text.substr(0, colon), static_cast<std::uint16_t>(port)};
-}
 
 std::unique_ptr<platform::VideoSource> open_configured(const SourceConfig& source) {
   platform::SourceOptions options;
@@ -122,7 +102,9 @@ std::vector<std::unique_ptr<messages::TrackSink>> make_sinks(const RunConfig& co
   std::vector<std::unique_ptr<messages::TrackSink>> sinks;
   const OutputConfig& output = config.output;
   if (!output.udp.empty()) {
-    const HostPort target = parse_host_port(config);
+    // Checked when the file was read (with its line) or the override given.
+    const HostPort target =
+        parse_host_port(output.udp, config.file, 0, "output.udp", ExitCode::bad_input);
     sinks.push_back(std::make_unique<messages::UdpSink>(target.host, target.port));
   }
   if (!output.binary_file.empty()) {
