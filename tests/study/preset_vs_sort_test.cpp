@@ -70,9 +70,13 @@ TEST_F(PresetVsSort, DefaultTracksDoNotDependOnTheScoreScale) {
   REQUIRE_DATASET();
   LoadedSequence rescaled = (*dataset_)[8];  // TUD-Campus
   ASSERT_EQ(rescaled.info.name, "TUD-Campus");
-  for (auto& frame : rescaled.detections) {
-    for (auto& detection : frame) detection.score = 11.F * (detection.score - 0.5F) - 0.5F;
+  std::vector<std::vector<tracker::Detection>> by_frame(
+      static_cast<std::size_t>(rescaled.detections.last_frame()));
+  for (std::size_t f = 0; f < by_frame.size(); ++f) {
+    by_frame[f] = rescaled.detections.at(static_cast<std::int64_t>(f) + 1);
+    for (auto& detection : by_frame[f]) detection.score = 11.F * (detection.score - 0.5F) - 0.5F;
   }
+  rescaled.detections = motio::FrameDetections::from_frames(std::move(by_frame));
   const auto config = *tracker::find_preset(tracker::default_preset_name());
   for (const int interval : {1, 5}) {
     const Metrics original =
