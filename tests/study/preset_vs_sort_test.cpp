@@ -6,6 +6,8 @@
 
 #include <memory>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "mot/metrics.hpp"
 #include "mot/study_dataset.hpp"
@@ -70,13 +72,12 @@ TEST_F(PresetVsSort, DefaultTracksDoNotDependOnTheScoreScale) {
   REQUIRE_DATASET();
   LoadedSequence rescaled = (*dataset_)[8];  // TUD-Campus
   ASSERT_EQ(rescaled.info.name, "TUD-Campus");
-  std::vector<std::vector<tracker::Detection>> by_frame(
-      static_cast<std::size_t>(rescaled.detections.last_frame()));
-  for (std::size_t f = 0; f < by_frame.size(); ++f) {
-    by_frame[f] = rescaled.detections.at(static_cast<std::int64_t>(f) + 1);
-    for (auto& detection : by_frame[f]) detection.score = 11.F * (detection.score - 0.5F) - 0.5F;
+  std::vector<std::vector<tracker::Detection>> frames;
+  for (std::int64_t frame = 1; frame <= rescaled.detections.last_frame(); ++frame) {
+    frames.push_back(rescaled.detections.at(frame));
+    for (auto& detection : frames.back()) detection.score = 11.F * (detection.score - 0.5F) - 0.5F;
   }
-  rescaled.detections = motio::FrameDetections::from_frames(std::move(by_frame));
+  rescaled.detections = motio::FrameDetections::from_frames(std::move(frames));
   const auto config = *tracker::find_preset(tracker::default_preset_name());
   for (const int interval : {1, 5}) {
     const Metrics original =
