@@ -6,7 +6,6 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
-#include <opencv2/videoio.hpp>
 #include <string>
 #include <thread>
 #include <vector>
@@ -24,17 +23,16 @@ namespace rtmot::pipeline::test_parts {
 using platform::FrameInfo;
 using platform::ReadStatus;
 
-// A recording decoded by OpenCV, pts from the frame index (vtest.avi is constant-rate).
+// A recording decoded by the product's own GStreamer source (the product has no OpenCV videoio),
+// pts from the frame index (vtest.avi is constant-rate), so every test sees the same timing.
 class FileSource : public platform::VideoSource {
  public:
-  explicit FileSource(const std::string& path) : capture_(path) {
+  explicit FileSource(const std::string& path) : source_(platform::open_video_source(path)) {
+    info_ = source_->info();
     info_.uri = path;
-    info_.fps = capture_.get(cv::CAP_PROP_FPS);
-    info_.width = static_cast<int>(capture_.get(cv::CAP_PROP_FRAME_WIDTH));
-    info_.height = static_cast<int>(capture_.get(cv::CAP_PROP_FRAME_HEIGHT));
   }
   ReadStatus read(cv::Mat& bgr, FrameInfo& info) override {
-    if (!capture_.read(bgr)) return ReadStatus::end_of_stream;
+    if (source_->read(bgr, info) != ReadStatus::frame) return ReadStatus::end_of_stream;
     ++frames_;
     info.frame_number = frames_;
     info.pts_ns = std::llround(static_cast<double>(frames_ - 1) * 1e9 / info_.fps);
@@ -42,10 +40,10 @@ class FileSource : public platform::VideoSource {
     return ReadStatus::frame;
   }
   const platform::SourceInfo& info() const override { return info_; }
-  std::string last_error() const override { return {}; }
+  std::string last_error() const override { return source_->last_error(); }
 
  private:
-  cv::VideoCapture capture_;
+  std::unique_ptr<platform::VideoSource> source_;
   platform::SourceInfo info_;
   std::int64_t frames_{0};
 };

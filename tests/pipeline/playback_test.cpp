@@ -5,7 +5,7 @@
 
 #include <atomic>
 #include <chrono>
-#include <opencv2/videoio.hpp>
+#include <opencv2/core.hpp>
 #include <random>
 #include <set>
 #include <thread>
