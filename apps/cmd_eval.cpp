@@ -6,10 +6,14 @@
 #include <memory>
 #include <string>
 
+#include "apps/number_checks.hpp"
 #include "apps/subcommand.hpp"
 #include "common/exit_codes.hpp"
+#include "common/output_file.hpp"
 #include "mot/evaluation.hpp"
 #include "mot/metrics_report.hpp"
+#include "motio/mot_files.hpp"
+#include "platform/signals.hpp"
 
 namespace rtmot::app {
 namespace {
@@ -23,16 +27,26 @@ struct EvalOptions {
 };
 
 int run_eval(const EvalOptions& options) {
+  platform::StopSignals signals;  // a stop ends scoring before the next sequence
   const mot::EvaluationReport report =
-      mot::evaluate(options.gt_dir, options.results_dir, options.interval);
+      mot::evaluate(options.gt_dir, options.results_dir, options.interval, &signals.stop_flag(),
+                    [](const mot::SequenceScore& score) {
+                      spdlog::info("{}: scored ({} frames)", score.name, score.counts.clear.frames);
+                    });
+  if (report.stopped) {
+    // A table of some sequences would read as the dataset's score: nothing is printed or written.
+    spdlog::warn("stopped after scoring {} of {} sequences: no table printed or written",
+                 report.sequences.size(), report.sequences_in_dataset);
+    return to_int(ExitCode::ok);
+  }
   fmt::print("{}", mot::format_table(report));
   std::fflush(stdout);
   if (!options.csv_path.empty()) {
-    mot::write_text_file(options.csv_path, mot::format_csv(report));
+    write_whole_file(options.csv_path, mot::format_csv(report));
     spdlog::info("wrote {}", options.csv_path);
   }
   if (!options.json_path.empty()) {
-    mot::write_text_file(options.json_path, mot::format_json(report));
+    write_whole_file(options.json_path, mot::format_json(report));
     spdlog::info("wrote {}", options.json_path);
   }
   return to_int(ExitCode::ok);
@@ -53,11 +67,11 @@ Subcommand add_eval_command(CLI::App& parent) {
       ->required();
   cli->add_option("--interval", options->interval,
                   "score only frames 1, 1+N, 1+2N, ... (as `rtmot track --interval N`)")
-      ->check(CLI::PositiveNumber)
+      ->check(integer_in(1, motio::kMaxFrame))
       ->capture_default_str();
   cli->add_option("--csv", options->csv_path, "also write the table as CSV to this file");
   cli->add_option("--json", options->json_path, "also write full-precision results as JSON");
-  return {cli, [options] { return run_eval(*options); }};
+  return {cli, [options] { return run_eval(*options); }, /*stops_on_signals=*/true};
 }
 
 }  // namespace rtmot::app

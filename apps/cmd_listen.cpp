@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "apps/number_checks.hpp"
 #include "apps/subcommand.hpp"
 #include "common/input_error.hpp"
 #include "messages/jsonl_sink.hpp"
@@ -55,6 +56,8 @@ const char* describe(messages::Arrival arrival) {
       return " (duplicate)";
     case messages::Arrival::restart:
       return " (sender restarted)";
+    case messages::Arrival::clash:
+      return " (CLASH: another sender uses this stream id)";
   }
   return "";
 }
@@ -89,6 +92,12 @@ void print_summary(const messages::ListenerStats& stats, double elapsed_s) {
   fmt::print("summary{}: {} messages, {} corrupt, {} streams\n",
              elapsed_s >= 0 ? fmt::format(" after {:.1f} s", elapsed_s) : std::string(),
              stats.received(), stats.corrupt(), stats.streams().size());
+  if (stats.evicted_streams() > 0) {
+    fmt::print(
+        "  {} more streams ({} messages) not listed: evicted, least recently heard first, to keep "
+        "at most {} streams\n",
+        stats.evicted_streams(), stats.evicted_messages(), stats.streams().size());
+  }
   for (const auto& [id, stream] : stats.streams()) {
     const auto& seq = stream.sequences;
     fmt::print(
@@ -98,6 +107,12 @@ void print_summary(const messages::ListenerStats& stats, double elapsed_s) {
         stream.truncated, to_ms(static_cast<double>(stream.latency_min_ns)),
         to_ms(stream.latency_mean_ns()), to_ms(static_cast<double>(stream.latency_max_ns)),
         stream.last_frames_dropped);
+    if (seq.clashes() > 0) {
+      fmt::print(
+          "  stream {}: CLASH: {} messages no single sender could have sent (sequence and "
+          "timestamp disagree): two senders use stream id {}; they are not counted above\n",
+          id, seq.clashes(), id);
+    }
   }
   if (stats.corrupt() > 0) {
     fmt::print("  corrupt by reason:");
@@ -142,7 +157,8 @@ class MessageHandler {
 
  private:
   bool quiet_;
-  messages::DecodedMessage decoded_;  // reused: decoding allocates nothing once it has seen the largest frame
+  messages::DecodedMessage
+      decoded_;  // reused: decoding allocates nothing once it has seen the largest frame
   messages::ListenerStats stats_;
   std::unique_ptr<messages::JsonlSink> jsonl_;
 };
@@ -175,7 +191,8 @@ int listen_udp(const ListenOptions& options) {
     if (status != platform::ReceiveStatus::datagram) continue;
     ++datagrams;
     if (cut) {
-      handler.handle_corrupt(messages::DecodeError::length_mismatch, size);  // longer than any message
+      handler.handle_corrupt(messages::DecodeError::length_mismatch,
+                             size);  // longer than any message
     } else {
       handler.handle(datagram.data(), size);
     }
@@ -222,10 +239,10 @@ Subcommand add_listen_command(CLI::App& parent) {
                   "stop after this many datagrams/records (0 = no limit)");
   auto* duration = cli->add_option("--duration", options->duration_s,
                                    "stop after this many seconds (0 = no limit)")
-                       ->check(CLI::NonNegativeNumber);
+                       ->check(finite_in(0.0, 1e9));
   cli->add_option("--stats-every", options->stats_every_s,
                   "print running counts every S seconds (0 = never)")
-      ->check(CLI::NonNegativeNumber)
+      ->check(finite_in(0.0, 1e9))
       ->capture_default_str();
   cli->add_option("--jsonl", options->jsonl_path,
                   "also write every valid message to this JSON-lines file");

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "apps/number_checks.hpp"
 #include "apps/subcommand.hpp"
 #include "apps/tracker_flags.hpp"
 #include "common/exit_codes.hpp"
@@ -14,6 +15,7 @@
 #include "pipeline/pipeline.hpp"
 #include "platform/board.hpp"
 #include "platform/signals.hpp"
+#include "runner/host_port.hpp"
 #include "runner/run_config.hpp"
 #include "runner/run_setup.hpp"
 
@@ -62,7 +64,10 @@ void apply(const RunOverrides& overrides, runner::RunConfig& config) {
     config.playback.mode = *mode;
   }
   if (overrides.latency_ms > 0.0) config.playback.latency_ms = overrides.latency_ms;
-  if (!overrides.udp.empty()) config.output.udp = overrides.udp;
+  if (!overrides.udp.empty()) {
+    runner::parse_host_port(overrides.udp, "command line", 0, "--udp", ExitCode::usage);
+    config.output.udp = overrides.udp;
+  }
   if (!overrides.jsonl.empty()) config.output.jsonl_file = overrides.jsonl;
   if (!overrides.binary.empty()) config.output.binary_file = overrides.binary;
   if (!overrides.video_out.empty()) config.output.video_file = overrides.video_out;
@@ -131,7 +136,7 @@ Subcommand add_run_command(CLI::App& parent) {
   cli->add_option("--playback", overrides->playback, "every-frame, realtime or simulated")
       ->check(CLI::IsMember({"every-frame", "realtime", "simulated"}));
   cli->add_option("--latency-ms", overrides->latency_ms, "simulated detector latency (ms)")
-      ->check(CLI::PositiveNumber);
+      ->check(finite_in(1e-3, 3'600'000.0));
   cli->add_option("--udp", overrides->udp, "send track messages to HOST:PORT");
   cli->add_option("--jsonl", overrides->jsonl, "write track messages as JSON lines to FILE");
   cli->add_option("--binary", overrides->binary, "write binary track messages to FILE");
@@ -139,14 +144,14 @@ Subcommand add_run_command(CLI::App& parent) {
   cli->add_option("--report", overrides->report, "write the final report as JSON to FILE");
   cli->add_option("--det-file", overrides->det_file, "replay detector: MOTChallenge det.txt");
   cli->add_option("--max-frames", overrides->max_frames, "stop after N captured frames")
-      ->check(CLI::NonNegativeNumber);
+      ->check(integer_in(0, 1'000'000'000'000));
   cli->add_option("--stats-interval", overrides->stats_interval_s,
                   "seconds between progress lines (0 = none)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(finite_in(0.0, 86'400.0));
   cli->add_option("--stream-id", overrides->stream_id, "stream id in every message")
       ->check(CLI::Range(std::int64_t{0}, std::int64_t{4294967295}));
   overrides->tracker_flags.add_to(*cli);
-  return {cli, [overrides] { return run(*overrides); }};
+  return {cli, [overrides] { return run(*overrides); }, /*stops_on_signals=*/true};
 }
 
 }  // namespace rtmot::app

@@ -114,7 +114,7 @@ Subcommand add_soak_command(CLI::App& parent) {
                   "passes); 0 = report only")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
-  return {cli, [options] { return run_soak(*options); }};
+  return {cli, [options] { return run_soak(*options); }, /*stops_on_signals=*/true};
 }
 
 }  // namespace rtmot::app

@@ -11,15 +11,18 @@
 #include <string>
 #include <vector>
 
+#include "apps/number_checks.hpp"
 #include "apps/subcommand.hpp"
 #include "common/exit_codes.hpp"
 #include "common/input_error.hpp"
+#include "common/output_file.hpp"
 #include "mot/metrics_report.hpp"
 #include "mot/study_cv.hpp"
 #include "mot/study_dataset.hpp"
 #include "mot/study_plan.hpp"
 #include "mot/study_report.hpp"
 #include "mot/study_runner.hpp"
+#include "motio/mot_files.hpp"
 
 namespace rtmot::app {
 namespace {
@@ -101,7 +104,7 @@ int run_study_command(const StudyCommandOptions& options) {
   auto files = mot::write_study(options.out_dir, tables, options.link_prefix);
   if (!folds.empty()) {
     const auto path = std::filesystem::path(options.out_dir) / "cv-folds.md";
-    mot::write_text_file(path, folds);
+    write_whole_file(path, folds);
     files.push_back(path);
   }
   spdlog::info("study: wrote {} files under {} in {:.0f} s", files.size(), options.out_dir,
@@ -125,11 +128,11 @@ Subcommand add_study_command(CLI::App& parent) {
   cli->add_option("--out", options->out_dir, "folder for tables/, plots/ and summary.md")
       ->required();
   cli->add_option("--jobs", options->jobs, "worker threads")
-      ->check(CLI::PositiveNumber)
+      ->check(integer_in(1, 256))
       ->capture_default_str();
   cli->add_option("--intervals", options->intervals, "frame intervals, e.g. 1,2,3,5,10,15,30")
       ->delimiter(',')
-      ->check(CLI::PositiveNumber);
+      ->check(integer_in(1, motio::kMaxFrame));
   cli->add_flag(
       "--quick", options->quick,
       "kalman-iou, the options, the ablation and the presets only (no predictor x affinity grid)");

@@ -8,14 +8,16 @@
 #include <memory>
 #include <string>
 
+#include "apps/number_checks.hpp"
 #include "apps/subcommand.hpp"
 #include "apps/tracker_flags.hpp"
 #include "common/exit_codes.hpp"
 #include "common/input_error.hpp"
-#include "mot/evaluation.hpp"
-#include "motio/results_writer.hpp"
-#include "motio/track_runner.hpp"
 #include "motio/mot_files.hpp"
+#include "motio/results_writer.hpp"
+#include "motio/sequence_folders.hpp"
+#include "motio/track_runner.hpp"
+#include "platform/signals.hpp"
 #include "tracker/presets.hpp"
 #include "tracker/score_scale.hpp"
 #include "tracker/tracker_config.hpp"
@@ -66,35 +68,47 @@ double hz(int frames, double seconds) {
 }
 
 int run_track(const TrackCommandOptions& options) {
+  platform::StopSignals signals;  // a stop ends the sequence in progress, unwritten
   motio::TrackOptions track_options;
   track_options.config = make_config(options);
   track_options.detections = options.detections;
   track_options.interval = options.interval;
-  const auto sequences = mot::find_sequence_dirs(options.dataset);
+  track_options.stop = &signals.stop_flag();
+  const auto sequences = motio::find_sequences(options.dataset);
   std::error_code error;
   fs::create_directories(options.out_dir, error);
   if (error) throw InputError(options.out_dir, 0, "--out", "cannot create: " + error.message());
 
   int total_frames = 0;
   double total_seconds = 0.0;
-  for (const auto& dir : sequences) {
-    warn_on_score_scale(dir / options.detections, track_options.config);
+  int written = 0;
+  for (const auto& sequence : sequences) {
+    warn_on_score_scale(sequence.dir / options.detections, track_options.config);
     using Clock = std::chrono::steady_clock;
     auto next_report = Clock::now() + std::chrono::duration<double>(kProgressEverySeconds);
     const auto progress = [&](int frame, int length) {
       if (Clock::now() < next_report) return;
       next_report = Clock::now() + std::chrono::duration<double>(kProgressEverySeconds);
-      spdlog::info("{}: frame {} of {}", dir.filename().string(), frame, length);
+      spdlog::info("{}: frame {} of {}", sequence.info.name, frame, length);
     };
-    const motio::TrackRun run = motio::track_sequence(dir, track_options, progress);
-    const fs::path out_file = fs::path(options.out_dir) / (run.info.name + ".txt");
+    const motio::TrackRun run = motio::track_detections(
+        motio::load_detections(sequence.dir / track_options.detections, sequence.info),
+        sequence.info, track_options, progress);
+    if (run.stopped) break;
+    const fs::path out_file = motio::sequence_file(options.out_dir, run.info.name, ".txt");
     motio::write_results(out_file, run.tracks);
+    ++written;
     fmt::print("{:<16} {:>6} frames {:>7} boxes  tracker {:>9.0f} Hz  -> {}\n", run.info.name,
                run.frames_processed, run.tracks.size(),
                hz(run.frames_processed, run.seconds_in_update), out_file.string());
     std::fflush(stdout);
     total_frames += run.frames_processed;
     total_seconds += run.seconds_in_update;
+  }
+  if (signals.stop_requested()) {
+    spdlog::warn("stopped: {} of {} sequences written (each whole), the rest not started", written,
+                 sequences.size());
+    return to_int(ExitCode::ok);
   }
   fmt::print("{:<16} {:>6} frames  tracker {:.0f} Hz (time inside Tracker::update only)\n",
              "OVERALL", total_frames, hz(total_frames, total_seconds));
@@ -120,12 +134,12 @@ Subcommand add_track_command(CLI::App& parent) {
   options->tracker_flags.add_to(*cli);
   cli->add_option("--interval", options->interval,
                   "process frames 1, 1+N, 1+2N, ... only (frame numbers and times kept)")
-      ->check(CLI::PositiveNumber)
+      ->check(integer_in(1, motio::kMaxFrame))
       ->capture_default_str();
   cli->add_option("--det", options->detections,
                   "detections file relative to each sequence folder (gt/gt.txt = perfect detector)")
       ->capture_default_str();
-  return {cli, [options] { return run_track(*options); }};
+  return {cli, [options] { return run_track(*options); }, /*stops_on_signals=*/true};
 }
 
 }  // namespace rtmot::app

@@ -1,7 +1,9 @@
 // rtmot: one executable, one subcommand per job (`rtmot --help` lists them).
+#include <pthread.h>
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
+#include <csignal>
 #include <exception>
 #include <string_view>
 #include <vector>
@@ -33,6 +35,31 @@ bool is_unknown_subcommand(const CLI::App& app, int argc, char** argv) {
     if (sub->get_name() == word) return false;
   }
   return true;
+}
+
+// SIGINT/SIGTERM blocked before anything else, so that a command that stops cleanly on them takes
+// the ones sent while it starts (platform::StopSignals sigwait()s pending signals too). main() is
+// too late: the constructors of the ~250 shared libraries (OpenCV, GStreamer, ...) run before it,
+// 60-200 ms during which SIGTERM killed `rtmot run`. A .preinit_array entry of the executable runs
+// after the loader has mapped the libraries and before any of their constructors; the process is
+// single-threaded then, so sigprocmask is the whole mask.
+void block_stop_signals(int, char**, char**) {
+  sigset_t stop_signals;
+  sigemptyset(&stop_signals);
+  sigaddset(&stop_signals, SIGINT);
+  sigaddset(&stop_signals, SIGTERM);
+  sigprocmask(SIG_BLOCK, &stop_signals, nullptr);
+}
+__attribute__((section(".preinit_array"),
+               used)) void (*const block_at_start)(int, char**, char**) = &block_stop_signals;
+
+// For commands that do not stop cleanly: a pending or later signal takes its default action.
+void unblock_stop_signals() {
+  sigset_t stop_signals;
+  sigemptyset(&stop_signals);
+  sigaddset(&stop_signals, SIGINT);
+  sigaddset(&stop_signals, SIGTERM);
+  pthread_sigmask(SIG_UNBLOCK, &stop_signals, nullptr);
 }
 
 }  // namespace
@@ -67,7 +94,9 @@ int main(int argc, char** argv) {
   }
   spdlog::set_level(spdlog::level::from_str(log_level));
   for (const auto& subcommand : subcommands) {
-    if (subcommand.cli->parsed()) return run_reporting_errors(subcommand.run);
+    if (!subcommand.cli->parsed()) continue;
+    if (!subcommand.stops_on_signals) unblock_stop_signals();
+    return run_reporting_errors(subcommand.run);
   }
   return rtmot::to_int(rtmot::ExitCode::usage);
 }

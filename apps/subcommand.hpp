@@ -9,6 +9,10 @@ namespace rtmot::app {
 struct Subcommand {
   CLI::App* cli{nullptr};
   std::function<int()> run;  // returns the process exit code (common/exit_codes.hpp)
+  /// True when `run` takes SIGINT/SIGTERM itself (platform::StopSignals) to stop cleanly: main()
+  /// keeps them blocked from its first instruction, so one sent while the program starts waits
+  /// for it instead of killing the process. False: main() unblocks them (default action).
+  bool stops_on_signals{false};
 };
 
 // One line per subcommand (keep alphabetical). Defined in apps/cmd_<name>.cpp.

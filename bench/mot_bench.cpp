@@ -6,9 +6,10 @@
 #include <string>
 
 #include "mot/evaluation.hpp"
-#include "motio/mot_files.hpp"
 #include "mot/prepared_sequence.hpp"
 #include "mot/scorer.hpp"
+#include "motio/mot_files.hpp"
+#include "motio/sequence_folders.hpp"
 
 namespace {
 

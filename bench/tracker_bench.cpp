@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "motio/frame_detections.hpp"
 #include "motio/mot_files.hpp"
 #include "tracker/linear_assignment.hpp"
 #include "tracker/presets.hpp"
@@ -40,7 +41,10 @@ std::vector<Sequence> load_all() {
     sequence.info = rtmot::motio::read_seqinfo(dir / "seqinfo.ini");
     const auto rows =
         rtmot::motio::read_mot_file(dir / "det" / "det.txt", rtmot::motio::MotFileKind::detections);
-    sequence.frames = rtmot::motio::detections_by_frame(rows, sequence.info.length);
+    const rtmot::motio::FrameDetections by_frame(rows);
+    for (int frame = 1; frame <= sequence.info.length; ++frame) {
+      sequence.frames.push_back(by_frame.at(frame));
+    }
     sequences.push_back(std::move(sequence));
   }
   return sequences;

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "detector/detector.hpp"
+#include "motio/frame_detections.hpp"
 
 namespace rtmot::detector {
 
@@ -21,12 +22,12 @@ class ReplayDetector : public Detector {
   std::string describe() const override;
 
   /// The last frame that has detections.
-  int last_frame() const { return static_cast<int>(by_frame_.size()); }
+  int last_frame() const { return by_frame_.last_frame(); }
 
  private:
   std::filesystem::path path_;
   float score_threshold_;
-  std::vector<std::vector<tracker::Detection>> by_frame_;  // [f - 1]: frame f's
+  motio::FrameDetections by_frame_;
 };
 
 }  // namespace rtmot::detector

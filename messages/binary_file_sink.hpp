@@ -5,9 +5,9 @@
 #include <filesystem>
 #include <vector>
 
+#include "common/output_file.hpp"
 #include "messages/frame_result.hpp"
 #include "messages/message_format.hpp"
-#include "messages/message_output_file.hpp"
 
 namespace rtmot::messages {
 
@@ -18,7 +18,7 @@ class BinaryFileSink : public TrackSink {
   /// frame).
   explicit BinaryFileSink(const std::filesystem::path& path,
                           std::size_t max_message_size = message::max_message_size);
-  /// Flushes and closes (errors are logged: destructors do not throw).
+  /// Writes its whole buffered messages and closes (flush() reports errors; destructors do not).
   ~BinaryFileSink() override = default;
 
   /// Throws InputError naming the file if the stream failed (disk full, I/O error).
@@ -26,7 +26,7 @@ class BinaryFileSink : public TrackSink {
   void flush() override { file_.flush(); }
 
  private:
-  MessageOutputFile file_;
+  OutputFile file_;  // whole records: a reader never sees half a message
   MessageEncoder encoder_;
   std::vector<std::uint8_t> buffer_;  // length prefix + one message, allocated once
 };

@@ -5,9 +5,9 @@
 
 #include <filesystem>
 
+#include "common/output_file.hpp"
 #include "messages/frame_result.hpp"
 #include "messages/message_format.hpp"
-#include "messages/message_output_file.hpp"
 
 namespace rtmot::messages {
 
@@ -20,7 +20,7 @@ class JsonlSink : public TrackSink {
  public:
   /// Creates/truncates `path`; throws InputError naming it if it cannot.
   explicit JsonlSink(const std::filesystem::path& path);
-  /// Flushes and closes (errors are logged: destructors do not throw).
+  /// Writes its whole buffered lines and closes (flush() reports errors; destructors do not).
   ~JsonlSink() override = default;
 
   /// Throws InputError naming the file if the stream failed.
@@ -32,7 +32,7 @@ class JsonlSink : public TrackSink {
  private:
   void write_line(const FrameResult& frame, std::uint32_t total_track_count, bool truncated);
 
-  MessageOutputFile file_;
+  OutputFile file_;
   fmt::memory_buffer
       line_;  // reused: formatting allocates nothing once it has held the longest line
 };

@@ -5,16 +5,12 @@
 
 namespace rtmot::messages {
 
-MessageFileReader::MessageFileReader(const std::filesystem::path& path)
-    : path_(path), stream_(path, std::ios::binary) {
-  if (!stream_) throw InputError(path.string(), 0, "", "cannot open message file");
-}
+MessageFileReader::MessageFileReader(const std::filesystem::path& path) : file_(path) {}
 
 FileReadStatus MessageFileReader::next(std::vector<std::uint8_t>& bytes) {
   std::uint8_t prefix[4] = {};
-  stream_.read(reinterpret_cast<char*>(prefix), sizeof prefix);
-  const auto got = static_cast<std::size_t>(stream_.gcount());
-  if (got == 0 && stream_.eof()) return FileReadStatus::end_of_file;
+  const std::size_t got = file_.read(prefix, sizeof prefix);
+  if (got == 0) return FileReadStatus::end_of_file;
   if (got != sizeof prefix)
     return broken("length prefix cut after " + std::to_string(got) + " bytes");
   const std::uint32_t length =
@@ -26,10 +22,10 @@ FileReadStatus MessageFileReader::next(std::vector<std::uint8_t>& bytes) {
                   std::to_string(message::max_message_size));
   }
   bytes.resize(length);
-  stream_.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(length));
-  if (static_cast<std::uint32_t>(stream_.gcount()) != length) {
+  const std::size_t body = file_.read(bytes.data(), length);
+  if (body != length) {
     return broken("record of " + std::to_string(length) + " bytes cut after " +
-                  std::to_string(stream_.gcount()));
+                  std::to_string(body));
   }
   offset_ += sizeof prefix + length;
   ++records_;

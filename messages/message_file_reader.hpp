@@ -2,9 +2,10 @@
 // Reads what BinaryFileSink wrote: length-prefixed messages. Trusts nothing in the file.
 #include <cstdint>
 #include <filesystem>
-#include <fstream>
 #include <string>
 #include <vector>
+
+#include "common/input_file.hpp"
 
 namespace rtmot::messages {
 
@@ -16,7 +17,8 @@ enum class FileReadStatus {
 
 class MessageFileReader {
  public:
-  /// Throws InputError (bad_input) naming `path` if it cannot be opened.
+  /// Throws InputError (bad_input) naming `path` if it cannot be opened or is not a regular file
+  /// (a FIFO would block forever). A failed read throws InputError (io_error).
   explicit MessageFileReader(const std::filesystem::path& path);
 
   FileReadStatus next(std::vector<std::uint8_t>& bytes);
@@ -27,8 +29,7 @@ class MessageFileReader {
  private:
   FileReadStatus broken(const std::string& what);
 
-  std::filesystem::path path_;
-  std::ifstream stream_;
+  InputFile file_;
   std::uint64_t offset_{0};
   std::uint64_t records_{0};
   std::string problem_;

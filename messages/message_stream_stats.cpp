@@ -4,59 +4,126 @@
 #include <numeric>
 
 namespace rtmot::messages {
+namespace {
 
-void SequenceAccounting::start_epoch(std::uint64_t sequence) {
+// Serial-number arithmetic (RFC 1982): `a` is ahead of `b` when (a - b) mod 2^64 is below half the
+// range.
+constexpr std::uint64_t kHalfRange = std::uint64_t{1} << 63;
+
+std::uint64_t ahead_by(std::uint64_t sequence, std::uint64_t reference) {
+  const std::uint64_t difference = sequence - reference;  // modulo 2^64
+  return difference < kHalfRange ? difference : 0;
+}
+
+}  // namespace
+
+void SequenceAccounting::start_epoch(std::uint64_t sequence, std::int64_t pts_ns) {
   started_ = true;
   first_ = sequence;
-  next_ = sequence + 1;
+  highest_ = sequence;
+  pts_at_highest_ = pts_ns;
   unique_in_epoch_ = 1;
   seen_.reset();
   mark(sequence);
 }
 
-Arrival SequenceAccounting::record(std::uint64_t sequence) {
+bool SequenceAccounting::continues_previous_epoch(std::uint64_t sequence) const {
+  if (!has_previous_epoch_) return false;
+  const std::uint64_t ahead = ahead_by(sequence, previous_highest_);
+  return ahead > 0 && ahead <= window;
+}
+
+Arrival SequenceAccounting::clash() {
+  ++clashes_;
+  return Arrival::clash;
+}
+
+Arrival SequenceAccounting::record(std::uint64_t sequence, std::int64_t pts_ns) {
   ++received_;
   if (!started_) {
-    start_epoch(sequence);
+    start_epoch(sequence, pts_ns);
     return Arrival::first;
   }
-  if (sequence >= next_) {
+  const std::uint64_t ahead = ahead_by(sequence, highest_);
+  if (ahead > 0) {
+    if (pts_ns < pts_at_highest_) return clash();
+    // Far ahead of this epoch but right after the one before the restart: its sender is still on.
+    if (ahead > window && continues_previous_epoch(sequence)) {
+      previous_highest_ = sequence;
+      return clash();
+    }
     // Forget the slots of the sequences skipped over, so that they can arrive late and be counted
     // as reordered rather than as duplicates of what used the slot `window` sequences before.
-    const std::uint64_t skipped = sequence - next_;
-    if (skipped + 1 >= window) {
+    if (ahead >= window) {
       seen_.reset();
     } else {
-      for (std::uint64_t s = next_; s < sequence; ++s) seen_[s % window] = false;
+      for (std::uint64_t s = highest_ + 1; s != sequence; ++s) seen_[s % window] = false;
     }
-    const Arrival arrival = skipped == 0 ? Arrival::in_order : Arrival::after_gap;
-    next_ = sequence + 1;
+    highest_ = sequence;
+    pts_at_highest_ = pts_ns;
     mark(sequence);
     ++unique_in_epoch_;
-    return arrival;
+    return ahead == 1 ? Arrival::in_order : Arrival::after_gap;
   }
-  if (next_ - sequence > window) {
-    lost_before_restarts_ += current_lost();
-    ++restarts_;
-    start_epoch(sequence);
-    return Arrival::restart;
-  }
-  if (sequence >= first_ && seen(sequence)) {
+  const std::uint64_t behind = highest_ - sequence;  // modulo 2^64; 0 for the highest itself
+  if (behind == 0) {
+    if (pts_ns != pts_at_highest_) return clash();
     ++duplicated_;
     return Arrival::duplicate;
   }
-  if (sequence < first_) first_ = sequence;  // late arrival from before the first one we saw
+  if (pts_ns > pts_at_highest_) return clash();
+  if (behind > window) {
+    if (continues_previous_epoch(sequence)) {
+      previous_highest_ = sequence;
+      return clash();
+    }
+    lost_before_restarts_ += current_lost();
+    ++restarts_;
+    has_previous_epoch_ = true;
+    previous_highest_ = highest_;
+    start_epoch(sequence, pts_ns);
+    return Arrival::restart;
+  }
+  const bool in_epoch = behind <= highest_ - first_;
+  if (in_epoch && seen(sequence)) {
+    ++duplicated_;
+    return Arrival::duplicate;
+  }
+  if (!in_epoch) first_ = sequence;  // late arrival from before the first one we saw
   mark(sequence);
   ++unique_in_epoch_;
   ++reordered_;
   return Arrival::late;
 }
 
+ListenerStats::ListenerStats(std::size_t max_streams)
+    : max_streams_(std::max<std::size_t>(max_streams, 1)) {}
+
+StreamStats& ListenerStats::stream(std::uint32_t id) {
+  const auto known = recency_of_.find(id);
+  if (known != recency_of_.end()) {
+    recency_.splice(recency_.begin(), recency_, known->second);  // now the most recent
+    return streams_[id];
+  }
+  if (streams_.size() >= max_streams_) {
+    const std::uint32_t oldest = recency_.back();
+    recency_.pop_back();
+    recency_of_.erase(oldest);
+    const auto evicted = streams_.find(oldest);
+    evicted_messages_ += evicted->second.sequences.received();
+    streams_.erase(evicted);
+    ++evicted_streams_;
+  }
+  recency_.push_front(id);
+  recency_of_[id] = recency_.begin();
+  return streams_[id];
+}
+
 Arrival ListenerStats::record(const DecodedMessage& message) {
   const FrameResult& frame = message.frame;
-  StreamStats& stream = streams_[frame.stream_id];
-  const Arrival arrival = stream.sequences.record(frame.sequence);
-  if (arrival == Arrival::duplicate) return arrival;
+  StreamStats& stream = this->stream(frame.stream_id);
+  const Arrival arrival = stream.sequences.record(frame.sequence, frame.pts_ns);
+  if (arrival == Arrival::duplicate || arrival == Arrival::clash) return arrival;
   const bool first = stream.messages == 0;
   ++stream.messages;
   const std::int64_t latency = message.latency_ns();
@@ -78,7 +145,7 @@ std::uint64_t ListenerStats::corrupt() const {
 }
 
 std::uint64_t ListenerStats::received() const {
-  std::uint64_t total = 0;
+  std::uint64_t total = evicted_messages_;
   for (const auto& entry : streams_) total += entry.second.sequences.received();
   return total;
 }

@@ -4,46 +4,62 @@
 #include <array>
 #include <bitset>
 #include <cstdint>
+#include <list>
 #include <map>
 
 #include "messages/message_format.hpp"
 
 namespace rtmot::messages {
 
-enum class Arrival { first, in_order, after_gap, late, duplicate, restart };
+enum class Arrival { first, in_order, after_gap, late, duplicate, restart, clash };
 
 /// Sequence accounting of one stream. Invariant: lost = sequences in [first, highest] not received
 /// (so a late arrival that fills a gap un-loses it; losses after the last arrival cannot be seen).
+/// Sequences compare as serial numbers (RFC 1982): 2^64 - 1 is followed by 0, and no count wraps.
 /// Duplicates are recognised within the last `window` sequences; a sequence more than `window`
 /// below the highest one means the sender restarted (its sequence starts at 0 again).
+/// A message no single sender could have sent is a clash, counted apart and otherwise ignored:
+/// two senders use one stream id. One sender's pts rises with its sequence, so a message ahead
+/// with an older pts, or behind with a newer one, or the highest sequence again with another pts,
+/// is another sender's; so is one that continues the sequence of the epoch before a restart.
 class SequenceAccounting {
  public:
   static constexpr std::uint64_t window = 4096;
 
-  Arrival record(std::uint64_t sequence);
+  /// `pts_ns`: the message's presentation time (0 when the sender has none: no clash is seen).
+  Arrival record(std::uint64_t sequence, std::int64_t pts_ns = 0);
 
   std::uint64_t received() const { return received_; }  // every valid message, duplicates included
   std::uint64_t lost() const { return lost_before_restarts_ + current_lost(); }
   std::uint64_t reordered() const { return reordered_; }
   std::uint64_t duplicated() const { return duplicated_; }
   std::uint64_t restarts() const { return restarts_; }
+  std::uint64_t clashes() const { return clashes_; }
 
  private:
-  std::uint64_t current_lost() const { return started_ ? (next_ - first_) - unique_in_epoch_ : 0; }
-  void start_epoch(std::uint64_t sequence);
+  std::uint64_t current_lost() const {
+    return started_ ? (highest_ - first_) - (unique_in_epoch_ - 1) : 0;
+  }
+  void start_epoch(std::uint64_t sequence, std::int64_t pts_ns);
+  bool continues_previous_epoch(std::uint64_t sequence) const;
   bool seen(std::uint64_t sequence) const { return seen_[sequence % window]; }
   void mark(std::uint64_t sequence) { seen_[sequence % window] = true; }
+  Arrival clash();
 
   bool started_{false};
-  std::uint64_t first_{0};  // lowest sequence of this epoch
-  std::uint64_t next_{0};   // highest sequence seen + 1
+  std::uint64_t first_{0};    // lowest sequence of this epoch
+  std::uint64_t highest_{0};  // highest sequence of this epoch (inclusive: 2^64 - 1 is valid)
+  std::int64_t pts_at_highest_{0};
+  bool has_previous_epoch_{false};
+  std::uint64_t previous_highest_{0};  // of the epoch before the last restart
   std::uint64_t unique_in_epoch_{0};
   std::uint64_t lost_before_restarts_{0};
   std::uint64_t received_{0};
   std::uint64_t reordered_{0};
   std::uint64_t duplicated_{0};
   std::uint64_t restarts_{0};
-  std::bitset<window> seen_;  // seen_[s % window] for s in [max(first, next - window), next)
+  std::uint64_t clashes_{0};
+  std::bitset<window> seen_;  // seen_[s % window] for s in the last `window` sequences of the epoch
 };
 
 struct StreamStats {
@@ -62,9 +78,15 @@ struct StreamStats {
 };
 
 /// Everything `rtmot listen` counts: per stream id, and corrupt messages (which name no stream we
-/// could trust) by reason.
+/// could trust) by reason. At most `max_streams` streams are kept (each costs ~0.7 KB): a message
+/// of a new stream beyond that evicts the stream heard from least recently, and the evictions are
+/// counted, so spoofed stream ids cannot grow memory or the summary without bound.
 class ListenerStats {
  public:
+  static constexpr std::size_t default_max_streams = 1024;
+
+  explicit ListenerStats(std::size_t max_streams = default_max_streams);
+
   Arrival record(const DecodedMessage& message);
   void record_corrupt(DecodeError reason);
 
@@ -73,10 +95,19 @@ class ListenerStats {
   std::uint64_t corrupt(DecodeError reason) const {
     return corrupt_[static_cast<std::size_t>(reason)];
   }
-  std::uint64_t received() const;  // valid messages over all streams
+  std::uint64_t received() const;  // valid messages over all streams, evicted ones included
+  std::uint64_t evicted_streams() const { return evicted_streams_; }
+  std::uint64_t evicted_messages() const { return evicted_messages_; }
 
  private:
+  StreamStats& stream(std::uint32_t id);
+
+  std::size_t max_streams_;
   std::map<std::uint32_t, StreamStats> streams_;  // one node per stream, made at its first message
+  std::list<std::uint32_t> recency_;              // stream ids, most recently heard first
+  std::map<std::uint32_t, std::list<std::uint32_t>::iterator> recency_of_;
+  std::uint64_t evicted_streams_{0};
+  std::uint64_t evicted_messages_{0};  // received by streams that were evicted
   std::array<std::uint64_t, decode_error_count> corrupt_{};
 };
 

@@ -45,7 +45,8 @@ ClearCounts count_clear(const PreparedSequence& sequence) {
   std::vector<char> result_taken;
   std::vector<int> open_gt, open_results;
   std::vector<double> cost;
-  std::vector<char> present;
+  std::vector<char> present(tracks.size(), 0);  // per gt id: in this timestep
+  std::vector<int> present_before;              // gt ids of the previous timestep
 
   const int timesteps = static_cast<int>(sequence.gt.size());
   for (int t = 0; t < timesteps; ++t) {
@@ -123,8 +124,8 @@ ClearCounts count_clear(const PreparedSequence& sequence) {
     counts.false_negatives += gt_count - matches;
     counts.gt_detections += gt_count;
 
-    // 4. Carry the state to the next timestep. A gt box absent now is untracked now.
-    present.assign(tracks.size(), 0);
+    // 4. Carry the state to the next timestep. A gt box absent now is untracked now. Only the ids
+    // of this timestep and the previous one change: time grows with boxes, not with ids x frames.
     for (int g = 0; g < gt_count; ++g) {
       GtTrackState& track = tracks[static_cast<std::size_t>(gt.ids[g])];
       present[static_cast<std::size_t>(gt.ids[g])] = 1;
@@ -138,12 +139,19 @@ ClearCounts count_clear(const PreparedSequence& sequence) {
       track.previous_partner = tracked ? results.ids[r] : kNone;
       if (tracked) track.last_partner = results.ids[r];
     }
-    for (std::size_t id = 0; id < tracks.size(); ++id) {
-      tracks[id].present_previously = present[id] != 0;
-      if (!present[id]) {
-        tracks[id].tracked_previously = false;
-        tracks[id].previous_partner = kNone;
-      }
+    for (const int id : present_before) {
+      GtTrackState& track = tracks[static_cast<std::size_t>(id)];
+      if (present[static_cast<std::size_t>(id)]) continue;
+      track.present_previously = false;
+      track.tracked_previously = false;
+      track.previous_partner = kNone;
+    }
+    present_before.clear();
+    for (int g = 0; g < gt_count; ++g) {
+      const auto id = static_cast<std::size_t>(gt.ids[g]);
+      tracks[id].present_previously = true;
+      present[id] = 0;
+      present_before.push_back(gt.ids[g]);
     }
   }
 

@@ -3,29 +3,14 @@
 #include <algorithm>
 
 #include "common/input_error.hpp"
-#include "motio/mot_files.hpp"
 #include "mot/prepared_sequence.hpp"
 #include "mot/scorer.hpp"
+#include "motio/mot_files.hpp"
+#include "motio/sequence_folders.hpp"
 
 namespace rtmot::mot {
 
 namespace fs = std::filesystem;
-
-std::vector<fs::path> find_sequence_dirs(const fs::path& dir) {
-  if (!fs::is_directory(dir)) throw InputError(dir.string(), 0, "", "is not a folder");
-  if (fs::exists(dir / "seqinfo.ini")) return {dir};
-  std::vector<fs::path> sequences;
-  for (const auto& entry : fs::directory_iterator(dir)) {
-    if (entry.is_directory() && fs::exists(entry.path() / "seqinfo.ini")) {
-      sequences.push_back(entry.path());
-    }
-  }
-  if (sequences.empty()) {
-    throw InputError(dir.string(), 0, "", "holds no sequence folder (one with a seqinfo.ini)");
-  }
-  std::sort(sequences.begin(), sequences.end());
-  return sequences;
-}
 
 SequenceScore evaluate_sequence(const fs::path& sequence_dir, const fs::path& results_file,
                                 int interval) {
@@ -35,7 +20,8 @@ SequenceScore evaluate_sequence(const fs::path& sequence_dir, const fs::path& re
     throw InputError(results_file.string(), 0, "", "missing: no results for sequence " + info.name);
   }
   const auto gt_rows = motio::read_mot_file(gt_file, motio::MotFileKind::ground_truth, info.length);
-  const auto result_rows = motio::read_mot_file(results_file, motio::MotFileKind::results, info.length);
+  const auto result_rows =
+      motio::read_mot_file(results_file, motio::MotFileKind::results, info.length);
   PrepareOptions options;
   options.interval = interval;
   options.sequence_length = info.length;
@@ -58,15 +44,24 @@ SequenceScore pool(const std::vector<SequenceScore>& sequences) {
   return overall;
 }
 
-EvaluationReport evaluate(const fs::path& gt_dir, const fs::path& results_dir, int interval) {
-  if (!fs::is_directory(results_dir)) {
+EvaluationReport evaluate(const fs::path& gt_dir, const fs::path& results_dir, int interval,
+                          const std::atomic<bool>* stop,
+                          const std::function<void(const SequenceScore&)>& progress) {
+  std::error_code error;
+  if (!fs::is_directory(results_dir, error)) {
     throw InputError(results_dir.string(), 0, "", "is not a folder");
   }
   EvaluationReport report;
-  for (const auto& sequence_dir : find_sequence_dirs(gt_dir)) {
-    const std::string name = motio::read_seqinfo(sequence_dir / "seqinfo.ini").name;
-    report.sequences.push_back(
-        evaluate_sequence(sequence_dir, results_dir / (name + ".txt"), interval));
+  const auto sequences = motio::find_sequences(gt_dir);
+  report.sequences_in_dataset = static_cast<int>(sequences.size());
+  for (const auto& sequence : sequences) {
+    if (stop != nullptr && stop->load(std::memory_order_acquire)) {
+      report.stopped = true;
+      break;
+    }
+    report.sequences.push_back(evaluate_sequence(
+        sequence.dir, motio::sequence_file(results_dir, sequence.info.name, ".txt"), interval));
+    if (progress) progress(report.sequences.back());
   }
   report.overall = pool(report.sequences);
   return report;

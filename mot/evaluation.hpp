@@ -1,6 +1,8 @@
 #pragma once
 // Scoring result files against MOTChallenge ground truth: the file side of `rtmot eval`.
+#include <atomic>
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -18,11 +20,9 @@ struct SequenceScore {
 struct EvaluationReport {
   std::vector<SequenceScore> sequences;
   SequenceScore overall;  // all sequences pooled, named "OVERALL"
+  int sequences_in_dataset{0};
+  bool stopped{false};  // by evaluate()'s stop flag: `sequences` holds the ones scored before
 };
-
-/// `dir` itself if it holds a seqinfo.ini, else its sub-folders that do (sorted by name). Throws
-/// InputError if there is none.
-std::vector<std::filesystem::path> find_sequence_dirs(const std::filesystem::path& dir);
 
 /// Scores one results file against `sequence_dir`/gt/gt.txt (frames as its seqinfo.ini).
 SequenceScore evaluate_sequence(const std::filesystem::path& sequence_dir,
@@ -31,9 +31,12 @@ SequenceScore evaluate_sequence(const std::filesystem::path& sequence_dir,
 /// Pools per-sequence scores into the OVERALL line.
 SequenceScore pool(const std::vector<SequenceScore>& sequences);
 
-/// Every sequence under `gt_dir` against `results_dir`/<name>.txt. A missing results file is an
-/// InputError naming it.
+/// Every sequence under `gt_dir` (motio::find_sequences) against `results_dir`/<name>.txt. A
+/// missing results file is an InputError naming it. A set `stop` flag ends it before the next
+/// sequence; `progress` is called after each scored one.
 EvaluationReport evaluate(const std::filesystem::path& gt_dir,
-                          const std::filesystem::path& results_dir, int interval = 1);
+                          const std::filesystem::path& results_dir, int interval = 1,
+                          const std::atomic<bool>* stop = nullptr,
+                          const std::function<void(const SequenceScore&)>& progress = {});
 
 }  // namespace rtmot::mot

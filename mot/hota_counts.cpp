@@ -2,8 +2,13 @@
 // 2020) as TrackEval computes it: a first pass measures how well each gt/result id pair is aligned
 // over the whole sequence; each frame is then matched to maximise alignment x IoU, and for each
 // alpha the pairs with IoU >= alpha are the true positives.
+// Id pairs are kept in hash maps, holding only pairs that overlap in some frame: memory grows with
+// those, not with gt ids x result ids. Sums run in the dense loops' order (frames, then pairs in
+// gt-major order), so every figure is bit-identical to the dense computation.
 #include <algorithm>
+#include <array>
 #include <limits>
+#include <unordered_map>
 
 #include "mot/box_iou.hpp"
 #include "mot/scorer.hpp"
@@ -32,7 +37,7 @@ HotaCounts count_hota(const PreparedSequence& sequence) {
   HotaCounts counts;
   const std::size_t gt_ids = static_cast<std::size_t>(sequence.num_gt_ids);
   const std::size_t result_ids = static_cast<std::size_t>(sequence.num_result_ids);
-  std::vector<double> potential(gt_ids * result_ids, 0.0);
+  std::unordered_map<std::size_t, double> potential;  // gt * result_ids + result; absent: 0
   std::vector<double> gt_id_count(gt_ids, 0.0);
   std::vector<double> result_id_count(result_ids, 0.0);
   std::vector<double> similarity;
@@ -60,6 +65,7 @@ HotaCounts count_hota(const PreparedSequence& sequence) {
     for (std::size_t g = 0; g < rows; ++g) {
       for (std::size_t r = 0; r < cols; ++r) {
         const double value = similarity[g * cols + r];
+        if (value == 0.0) continue;  // adds nothing: no entry for pairs that never overlap
         const double denominator = row_sum[g] + col_sum[r] - value;
         if (denominator > kEpsilon) {
           potential[static_cast<std::size_t>(gt.ids[g]) * result_ids +
@@ -68,17 +74,18 @@ HotaCounts count_hota(const PreparedSequence& sequence) {
       }
     }
   }
-  std::vector<double> alignment(potential.size(), 0.0);
-  for (std::size_t g = 0; g < gt_ids; ++g) {
-    for (std::size_t r = 0; r < result_ids; ++r) {
-      const double p = potential[g * result_ids + r];
-      alignment[g * result_ids + r] = p / (gt_id_count[g] + result_id_count[r] - p);
-    }
+  std::unordered_map<std::size_t, double> alignment;  // absent: 0
+  alignment.reserve(potential.size());
+  for (const auto& [pair, p] : potential) {
+    alignment[pair] = p / (gt_id_count[pair / result_ids] + result_id_count[pair % result_ids] - p);
   }
+  const auto alignment_of = [&](std::size_t pair) {
+    const auto found = alignment.find(pair);
+    return found == alignment.end() ? 0.0 : found->second;
+  };
 
   // Pass 2: per-frame matching, then true positives per alpha.
-  std::vector<std::vector<double>> matches(kHotaAlphaCount,
-                                           std::vector<double>(gt_ids * result_ids, 0.0));
+  std::unordered_map<std::size_t, std::array<double, kHotaAlphaCount>> matches;
   tracker::LinearAssignment solver;
   std::vector<double> cost;
   for (std::size_t t = 0; t < sequence.gt.size(); ++t) {
@@ -101,7 +108,7 @@ HotaCounts count_hota(const PreparedSequence& sequence) {
       for (std::size_t r = 0; r < cols; ++r) {
         const std::size_t pair = static_cast<std::size_t>(gt.ids[g]) * result_ids +
                                  static_cast<std::size_t>(results.ids[r]);
-        cost[g * cols + r] = -alignment[pair] * similarity[g * cols + r];
+        cost[g * cols + r] = -alignment_of(pair) * similarity[g * cols + r];
       }
     }
     const auto& assignment =
@@ -116,8 +123,8 @@ HotaCounts count_hota(const PreparedSequence& sequence) {
         if (iou < alpha - kEpsilon) continue;
         matched += 1.0;
         counts.localization_sum[a] += iou;
-        matches[a][static_cast<std::size_t>(gt.ids[g]) * result_ids +
-                   static_cast<std::size_t>(results.ids[r])] += 1.0;
+        matches[static_cast<std::size_t>(gt.ids[g]) * result_ids +
+                static_cast<std::size_t>(results.ids[r])][a] += 1.0;
       }
       counts.true_positives[a] += matched;
       counts.false_negatives[a] += gt_count - matched;
@@ -126,14 +133,18 @@ HotaCounts count_hota(const PreparedSequence& sequence) {
   }
 
   // Association: each true positive weighted by its id pair's Jaccard over the sequence.
+  std::vector<std::size_t> matched_pairs;
+  matched_pairs.reserve(matches.size());
+  for (const auto& entry : matches) matched_pairs.push_back(entry.first);
+  std::sort(matched_pairs.begin(), matched_pairs.end());  // the dense loops' order
   for (int a = 0; a < kHotaAlphaCount; ++a) {
     double sum = 0.0;
-    for (std::size_t g = 0; g < gt_ids; ++g) {
-      for (std::size_t r = 0; r < result_ids; ++r) {
-        const double m = matches[a][g * result_ids + r];
-        if (m == 0.0) continue;
-        sum += m * m / std::max(1.0, gt_id_count[g] + result_id_count[r] - m);
-      }
+    for (const std::size_t pair : matched_pairs) {
+      const double m = matches[pair][a];
+      if (m == 0.0) continue;
+      const std::size_t g = pair / result_ids;
+      const std::size_t r = pair % result_ids;
+      sum += m * m / std::max(1.0, gt_id_count[g] + result_id_count[r] - m);
     }
     counts.association_sum[a] = sum;
   }

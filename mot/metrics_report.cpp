@@ -1,10 +1,7 @@
 #include "mot/metrics_report.hpp"
 
 #include <algorithm>
-#include <cerrno>
 #include <cstdio>
-#include <cstring>
-#include <fstream>
 #include <functional>
 #include <nlohmann/json.hpp>
 #include <vector>
@@ -130,15 +127,6 @@ std::string format_json(const EvaluationReport& report) {
     sequences.push_back(entry);
   }
   return sequences.dump(2) + "\n";
-}
-
-void write_text_file(const std::filesystem::path& path, const std::string& text) {
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  if (!out)
-    throw InputError(path.string(), 0, "", std::string("cannot create: ") + std::strerror(errno));
-  out << text;
-  out.flush();
-  if (!out) throw InputError(path.string(), 0, "", "write error");
 }
 
 }  // namespace rtmot::mot

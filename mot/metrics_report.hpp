@@ -14,7 +14,4 @@ std::string format_csv(const EvaluationReport& report);
 /// Full precision, and the raw counts, for scripts.
 std::string format_json(const EvaluationReport& report);
 
-/// Writes `text` to `path`, throwing InputError on failure.
-void write_text_file(const std::filesystem::path& path, const std::string& text);
-
 }  // namespace rtmot::mot

@@ -2,12 +2,11 @@
 
 #include <fmt/format.h>
 
-#include "mot/evaluation.hpp"
 #include "mot/prepared_sequence.hpp"
 #include "mot/scorer.hpp"
 #include "mot/synthetic_detector.hpp"
+#include "motio/sequence_folders.hpp"
 #include "motio/track_runner.hpp"
-#include "tracker/tracker.hpp"
 
 namespace rtmot::mot {
 
@@ -52,17 +51,18 @@ std::vector<StudyInput> synthetic_inputs() {
 
 std::vector<LoadedSequence> load_study_dataset(const fs::path& dataset) {
   std::vector<LoadedSequence> sequences;
-  for (const fs::path& dir : find_sequence_dirs(dataset)) {
+  for (const motio::SequenceFolder& folder : motio::find_sequences(dataset)) {
+    const fs::path& dir = folder.dir;
     LoadedSequence sequence;
-    sequence.info = motio::read_seqinfo(dir / "seqinfo.ini");
+    sequence.info = folder.info;
     const fs::path gt_file = dir / "gt" / "gt.txt";
     sequence.gt_rows =
         motio::read_mot_file(gt_file, motio::MotFileKind::ground_truth, sequence.info.length);
     sequence.detections = motio::load_detections(dir / "det" / "det.txt", sequence.info);
     sequence.gt_detections = motio::load_detections(gt_file, sequence.info);
     for (const auto& spec : synthetic_detectors()) {
-      sequence.synthetic.push_back(synthesize_detections(spec, sequence.gt_rows, sequence.info,
-                                                         static_cast<int>(sequences.size())));
+      sequence.synthetic.push_back(motio::FrameDetections::from_frames(synthesize_detections(
+          spec, sequence.gt_rows, sequence.info, static_cast<int>(sequences.size()))));
     }
     sequences.push_back(std::move(sequence));
   }
@@ -71,35 +71,21 @@ std::vector<LoadedSequence> load_study_dataset(const fs::path& dataset) {
 
 SequenceCounts track_and_count(const LoadedSequence& sequence, StudyInput input,
                                const tracker::TrackerConfig& config, int interval) {
-  tracker::TrackerConfig sequence_config = config;
-  sequence_config.frame_rate = sequence.info.frame_rate;
-  sequence_config.image_width = static_cast<float>(sequence.info.width);
-  sequence_config.image_height = static_cast<float>(sequence.info.height);
-  tracker::Tracker tracker(sequence_config);
-  const auto& detections = input.kind == StudyInput::Kind::detections ? sequence.detections
-                           : input.kind == StudyInput::Kind::ground_truth
-                               ? sequence.gt_detections
-                               : sequence.synthetic.at(static_cast<std::size_t>(input.synthetic));
-
-  std::vector<motio::MotRow> results;
-  for (int frame = 1; frame <= sequence.info.length; frame += interval) {
-    const double time = (frame - 1) / sequence.info.frame_rate;
-    for (const auto& report :
-         tracker.update(detections[static_cast<std::size_t>(frame - 1)], time)) {
-      motio::MotRow row;
-      row.frame = frame;
-      row.id = report.id;
-      row.box = report.box;
-      row.conf = report.score;
-      results.push_back(row);
-    }
-  }
+  motio::TrackOptions options;
+  options.config = config;
+  options.interval = interval;
+  const motio::FrameDetections& detections =
+      input.kind == StudyInput::Kind::detections ? sequence.detections
+      : input.kind == StudyInput::Kind::ground_truth
+          ? sequence.gt_detections
+          : sequence.synthetic.at(static_cast<std::size_t>(input.synthetic));
+  const motio::TrackRun run = motio::track_detections(detections, sequence.info, options);
   PrepareOptions prepare;
   prepare.interval = interval;
   prepare.sequence_length = sequence.info.length;
   prepare.gt_file = sequence.info.name + "/gt/gt.txt";
   prepare.results_file = sequence.info.name + " (tracked in memory)";
-  return count_all(prepare_sequence(sequence.gt_rows, results, prepare));
+  return count_all(prepare_sequence(sequence.gt_rows, run.tracks, prepare));
 }
 
 Metrics track_and_score(const std::vector<LoadedSequence>& dataset, StudyInput input,

@@ -8,6 +8,7 @@
 
 #include "mot/metrics.hpp"
 #include "mot/sequence_counts.hpp"
+#include "motio/frame_detections.hpp"
 #include "motio/mot_files.hpp"
 #include "tracker/box.hpp"
 #include "tracker/tracker_config.hpp"
@@ -45,10 +46,9 @@ std::vector<StudyInput> synthetic_inputs();
 struct LoadedSequence {
   motio::SequenceInfo info;
   std::vector<motio::MotRow> gt_rows;
-  std::vector<std::vector<tracker::Detection>> detections;     // det/det.txt, by frame
-  std::vector<std::vector<tracker::Detection>> gt_detections;  // gt/gt.txt, by frame
-  // synthetic[i]: synthetic_detectors()[i] made from gt/gt.txt, by frame.
-  std::vector<std::vector<std::vector<tracker::Detection>>> synthetic;
+  motio::FrameDetections detections;              // det/det.txt
+  motio::FrameDetections gt_detections;           // gt/gt.txt
+  std::vector<motio::FrameDetections> synthetic;  // [i]: synthetic_detectors()[i] from gt/gt.txt
 };
 
 /// Every sequence under `dataset` (a sequence folder or a folder of them). Throws InputError.

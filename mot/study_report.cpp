@@ -6,6 +6,7 @@
 #include <system_error>
 
 #include "common/input_error.hpp"
+#include "common/output_file.hpp"
 #include "mot/metrics_report.hpp"
 #include "mot/svg_line_plot.hpp"
 
@@ -99,7 +100,7 @@ std::vector<fs::path> write_study(const fs::path& out_dir, const std::vector<Stu
     fs::create_directories(path.parent_path(), error);
     if (error)
       throw InputError(path.parent_path().string(), 0, "", "cannot create: " + error.message());
-    write_text_file(path, text);
+    write_whole_file(path, text);
     written.push_back(path);
   };
 

@@ -9,6 +9,7 @@
 #include <string_view>
 
 #include "common/input_error.hpp"
+#include "common/input_file.hpp"
 #include "motio/text_fields.hpp"
 
 namespace rtmot::motio {
@@ -17,7 +18,7 @@ namespace {
 
 // Beyond these a value is a corrupt file, not a box: no camera has a million pixels on a side.
 constexpr double kMaxCoordinate = 1e6;
-constexpr long long kMaxFrame = 10'000'000;
+constexpr std::size_t kMaxNameBytes = 128;
 constexpr int kMaxClassId = 1000;
 
 struct ColumnRule {
@@ -167,12 +168,29 @@ std::optional<double> ini_number(std::string_view text) {
 
 }  // namespace
 
+void check_sequence_name(const std::string& name, const std::string& file, int line) {
+  if (name.empty()) throw InputError(file, line, "name", "is empty");
+  const auto plain = [](char c) {
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '-' ||
+           c == '_' || c == '.' || c == '+';
+  };
+  const bool ok = name.size() <= kMaxNameBytes && name.front() != '.' && name.front() != '-' &&
+                  std::all_of(name.begin(), name.end(), plain);
+  if (!ok) {
+    throw InputError(file, line, "name",
+                     "'" + name +
+                         "' is not a plain sequence name (letters, digits, - _ . + only, " +
+                         "not starting with . or -, at most " + std::to_string(kMaxNameBytes) +
+                         " bytes): outputs are named after it");
+  }
+}
+
 SequenceInfo read_seqinfo(const std::filesystem::path& ini_path) {
   const std::string file = ini_path.string();
-  const std::string text = detail::read_whole_file(file);
+  const std::string text = read_text_file(ini_path);
   std::map<std::string, std::pair<std::string, int>, std::less<>> values;  // key -> (value, line)
   std::string section;
-  detail::for_each_line(text, [&](int line, std::string_view raw) {
+  detail::for_each_line(file, text, [&](int line, std::string_view raw) {
     const std::string_view content = detail::trim(raw);
     if (content.front() == ';' || content.front() == '#') return;
     if (content.front() == '[') {
@@ -210,7 +228,7 @@ SequenceInfo read_seqinfo(const std::filesystem::path& ini_path) {
 
   SequenceInfo info;
   info.name = required("name").first;
-  if (info.name.empty()) throw InputError(file, required("name").second, "name", "is empty");
+  check_sequence_name(info.name, file, required("name").second);
   const auto& [rate_text, rate_line] = required("frameRate");
   const auto rate = ini_number(rate_text);
   if (!rate || *rate <= 0.0 || *rate > 10000.0) {
@@ -231,33 +249,14 @@ std::vector<MotRow> read_mot_file(const std::filesystem::path& path, MotFileKind
 std::vector<MotRow> read_mot_file(const std::filesystem::path& path, MotFileKind kind,
                                   int max_frame) {
   const std::string file = path.string();
-  const std::string text = detail::read_whole_file(file);
+  const std::string text = read_text_file(path);
   std::vector<MotRow> rows;
   rows.reserve(static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n')) + 1);
   RowParser parser(file, kind, max_frame);
-  detail::for_each_line(text, [&](int line, std::string_view content) {
+  detail::for_each_line(file, text, [&](int line, std::string_view content) {
     rows.push_back(parser.parse(line, content));
   });
   return rows;
-}
-
-std::vector<std::vector<tracker::Detection>> detections_by_frame(const std::vector<MotRow>& rows,
-                                                                 int length) {
-  std::vector<std::vector<tracker::Detection>> frames(
-      static_cast<std::size_t>(std::max(length, 0)));
-  for (const MotRow& row : rows) {
-    if (row.frame < 1 || row.frame > length) {
-      throw InputError("", 0, "frame",
-                       "detection in frame " + std::to_string(row.frame) +
-                           " is outside the sequence's frames 1.." + std::to_string(length));
-    }
-    tracker::Detection detection;
-    detection.box = row.box;
-    detection.score = row.conf;
-    detection.class_id = 1;  // MOTChallenge detections are all people (COCO id 1)
-    frames[static_cast<std::size_t>(row.frame - 1)].push_back(detection);
-  }
-  return frames;
 }
 
 }  // namespace rtmot::motio

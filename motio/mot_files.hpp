@@ -9,8 +9,12 @@
 
 namespace rtmot::motio {
 
+/// The largest frame number (and sequence length, and frame interval) rtmot accepts: 10 million
+/// frames are 46 days at 25 fps. Frame arithmetic stays far from int's limit.
+constexpr int kMaxFrame = 10'000'000;
+
 struct SequenceInfo {
-  std::string name;
+  std::string name;  // a plain file name (outputs are named after it): see check_sequence_name
   double frame_rate{0.0};
   int length{0};  // frames
   int width{0};
@@ -30,13 +34,12 @@ struct MotRow {
 enum class MotFileKind { detections, ground_truth, results };
 
 SequenceInfo read_seqinfo(const std::filesystem::path& ini_path);
+/// Throws InputError (file, line, field "name") unless `name` is a plain file name: letters,
+/// digits and - _ . + (not first: . or -), at most 128 bytes. No folders, no "..", no "/abs".
+void check_sequence_name(const std::string& name, const std::string& file, int line);
 std::vector<MotRow> read_mot_file(const std::filesystem::path& path, MotFileKind kind);
 /// As above, and a row whose frame is beyond `max_frame` (the sequence's length) is an error too.
 std::vector<MotRow> read_mot_file(const std::filesystem::path& path, MotFileKind kind,
                                   int max_frame);
-
-/// Detections grouped by frame: result[f - 1] holds frame f's, for f in 1..length.
-std::vector<std::vector<tracker::Detection>> detections_by_frame(const std::vector<MotRow>& rows,
-                                                                 int length);
 
 }  // namespace rtmot::motio

@@ -1,12 +1,12 @@
 #pragma once
 // Writes a MOTChallenge results file: `frame,id,x,y,w,h,score,-1,-1,-1`, one row per reported
-// track.
-#include <cstdio>
+// track. The file appears only when complete (common/output_file.hpp): a stopped or killed run
+// never leaves a results file cut mid-line.
 #include <filesystem>
-#include <memory>
 #include <string>
 #include <vector>
 
+#include "common/output_file.hpp"
 #include "motio/mot_files.hpp"
 #include "tracker/box.hpp"
 
@@ -14,26 +14,30 @@ namespace rtmot::motio {
 
 class ResultsWriter {
  public:
-  /// Creates (truncates) the file; throws InputError if it cannot.
+  /// Creates the temporary; throws InputError if it cannot.
   explicit ResultsWriter(const std::filesystem::path& path);
 
   void write(int frame, const std::vector<tracker::TrackReport>& tracks);
   void write(const MotRow& row);
-  /// Flushes and closes, throwing InputError on any write error. The destructor closes too, but
-  /// cannot report: call close() to know the file is complete.
+  /// Publishes the file, throwing InputError on any write error. Without close() (an exception, a
+  /// stop) the file is not written at all.
   void close();
 
  private:
-  struct FileCloser {
-    void operator()(std::FILE* file) const { std::fclose(file); }
-  };
   void write_row(int frame, int id, const tracker::Box& box, float score);
 
-  std::string path_;
-  std::unique_ptr<std::FILE, FileCloser> file_;
+  OutputFile file_;
+  std::string line_;
 };
 
-/// Writes all rows and closes the file.
+/// Writes all rows and publishes the file.
 void write_results(const std::filesystem::path& path, const std::vector<MotRow>& rows);
+
+/// A coordinate as the results file holds it: two decimals as the reference SORT writes (far
+/// below a pixel: scores do not move).
+std::string results_number(float value);
+/// A width or height: as a coordinate, but never 0.00 for a box that has a size (a box 0.0001
+/// wide is written as such, so that every reader, `rtmot eval` included, takes it back).
+std::string results_size(float value);
 
 }  // namespace rtmot::motio

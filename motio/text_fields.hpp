@@ -7,21 +7,30 @@
 #include <string_view>
 #include <vector>
 
+#include "common/input_error.hpp"
+
 namespace rtmot::motio::detail {
 
-/// The whole file as one string; throws InputError naming the file if it cannot be read.
-std::string read_whole_file(const std::string& path);
+/// Longest line of a MOTChallenge text file: a row is ~60 bytes. A longer one is not a row, and
+/// splitting megabytes of commas into fields would cost memory many times its size.
+constexpr std::size_t kMaxLineBytes = 4096;
 
 /// Calls `on_line(line_number, text)` for each line without its line break (LF or CRLF), skipping
-/// lines that are empty or whitespace only.
+/// lines that are empty or whitespace only. A line above kMaxLineBytes is an InputError naming
+/// `file` and the line.
 template <typename OnLine>
-void for_each_line(std::string_view text, OnLine&& on_line) {
+void for_each_line(const std::string& file, std::string_view text, OnLine&& on_line) {
   int line_number = 0;
   while (!text.empty()) {
     const auto end = text.find('\n');
     std::string_view line = text.substr(0, end);
     text = end == std::string_view::npos ? std::string_view{} : text.substr(end + 1);
     ++line_number;
+    if (line.size() > kMaxLineBytes) {
+      throw InputError(file, line_number, "",
+                       "line of " + std::to_string(line.size()) +
+                           " bytes, longer than the limit of " + std::to_string(kMaxLineBytes));
+    }
     if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
     if (line.find_first_not_of(" \t") == std::string_view::npos) continue;
     on_line(line_number, line);

@@ -1,6 +1,7 @@
 #include "motio/track_runner.hpp"
 
 #include <chrono>
+#include <cstdint>
 
 #include "common/input_error.hpp"
 #include "tracker/tracker.hpp"
@@ -9,12 +10,9 @@ namespace rtmot::motio {
 
 namespace fs = std::filesystem;
 
-std::vector<std::vector<tracker::Detection>> load_detections(const fs::path& file,
-                                                             const SequenceInfo& info) {
-  if (!fs::exists(file)) throw InputError(file.string(), 0, "", "missing detections file");
+FrameDetections load_detections(const fs::path& file, const SequenceInfo& info) {
   if (file.filename() != "gt.txt") {
-    return detections_by_frame(read_mot_file(file, MotFileKind::detections, info.length),
-                               info.length);
+    return FrameDetections(read_mot_file(file, MotFileKind::detections, info.length));
   }
   // Ground truth as a perfect detector: only what the benchmark scores, at full confidence.
   std::vector<MotRow> rows = read_mot_file(file, MotFileKind::ground_truth, info.length);
@@ -26,41 +24,52 @@ std::vector<std::vector<tracker::Detection>> load_detections(const fs::path& fil
     row.conf = 1.F;
     kept.push_back(row);
   }
-  return detections_by_frame(kept, info.length);
+  return FrameDetections(kept);
 }
 
 TrackRun track_sequence(const fs::path& sequence_dir, const TrackOptions& options,
                         const ProgressCallback& progress) {
-  if (options.interval < 1) {
-    throw InputError("", 0, "interval", "must be at least 1", ExitCode::usage);
+  const SequenceInfo info = read_seqinfo(sequence_dir / "seqinfo.ini");
+  return track_detections(load_detections(sequence_dir / options.detections, info), info, options,
+                          progress);
+}
+
+TrackRun track_detections(const FrameDetections& detections, const SequenceInfo& info,
+                          const TrackOptions& options, const ProgressCallback& progress) {
+  if (options.interval < 1 || options.interval > kMaxFrame) {
+    throw InputError("", 0, "interval", "must be in [1, " + std::to_string(kMaxFrame) + "]",
+                     ExitCode::usage);
   }
   TrackRun run;
-  run.info = read_seqinfo(sequence_dir / "seqinfo.ini");
-  const auto detections = load_detections(sequence_dir / options.detections, run.info);
-
+  run.info = info;
   tracker::TrackerConfig config = options.config;
-  config.frame_rate = run.info.frame_rate;
-  config.image_width = static_cast<float>(run.info.width);
-  config.image_height = static_cast<float>(run.info.height);
+  config.frame_rate = info.frame_rate;
+  config.image_width = static_cast<float>(info.width);
+  config.image_height = static_cast<float>(info.height);
   tracker::Tracker tracker(config);
 
   using Clock = std::chrono::steady_clock;
   Clock::duration in_update{};
-  for (int frame = 1; frame <= run.info.length; frame += options.interval) {
-    const double time = (frame - 1) / run.info.frame_rate;
+  // 64-bit: frame + interval cannot overflow whatever the interval.
+  for (std::int64_t frame = 1; frame <= info.length; frame += options.interval) {
+    if (options.stop != nullptr && options.stop->load(std::memory_order_acquire)) {
+      run.stopped = true;
+      break;
+    }
+    const double time = static_cast<double>(frame - 1) / info.frame_rate;
     const auto start = Clock::now();
-    const auto& reports = tracker.update(detections[static_cast<std::size_t>(frame - 1)], time);
+    const auto& reports = tracker.update(detections.at(frame), time);
     in_update += Clock::now() - start;
     for (const auto& report : reports) {
       MotRow row;
-      row.frame = frame;
+      row.frame = static_cast<int>(frame);
       row.id = report.id;
       row.box = report.box;
       row.conf = report.score;
       run.tracks.push_back(row);
     }
     ++run.frames_processed;
-    if (progress) progress(frame, run.info.length);
+    if (progress) progress(static_cast<int>(frame), info.length);
   }
   run.seconds_in_update = std::chrono::duration<double>(in_update).count();
   return run;

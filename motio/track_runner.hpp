@@ -1,10 +1,13 @@
 #pragma once
-// Runs the tracker over a MOTChallenge sequence's detections: the library side of `rtmot track`.
+// Runs the tracker over a MOTChallenge sequence's detections: the library side of `rtmot track`,
+// and the loop the study runs too.
+#include <atomic>
 #include <filesystem>
 #include <functional>
 #include <string>
 #include <vector>
 
+#include "motio/frame_detections.hpp"
 #include "motio/mot_files.hpp"
 #include "tracker/tracker_config.hpp"
 
@@ -16,8 +19,10 @@ struct TrackOptions {
   /// Relative to the sequence folder. A file named gt.txt is used as a perfect detector: its ids
   /// and its ignored rows (conf 0, non-pedestrian classes) are dropped.
   std::filesystem::path detections{"det/det.txt"};
-  /// Process frames 1, 1 + interval, ... only, keeping their numbers and times.
+  /// Process frames 1, 1 + interval, ... only, keeping their numbers and times. 1..kMaxFrame.
   int interval{1};
+  /// When set and true, the run stops before its next frame (TrackRun::stopped).
+  const std::atomic<bool>* stop{nullptr};
 };
 
 struct TrackRun {
@@ -25,6 +30,7 @@ struct TrackRun {
   std::vector<MotRow> tracks;  // one row per reported track and frame
   int frames_processed{0};
   double seconds_in_update{0.0};  // time spent inside Tracker::update only
+  bool stopped{false};            // by TrackOptions::stop, before the sequence's end
 };
 
 /// Called after each processed frame with (frame, sequence length); for progress reports.
@@ -33,8 +39,12 @@ using ProgressCallback = std::function<void(int frame, int length)>;
 TrackRun track_sequence(const std::filesystem::path& sequence_dir, const TrackOptions& options,
                         const ProgressCallback& progress = {});
 
-/// The detections a TrackOptions::detections file holds, grouped by frame.
-std::vector<std::vector<tracker::Detection>> load_detections(const std::filesystem::path& file,
-                                                             const SequenceInfo& info);
+/// The tracker over `detections` (options.detections is not read): frames 1, 1 + interval, ...
+/// of `info`'s length, at time (frame - 1) / frame rate.
+TrackRun track_detections(const FrameDetections& detections, const SequenceInfo& info,
+                          const TrackOptions& options, const ProgressCallback& progress = {});
+
+/// The detections a TrackOptions::detections file holds, by frame.
+FrameDetections load_detections(const std::filesystem::path& file, const SequenceInfo& info);
 
 }  // namespace rtmot::motio

@@ -2,9 +2,8 @@
 
 #include <fmt/format.h>
 
-#include <fstream>
-
 #include "common/input_error.hpp"
+#include "common/output_file.hpp"
 
 namespace rtmot::pipeline {
 namespace {
@@ -115,10 +114,8 @@ std::string summary_line(const StreamReport& stream) {
 }
 
 void write_report(const PipelineReport& report, const std::string& path) {
-  std::ofstream file(path);
-  if (!file) throw InputError(path, 0, "output.report", "cannot open the report file for writing");
-  file << to_json(report).dump(2) << '\n';
-  if (!file.flush()) throw InputError(path, 0, "output.report", "cannot write the report file");
+  // Published whole or not at all (a full disk is exit 7, io_error).
+  write_whole_file(path, to_json(report).dump(2) + '\n');
 }
 
 }  // namespace rtmot::pipeline

@@ -237,7 +237,20 @@ ReadStatus GstVideoSource::read(cv::Mat& bgr, FrameInfo& info) {
   if (GST_CLOCK_TIME_IS_VALID(pts) && pts >= first_pts_) {
     info.pts_ns = static_cast<std::int64_t>(pts - first_pts_);
   } else {
-    info.pts_ns = info_.fps > 0.0 ? std::llround((info.frame_number - 1) * 1e9 / info_.fps) : 0;
+    // No timestamp (e.g. a multipart MJPEG file): the frame's place in time is its number at the
+    // stream's rate. Without a rate every frame sat at pts 0 and a realtime run released them all
+    // at once, keeping 3 of 30 without a word; assume one, and say so.
+    const double fps = info_.fps > 0.0      ? info_.fps
+                       : options_.fps > 0.0 ? options_.fps
+                                            : kAssumedFps;
+    if (!warned_untimed_) {
+      warned_untimed_ = true;
+      spdlog::warn(
+          "{}: frames without timestamps{}: timing them at {:.3g} fps{}", uri_.text,
+          info_.fps > 0.0 ? "" : " and no frame rate", fps,
+          info_.fps > 0.0 || options_.fps > 0.0 ? "" : " (set source.fps if that is wrong)");
+    }
+    info.pts_ns = std::llround(static_cast<double>(info.frame_number - 1) * 1e9 / fps);
   }
   info.capture_ns = capture_ns;
   return ReadStatus::frame;

@@ -38,8 +38,12 @@ class GstVideoSource final : public VideoSource {
   bool adopt_caps(GstCaps* caps);
   std::int64_t frame_number_of(const GstBuffer* buffer);
 
+  // Frames that carry no timestamp in a stream that states no rate are timed at this rate.
+  static constexpr double kAssumedFps = 30.0;
+
   const VideoUri uri_;
   const SourceOptions options_;
+  bool warned_untimed_{false};
   SourceInfo info_;
   std::string last_error_;
   bool bus_error_{false};

@@ -2,13 +2,13 @@
 
 #include <yaml-cpp/yaml.h>
 
-#include <fstream>
 #include <optional>
 #include <set>
-#include <sstream>
 
 #include "common/input_error.hpp"
+#include "common/input_file.hpp"
 #include "detector/dnn_backend.hpp"
+#include "runner/host_port.hpp"
 #include "runner/sequence_clock_source.hpp"
 #include "runner/yaml_section.hpp"
 #include "tracker/presets.hpp"
@@ -17,13 +17,24 @@
 namespace rtmot::runner {
 namespace {
 
+// The documented ranges (docs/config.md) of the keys outside `tracker:`.
+constexpr int kMaxImageSide = 16384;
+constexpr double kMaxFps = 1000.0;
+constexpr double kMaxLatencyMs = 3'600'000.0;
+constexpr int kMaxThreads = 256;
+constexpr int kMaxClassId = 1000;
+constexpr double kMaxStatsInterval = 86'400.0;
+constexpr std::int64_t kMaxFrames = 1'000'000'000'000;
+// A configuration is a page of text: a bigger file is not one.
+constexpr std::uint64_t kMaxConfigBytes = 1 << 20;
+
 void read_source(Section section, SourceConfig& source) {
   section.read("uri", source.uri);
-  read_checked(
-      section, "width", source.width, [](int v) { return v >= 0; }, "a size >= 0");
-  read_checked(
-      section, "height", source.height, [](int v) { return v >= 0; }, "a size >= 0");
-  read_checked(section, "fps", source.fps, non_negative, "a rate >= 0");
+  read_checked(section, "width", source.width, within(0, kMaxImageSide),
+               "a size in [0, " + std::to_string(kMaxImageSide) + "]");
+  read_checked(section, "height", source.height, within(0, kMaxImageSide),
+               "a size in [0, " + std::to_string(kMaxImageSide) + "]");
+  read_checked(section, "fps", source.fps, within(0.0, kMaxFps), "a rate in [0, 1000]");
   read_checked(
       section, "stream_id", source.stream_id,
       [](std::int64_t v) { return v >= 0 && v <= std::int64_t{0xFFFFFFFF}; },
@@ -62,8 +73,8 @@ void read_playback(Section section, PlaybackConfig& playback) {
     playback.mode = *parsed;
   }
   read_checked(
-      section, "latency_ms", playback.latency_ms, [](double v) { return v > 0.0; },
-      "a latency > 0");
+      section, "latency_ms", playback.latency_ms,
+      [](double v) { return v > 0.0 && v <= kMaxLatencyMs; }, "a latency in (0, 3600000]");
   section.reject_unknown();
 }
 
@@ -81,8 +92,7 @@ void read_detector(Section section, DetectorConfig& detector) {
       section, "fp16", detector.fp16,
       [](const std::string& v) { return detector::parse_fp16_request(v).has_value(); },
       "auto, on or off");
-  read_checked(
-      section, "threads", detector.threads, [](int v) { return v >= 0; }, "a count >= 0");
+  read_checked(section, "threads", detector.threads, within(0, kMaxThreads), "a count in [0, 256]");
   read_checked(section, "score_threshold", detector.score_threshold, unit_interval,
                "a score in [0, 1]");
   read_checked(section, "nms_threshold", detector.nms_threshold, unit_interval, "an IoU in [0, 1]");
@@ -90,11 +100,11 @@ void read_detector(Section section, DetectorConfig& detector) {
       section, "classes", detector.classes,
       [](const std::vector<int>& ids) {
         for (const int id : ids) {
-          if (id < 0) return false;
+          if (id < 0 || id > kMaxClassId) return false;
         }
         return true;
       },
-      "class ids >= 0");
+      "class ids in [0, 1000]");
   section.read("det_file", detector.det_file);
   section.reject_unknown();
 }
@@ -136,7 +146,11 @@ void read_tracker(Section section, tracker::TrackerConfig& config) {
 }
 
 void read_output(Section section, OutputConfig& output) {
-  section.read("udp", output.udp);
+  if (section.read("udp", output.udp) && !output.udp.empty()) {
+    const YAML::Node value = *section.find("udp");
+    parse_host_port(output.udp, section.file(), line_of(value), section.field("udp"),
+                    ExitCode::bad_input);
+  }
   section.read("binary_file", output.binary_file);
   section.read("jsonl_file", output.jsonl_file);
   section.read("video_file", output.video_file);
@@ -196,20 +210,17 @@ RunConfig parse_run_config(const std::string& yaml_text, const std::string& file
   read_tracker(Section(top.child("tracker"), file_name, "tracker"), config.tracker);
   read_output(Section(top.child("output"), file_name, "output"), config.output);
   read_threads(Section(top.child("threads"), file_name, "threads"), file_name, config.threads);
-  read_checked(top, "stats_interval_s", config.stats_interval_s, non_negative, "an interval >= 0");
+  read_checked(top, "stats_interval_s", config.stats_interval_s, within(0.0, kMaxStatsInterval),
+               "an interval in [0, 86400]");
   top.read("stream_id", config.stream_id);
-  read_checked(
-      top, "max_frames", config.max_frames, [](std::int64_t v) { return v >= 0; }, "a count >= 0");
+  read_checked(top, "max_frames", config.max_frames, within<std::int64_t>(0, kMaxFrames),
+               "a count in [0, 10^12]");
   top.reject_unknown();
   return config;
 }
 
 RunConfig load_run_config(const std::string& path) {
-  std::ifstream file(path);
-  if (!file) throw InputError(path, 0, "", "cannot open the configuration file");
-  std::ostringstream text;
-  text << file.rdbuf();
-  return parse_run_config(text.str(), path);
+  return parse_run_config(read_text_file(path, kMaxConfigBytes), path);
 }
 
 std::vector<SourceConfig> source_list(const RunConfig& config) {
@@ -217,7 +228,7 @@ std::vector<SourceConfig> source_list(const RunConfig& config) {
 }
 
 std::uint32_t stream_id_of(const RunConfig& config, std::size_t index) {
-  const SourceConfig& source = source_list(config).at(index);
+  const SourceConfig& source = config.sources.empty() ? config.source : config.sources.at(index);
   if (source.stream_id >= 0) return static_cast<std::uint32_t>(source.stream_id);
   return config.stream_id + static_cast<std::uint32_t>(index);
 }

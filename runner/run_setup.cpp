@@ -3,41 +3,22 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <opencv2/core/utility.hpp>
 
 #include "common/input_error.hpp"
 #include "detector/dnn_backend.hpp"
 #include "detector/replay_detector.hpp"
-#include "motio/mot_files.hpp"
-#include "tracker/score_scale.hpp"
 #include "detector/ssd_detector.hpp"
 #include "messages/binary_file_sink.hpp"
 #include "messages/jsonl_sink.hpp"
 #include "messages/udp_sink.hpp"
+#include "motio/mot_files.hpp"
+#include "runner/host_port.hpp"
 #include "runner/source_factory.hpp"
+#include "tracker/score_scale.hpp"
 
 namespace rtmot::runner {
 namespace {
-
-struct HostPort {
-  std::string host;
-  std::uint16_t port{0};
-};
-
-HostPort parse_host_port(const RunConfig& config) {
-  const std::string& text = config.output.udp;
-  const auto colon = text.rfind(':');
-  const auto bad = [&] {
-    return InputError(config.file, 0, "output.udp", "expected HOST:PORT, got '" + text + "'");
-  };
-  if (colon == std::string::npos || colon == 0 || colon + 1 == text.size()) throw bad();
-  int port = 0;
-  for (const char c : text.substr(colon + 1)) {
-    if (c < '0' || c > '9' || port > 65535) throw bad();
-    port = port * 10 + (c - '0');
-  }
-  if (port < 1 || port > 65535) throw bad();
-  return {text.substr(0, colon), static_cast<std::uint16_t>(port)};
-}
 
 std::unique_ptr<platform::VideoSource> open_configured(const SourceConfig& source) {
   platform::SourceOptions options;
@@ -86,7 +67,8 @@ void warn_on_score_scale(const DetectorConfig& detector, const tracker::TrackerC
 std::unique_ptr<detector::Detector> make_detector(const RunConfig& config) {
   const DetectorConfig& wanted = config.detector;
   if (wanted.kind == "replay") {
-    auto replay = std::make_unique<detector::ReplayDetector>(wanted.det_file, wanted.score_threshold);
+    auto replay =
+        std::make_unique<detector::ReplayDetector>(wanted.det_file, wanted.score_threshold);
     warn_on_score_scale(wanted, config.tracker);
     return replay;
   }
@@ -99,7 +81,16 @@ std::unique_ptr<detector::Detector> make_detector(const RunConfig& config) {
   // Both were checked by the config parser.
   ssd.backend = detector::parse_backend_request(wanted.backend).value();
   ssd.fp16 = detector::parse_fp16_request(wanted.fp16).value();
-  ssd.threads = wanted.threads;
+  // 0 ("automatic") is made explicit. Left to itself, a TBB build of OpenCV (Debian's, ours) runs
+  // its DNN in TBB's automatic arena, sized by TBB: it ignores OpenCV's own OPENCV_FOR_THREADS_NUM
+  // (measured) and, depending on the TBB version, a container's CPU quota (docker --cpus), so it
+  // can run more workers than the CPUs we may use, and a layer split over them waits for its
+  // slowest part. OpenCV's CPU count honours the affinity mask, cpusets and the cgroup quota; on a
+  // machine without either both give the same count (measured: no difference on the 2-core CI
+  // machine).
+  ssd.threads = wanted.threads > 0 ? wanted.threads : std::max(1, cv::getNumberOfCPUs());
+  spdlog::info("detector threads: {}{}", ssd.threads,
+               wanted.threads > 0 ? "" : " (the CPUs this process may use)");
   // One forward pass takes one frame of every source (the detect stage batches them): without
   // this the SSD would split each batch into single images again.
   ssd.max_batch = static_cast<int>(
@@ -111,7 +102,9 @@ std::vector<std::unique_ptr<messages::TrackSink>> make_sinks(const RunConfig& co
   std::vector<std::unique_ptr<messages::TrackSink>> sinks;
   const OutputConfig& output = config.output;
   if (!output.udp.empty()) {
-    const HostPort target = parse_host_port(config);
+    // Checked when the file was read (with its line) or the override given.
+    const HostPort target =
+        parse_host_port(output.udp, config.file, 0, "output.udp", ExitCode::bad_input);
     sinks.push_back(std::make_unique<messages::UdpSink>(target.host, target.port));
   }
   if (!output.binary_file.empty()) {

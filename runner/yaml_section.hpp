@@ -4,7 +4,9 @@
 // configuration (runner/run_config.cpp).
 #include <yaml-cpp/yaml.h>
 
+#include <cmath>
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <set>
 #include <string>
@@ -45,13 +47,23 @@ inline std::string type_name(const std::vector<int>&) {
   return "a list of integers";
 }
 
-// One mapping of the file: reads the keys it knows and rejects the rest.
+// One mapping of the file: reads the keys it knows and rejects the rest, and a key given twice
+// (YAML parsers keep both; which one wins is not what the user can see).
 class Section {
  public:
   Section(const YAML::Node& node, std::string file, std::string prefix)
       : node_(node), file_(std::move(file)), prefix_(std::move(prefix)) {
     if (node_.IsNull()) return;  // "section:" with nothing under it
     if (!node_.IsMap()) fail(node_, "", "expected a mapping of keys");
+    std::map<std::string, int> first_line;
+    for (const auto& entry : node_) {
+      const auto key = key_text(entry.first);
+      const auto [earlier, fresh] = first_line.emplace(key, line_of(entry.first));
+      if (!fresh) {
+        fail(entry.first, key,
+             "appears twice (first on line " + std::to_string(earlier->second) + ")");
+      }
+    }
   }
 
   /// Reads `key` into `out` if present (keeps `out` otherwise). Returns true if it was present.
@@ -71,6 +83,10 @@ class Section {
       }
     }
     if (!ok) fail(value, key, "expected " + type_name(out));
+    if constexpr (std::is_floating_point_v<T>) {
+      // yaml-cpp reads .nan and .inf: no setting means them, and NaN passes every range check.
+      if (!std::isfinite(out)) fail(value, key, "expected a finite number, got " + value.Scalar());
+    }
     return true;
   }
 
@@ -85,6 +101,8 @@ class Section {
                          const std::string& problem) const {
     throw InputError(file_, line_of(where), field(key), problem);
   }
+
+  const std::string& file() const { return file_; }
 
   std::string field(const std::string& key) const {
     return prefix_.empty() ? key : key.empty() ? prefix_ : prefix_ + "." + key;
@@ -149,6 +167,12 @@ inline bool non_negative(double value) {
 }
 inline bool unit_interval(double value) {
   return value >= 0.0 && value <= 1.0;
+}
+
+/// A range check for read_checked: `low <= value <= high`.
+template <typename T>
+auto within(T low, T high) {
+  return [low, high](T value) { return value >= low && value <= high; };
 }
 
 }  // namespace rtmot::runner

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "common/exit_codes.hpp"
+#include "run_process.hpp"
 #include "workspace.hpp"
 
 namespace rtmot::test {
@@ -23,8 +24,14 @@ struct CatalogueCase {
   std::vector<std::string> mentions;  // the error line names these (file, line, field); {vars} ok
   /// Optional: checks the outputs written before the error are complete and valid.
   std::function<void(const Workspace&)> check_outputs{};
+  /// Optional: a file-size limit (a full disk), signals at chosen moments, a time limit.
+  ProcessConditions conditions{};
+  /// Optional (0: unchecked): the child's peak resident memory must stay below this.
+  long max_rss_mb{0};
 };
 
 const std::vector<CatalogueCase>& catalogue();
+/// Round two: what a hostile tester found (issue 11), a class per block; catalogue() includes it.
+std::vector<CatalogueCase> hostile_cases();
 
 }  // namespace rtmot::test

@@ -60,8 +60,19 @@ void first_results_complete(const Workspace& ws) {
 
 }  // namespace
 
+std::vector<CatalogueCase> first_round();
+
 const std::vector<CatalogueCase>& catalogue() {
-  static const std::vector<CatalogueCase> cases = {
+  static const std::vector<CatalogueCase> cases = [] {
+    std::vector<CatalogueCase> all = first_round();
+    for (auto& c : hostile_cases()) all.push_back(std::move(c));
+    return all;
+  }();
+  return cases;
+}
+
+std::vector<CatalogueCase> first_round() {
+  return {
       // ---- MOTChallenge sequences: `rtmot track` -------------------------------------------
       {"track_missing_sequence_folder",
        "sequence folder does not exist",
@@ -379,7 +390,6 @@ const std::vector<CatalogueCase>& catalogue() {
        ExitCode::usage,
        {"loud"}},
   };
-  return cases;
 }
 
 }  // namespace rtmot::test

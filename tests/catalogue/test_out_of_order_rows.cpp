@@ -34,7 +34,7 @@ TEST(OutOfOrderRows, ShuffledDetectionsTrackExactlyLikeOrderedOnes) {
   ws.write("shuffled/TUD-Campus/det/det.txt", shuffled);
 
   for (const std::string variant : {"ordered", "shuffled"}) {
-    const auto run = run_process({RTMOT_BINARY, "track", "--dataset", ws.path(variant).string(),
+    const auto run = run_process({rtmot_binary(), "track", "--dataset", ws.path(variant).string(),
                                   "--out", ws.path(variant + "-out").string()},
                                  ws.dir(), std::chrono::seconds(60));
     ASSERT_TRUE(run.exited && run.exit_code == 0) << variant << ": " << run.err;

@@ -5,6 +5,7 @@
 
 #include "common/input_error.hpp"
 #include "memory_file.hpp"
+#include "motio/frame_detections.hpp"
 #include "motio/mot_files.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -20,10 +21,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   try {
     const auto rows = with_length ? rtmot::motio::read_mot_file(path, kind, 1000)
                                   : rtmot::motio::read_mot_file(path, kind);
-    int length = 0;
-    for (const auto& row : rows) length = row.frame > length ? row.frame : length;
-    // Only a sane length: the grouping allocates one vector per frame.
-    if (length <= 100000) rtmot::motio::detections_by_frame(rows, length);
+    // Sparse: any frame number costs only its rows.
+    const rtmot::motio::FrameDetections frames(rows);
+    std::size_t boxes = 0;
+    for (const auto& row : rows) boxes += frames.at(row.frame).size();
+    (void)boxes;
   } catch (const rtmot::InputError&) {
   }
   return 0;

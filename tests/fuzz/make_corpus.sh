@@ -10,7 +10,7 @@ mot=$shared/data/mot15-train
 [[ -d $mot ]] || { echo "missing test data: $mot" >&2; exit 1; }
 
 rm -rf "$out"
-mkdir -p "$out"/{mot_rows,seqinfo,run_config,video_uri,message_decoder}
+mkdir -p "$out"/{mot_rows,seqinfo,run_config,host_port,video_uri,message_decoder}
 
 # MOT rows: the first byte picks the kind (0 det, 1 gt, 2 results; +0x80 = with a length check).
 prefixed() {  # BYTE FILE OUT
@@ -66,6 +66,14 @@ tracker:
   max_tracks: 64
   max_detections: 64
 YAML
+
+# Addresses as configurations give them.
+i=0
+for address in 127.0.0.1:5600 ground-station.local:5600 '[::1]:5600' '[fe80::1%eth0]:9' \
+  localhost:65535 10.0.0.2:1; do
+  printf '%s' "$address" >"$out/host_port/$i"
+  i=$((i + 1))
+done
 
 # Video URIs of every kind.
 i=0

@@ -6,9 +6,10 @@
 #include "mot/evaluation.hpp"
 #include "mot/prepared_sequence.hpp"
 #include "mot/scorer.hpp"
+#include "motio/sequence_folders.hpp"
 #include "motio/track_runner.hpp"
-#include "tracker/presets.hpp"
 #include "shared_data.hpp"
+#include "tracker/presets.hpp"
 
 namespace rtmot::mot {
 namespace {
@@ -16,7 +17,7 @@ namespace {
 TEST(SortOnMot15Train, ReachesTheReferenceMotaAndIdf1) {
   const auto dataset = test::shared_path("data/mot15-train");
   RTMOT_REQUIRE_FILE(dataset);
-  const auto sequence_dirs = find_sequence_dirs(dataset);
+  const auto sequence_dirs = motio::find_sequence_dirs(dataset);
   ASSERT_EQ(sequence_dirs.size(), 11U);
 
   motio::TrackOptions options;
@@ -24,8 +25,8 @@ TEST(SortOnMot15Train, ReachesTheReferenceMotaAndIdf1) {
   std::vector<SequenceScore> scores;
   for (const auto& dir : sequence_dirs) {
     const motio::TrackRun run = motio::track_sequence(dir, options);
-    const auto gt_rows =
-        motio::read_mot_file(dir / "gt" / "gt.txt", motio::MotFileKind::ground_truth, run.info.length);
+    const auto gt_rows = motio::read_mot_file(dir / "gt" / "gt.txt",
+                                              motio::MotFileKind::ground_truth, run.info.length);
     PrepareOptions prepare;
     prepare.sequence_length = run.info.length;
     SequenceScore score;

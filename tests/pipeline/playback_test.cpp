@@ -11,6 +11,7 @@
 #include <thread>
 
 #include "common/input_error.hpp"
+#include "motio/frame_detections.hpp"
 #include "motio/mot_files.hpp"
 #include "pipeline/pipeline.hpp"
 #include "pipeline_test_parts.hpp"
@@ -134,23 +135,22 @@ TEST(SequencePlayback, ImageLessMotSequenceFeedsItsDetectionsFrameByFrame) {
   RTMOT_REQUIRE_FILE(sequence / "seqinfo.ini");
   RTMOT_REQUIRE_FILE(sequence / "det/det.txt");
   const motio::SequenceInfo info = motio::read_seqinfo(sequence / "seqinfo.ini");
-  const auto by_frame = motio::detections_by_frame(
-      motio::read_mot_file(sequence / "det/det.txt", motio::MotFileKind::detections), info.length);
+  const motio::FrameDetections by_frame(
+      motio::read_mot_file(sequence / "det/det.txt", motio::MotFileKind::detections));
 
   // Hands out det.txt's boxes by frame number and checks that no image came with them.
   class DetFileDetector : public detector::Detector {
    public:
-    explicit DetFileDetector(const std::vector<std::vector<tracker::Detection>>& by_frame)
-        : by_frame_(by_frame) {}
+    explicit DetFileDetector(const motio::FrameDetections& by_frame) : by_frame_(by_frame) {}
     void detect(const cv::Mat& image, std::int64_t frame_number,
                 std::vector<tracker::Detection>& out) override {
       EXPECT_TRUE(image.empty());
-      out = by_frame_.at(static_cast<std::size_t>(frame_number - 1));
+      out = by_frame_.at(frame_number);
     }
     std::string describe() const override { return "det.txt"; }
 
    private:
-    const std::vector<std::vector<tracker::Detection>>& by_frame_;
+    const motio::FrameDetections& by_frame_;
   };
 
   Collected collected;

@@ -1,0 +1,65 @@
+#pragma once
+// The one RAII output file of rtmot (results, message files, reports, tables). Written in whole
+// records: a record is buffered whole and the buffer reaches the disk only at record boundaries,
+// so a reader never sees half of one, even after SIGKILL (a record above the buffer's size goes
+// out in one write() of its own), and a failed write (disk full) is cut back to the last whole
+// record. A file can also appear only once complete: written to a temporary beside it and renamed
+// by close(), so a stopped or killed program leaves the old file or the new one, never a part.
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <string_view>
+#include <vector>
+
+namespace rtmot {
+
+class OutputFile {
+ public:
+  enum class Publish {
+    as_written,  // PATH itself, created or truncated now (streams: messages, JSON lines)
+    on_close,    // PATH appears at close(), whole; until then PATH.tmp-<pid>
+  };
+
+  /// Throws InputError (bad_input) naming `path` if it cannot be created.
+  explicit OutputFile(std::filesystem::path path, Publish publish = Publish::as_written,
+                      std::size_t buffer_bytes = 64 * 1024);
+  /// Without close(): an `as_written` file gets its whole buffered records and is closed (errors
+  /// cannot be reported here: call flush() or close() to know); an `on_close` temporary is
+  /// removed, PATH is left as it was.
+  ~OutputFile();
+  OutputFile(OutputFile&& other) noexcept;
+  OutputFile& operator=(OutputFile&&) = delete;
+  OutputFile(const OutputFile&) = delete;
+  OutputFile& operator=(const OutputFile&) = delete;
+
+  /// Appends one whole record. Throws InputError (io_error) naming the file if writing failed;
+  /// the file then ends with the last whole record.
+  void write(const void* data, std::size_t size);
+  void write(std::string_view text) { write(text.data(), text.size()); }
+  /// Hands every buffered record to the kernel; throws as write().
+  void flush();
+  /// Flushes, closes and (on_close) publishes PATH; throws as write(). Idempotent.
+  void close();
+
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  /// Writes `size` bytes; on failure cuts the file back to the end of the last whole record,
+  /// `record_ends` (ascending offsets in `data`) telling where records end.
+  void write_out(const char* data, std::size_t size, const std::vector<std::size_t>& record_ends);
+  [[noreturn]] void fail(const char* action, int error);
+
+  std::filesystem::path path_;
+  std::filesystem::path written_path_;  // path_, or the temporary
+  Publish publish_;
+  int fd_{-1};
+  std::uint64_t whole_bytes_{0};  // bytes on disk, all whole records
+  std::vector<char> buffer_;
+  std::size_t used_{0};
+  std::vector<std::size_t> record_ends_;  // in buffer_: where each buffered record ends
+};
+
+/// Writes `text` to `path` as one record, published on close (never a partial file).
+void write_whole_file(const std::filesystem::path& path, std::string_view text);
+
+}  // namespace rtmot

@@ -1,0 +1,21 @@
+#pragma once
+// HOST:PORT as the run configuration and `--udp` take it: a name or an IPv4 address, or an IPv6
+// address in brackets ([::1]:5600), and a port in 1..65535.
+#include <cstdint>
+#include <string>
+
+#include "common/exit_codes.hpp"
+
+namespace rtmot::runner {
+
+struct HostPort {
+  std::string host;  // without the brackets of an IPv6 address
+  std::uint16_t port{0};
+};
+
+/// Throws InputError naming `file`, `line` and `field`, with `code` (bad_input for a configuration
+/// file, usage for the command line), if `text` is not HOST:PORT.
+HostPort parse_host_port(const std::string& text, const std::string& file, int line,
+                         const std::string& field, ExitCode code);
+
+}  // namespace rtmot::runner

@@ -1,0 +1,85 @@
+// Records written whole (issue 11, class 7): `rtmot run` streaming messages to a JSON-lines file
+// and a binary message file is stopped the hard ways, by SIGKILL and by a second SIGTERM (which
+// ends it at once). A reader must find only whole records: every JSON line complete, the binary
+// file's framing intact to its end. Before, stdio flushed its buffer wherever it filled, so the
+// last record was cut.
+#include <gtest/gtest.h>
+
+#include <csignal>
+#include <sstream>
+
+#include "messages/message_file_reader.hpp"
+#include "run_process.hpp"
+#include "shared_data.hpp"
+#include "workspace.hpp"
+
+namespace rtmot::test {
+namespace {
+
+using std::chrono::milliseconds;
+
+// 20,000 frames of eight boxes: the run is still writing when it is stopped.
+std::string busy_det_file() {
+  std::ostringstream det;
+  for (int frame = 1; frame <= 20'000; ++frame) {
+    for (int box = 0; box < 8; ++box) {
+      det << frame << ",-1," << 10 + 70 * box << "," << 20 + frame % 50 << ",40,90,0.9,-1,-1,-1\n";
+    }
+  }
+  return det.str();
+}
+
+// Returns the number of JSON lines.
+int check_records_whole(const Workspace& ws) {
+  const std::string jsonl = read_text(ws.path("out.jsonl"));
+  EXPECT_FALSE(jsonl.empty()) << "nothing was written before the stop";
+  if (jsonl.empty()) return 0;
+  EXPECT_EQ(jsonl.back(), '\n') << "the last JSON line is cut";
+  std::istringstream lines(jsonl);
+  int count = 0;
+  for (std::string line; std::getline(lines, line); ++count) {
+    const bool whole = !line.empty() && line.front() == '{' && line.back() == '}';
+    EXPECT_TRUE(whole) << "line " << count + 1 << " is not a whole record";
+    if (!whole) break;
+  }
+  messages::MessageFileReader reader(ws.path("out.bin"));
+  std::vector<std::uint8_t> record;
+  messages::FileReadStatus status = messages::FileReadStatus::message;
+  while ((status = reader.next(record)) == messages::FileReadStatus::message) {
+  }
+  EXPECT_EQ(status, messages::FileReadStatus::end_of_file) << reader.problem();
+  EXPECT_GT(reader.records_read(), 0U);
+  return count;
+}
+
+void run_and_stop(const std::string& name, std::vector<TimedSignal> signals) {
+  Workspace ws(name);
+  ws.write("det.txt", busy_det_file());
+  ws.write("run.yaml",
+           "source:\n  uri: test://ball?width=64&height=48&num-buffers=20000\n"
+           "playback:\n  mode: every-frame\ndetector:\n  kind: replay\n  det_file: " +
+               ws.path("det.txt").string() + "\nstats_interval_s: 0\n");
+  ProcessConditions conditions;
+  conditions.signals = std::move(signals);
+  const auto run =
+      run_process({rtmot_binary(), "run", "--config", ws.path("run.yaml").string(), "--jsonl",
+                   ws.path("out.jsonl").string(), "--binary", ws.path("out.bin").string()},
+                  ws.dir(), conditions);
+  ASSERT_FALSE(run.timed_out);
+  // Stopped part-way (a second SIGTERM may find the clean stop already done: exit 0 or 143).
+  EXPECT_LT(check_records_whole(ws), 20'000) << "the run ended before it was stopped";
+}
+
+TEST(RecordsWhole, AfterSigkill) {
+  run_and_stop("records_sigkill", {{SIGKILL, milliseconds(700), "detector:"}});
+}
+
+TEST(RecordsWhole, AfterASecondStopSignal) {
+  // The first asks for a clean stop; the second (SIGINT: two SIGTERMs sent together would merge
+  // into one) ends the process at once, without one.
+  run_and_stop("records_sigterm_twice",
+               {{SIGTERM, milliseconds(700), "detector:"}, {SIGINT, milliseconds(0), ""}});
+}
+
+}  // namespace
+}  // namespace rtmot::test
