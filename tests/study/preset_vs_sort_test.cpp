@@ -6,6 +6,8 @@
 
 #include <memory>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "mot/metrics.hpp"
 #include "mot/study_dataset.hpp"
@@ -70,9 +72,12 @@ TEST_F(PresetVsSort, DefaultTracksDoNotDependOnTheScoreScale) {
   REQUIRE_DATASET();
   LoadedSequence rescaled = (*dataset_)[8];  // TUD-Campus
   ASSERT_EQ(rescaled.info.name, "TUD-Campus");
-  for (auto& frame : rescaled.detections) {
-    for (auto& detection : frame) detection.score = 11.F * (detection.score - 0.5F) - 0.5F;
+  std::vector<std::vector<tracker::Detection>> frames;
+  for (std::int64_t frame = 1; frame <= rescaled.detections.last_frame(); ++frame) {
+    frames.push_back(rescaled.detections.at(frame));
+    for (auto& detection : frames.back()) detection.score = 11.F * (detection.score - 0.5F) - 0.5F;
   }
+  rescaled.detections = motio::FrameDetections::from_frames(std::move(frames));
   const auto config = *tracker::find_preset(tracker::default_preset_name());
   for (const int interval : {1, 5}) {
     const Metrics original =
