@@ -8,9 +8,8 @@
 namespace rtmot::tracker {
 namespace {
 // A track that was matched in the previous frame keeps the plain gate; each further frame lost
-// widens it, up to a bound past which unrelated objects would start to match.
+// widens it, up to a bound (max_gate_margin) past which unrelated objects would start to match.
 constexpr double kMarginPerLostFrame = 0.15;
-constexpr double kMaxMargin = 0.6;
 }  // namespace
 
 float iou_affinity(const Box& track, const Box& detection) {
@@ -40,14 +39,16 @@ double exponential_affinity(const Box& track, const Box& detection) {
   return std::isfinite(result) ? result : 0.0;
 }
 
-float widened_gate_margin(double frames_unmatched) {
+float widened_gate_margin(double frames_unmatched, double max_margin) {
   return static_cast<float>(
-      std::clamp((frames_unmatched - 1.0) * kMarginPerLostFrame, 0.0, kMaxMargin));
+      std::clamp((frames_unmatched - 1.0) * kMarginPerLostFrame, 0.0, max_margin));
 }
 
 double affinity(const TrackerConfig& config, const Box& track, const Box& detection,
                 double frames_unmatched) {
-  const float margin = config.time_widened_gate ? widened_gate_margin(frames_unmatched) : 0.F;
+  const float margin = config.time_widened_gate
+                           ? widened_gate_margin(frames_unmatched, config.max_gate_margin)
+                           : 0.F;
   switch (config.affinity) {
     case AffinityKind::iou:
       if (margin > 0.F) return iou(enlarged(track, margin), enlarged(detection, margin));

@@ -25,7 +25,8 @@ double exponential_affinity(const Box& track, const Box& detection);
 double affinity(const TrackerConfig& config, const Box& track, const Box& detection,
                 double frames_unmatched);
 
-/// The enlargement margin (fraction of the size per side) after `frames_unmatched` frames.
-float widened_gate_margin(double frames_unmatched);
+/// The enlargement margin (fraction of the size per side) after `frames_unmatched` frames, at most
+/// `max_margin`.
+float widened_gate_margin(double frames_unmatched, double max_margin);
 
 }  // namespace rtmot::tracker

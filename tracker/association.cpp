@@ -15,13 +15,13 @@ Associator::Associator(int rows, int cols) {
   assignment_.reserve(rows, cols);
 }
 
-void Associator::associate(const TrackerConfig& config, const std::vector<Detection>& detections,
+void Associator::associate(const TrackerConfig& config, double threshold,
+                           const std::vector<Detection>& detections,
                            const std::vector<AssociationCandidate>& candidates,
                            std::vector<AssociationMatch>& matches) {
   const int rows = static_cast<int>(detections.size());
   const int cols = static_cast<int>(candidates.size());
   if (rows == 0 || cols == 0) return;
-  const double threshold = config.affinity_threshold;
   const auto at = [cols](int r, int c) { return static_cast<std::size_t>(r) * cols + c; };
   affinities_.resize(static_cast<std::size_t>(rows) * cols);
   row_hits_.assign(rows, 0);

@@ -25,10 +25,11 @@ class Associator {
   /// Reserves a workspace for up to rows x cols matrices; larger ones grow it once.
   Associator(int rows, int cols);
 
-  /// Appends to `matches` the pairs whose affinity reaches config.affinity_threshold. When every
+  /// Appends to `matches` the pairs whose affinity reaches `threshold`. When every
   /// detection and every candidate has at most one partner above the threshold, those pairs are
   /// taken directly (sort.py's shortcut); otherwise the optimal assignment decides.
-  void associate(const TrackerConfig& config, const std::vector<Detection>& detections,
+  void associate(const TrackerConfig& config, double threshold,
+                 const std::vector<Detection>& detections,
                  const std::vector<AssociationCandidate>& candidates,
                  std::vector<AssociationMatch>& matches);
 

@@ -19,13 +19,16 @@ constexpr double kRangeHigh = 0.99;
 
 }  // namespace
 
-ScoreCut::ScoreCut(double quantile, double range_fraction, int window)
+ScoreCut::ScoreCut(double quantile, double range_fraction, int window, bool track_range)
     : quantile_(quantile),
       range_fraction_(range_fraction),
-      window_(quantile > 0.0 || range_fraction > 0.0 ? static_cast<std::size_t>(std::max(window, 1))
-                                                     : 0U),
+      window_(quantile > 0.0 || range_fraction > 0.0 || track_range
+                  ? static_cast<std::size_t>(std::max(window, 1))
+                  : 0U),
       scratch_(window_.size()),
-      cut_(kNoCut) {}
+      cut_(kNoCut),
+      low_(kNoCut),
+      high_(kNoCut) {}
 
 void ScoreCut::reset() {
   filled_ = 0;
@@ -33,6 +36,13 @@ void ScoreCut::reset() {
   seen_ = 0;
   next_recompute_ = 1;
   cut_ = kNoCut;
+  low_ = kNoCut;
+  high_ = kNoCut;
+}
+
+float ScoreCut::range_point(double fraction) const {
+  if (seen_ == 0) return kNoCut;
+  return low_ + static_cast<float>(fraction) * (high_ - low_);
 }
 
 float ScoreCut::observe(const std::vector<Detection>& detections) {
@@ -56,11 +66,9 @@ void ScoreCut::recompute() {
   std::copy_n(window_.begin(), filled_, scratch_.begin());
   cut_ = kNoCut;
   if (quantile_ > 0.0) cut_ = order_statistic(quantile_);
-  if (range_fraction_ > 0.0) {
-    const float low = order_statistic(kRangeLow);
-    const float high = order_statistic(kRangeHigh);
-    cut_ = std::max(cut_, low + static_cast<float>(range_fraction_) * (high - low));
-  }
+  low_ = order_statistic(kRangeLow);
+  high_ = order_statistic(kRangeHigh);
+  if (range_fraction_ > 0.0) cut_ = std::max(cut_, range_point(range_fraction_));
 }
 
 // The k-th smallest score of the window, k = floor(quantile x count); partially reorders scratch_.

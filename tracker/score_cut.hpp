@@ -18,12 +18,17 @@ namespace rtmot::tracker {
 class ScoreCut {
  public:
   /// `quantile` and `range_fraction` in [0, 1); 0 disables that cut. `window`: how many recent
-  /// scores are remembered.
-  ScoreCut(double quantile, double range_fraction, int window);
+  /// scores are remembered. `track_range`: keep the window for range_point() even with both cuts
+  /// off.
+  ScoreCut(double quantile, double range_fraction, int window, bool track_range = false);
 
   /// Adds the finite scores of `detections` to the window; returns the cut for this frame
   /// (the lowest float when disabled or nothing was seen). Allocates nothing.
   float observe(const std::vector<Detection>& detections);
+
+  /// low + f x (high - low) of the scores seen up to the last observe() (the lowest float before
+  /// any, or when the window is off).
+  float range_point(double fraction) const;
 
   void reset();
 
@@ -41,6 +46,8 @@ class ScoreCut {
   std::int64_t seen_{0};
   std::int64_t next_recompute_{1};
   float cut_;
+  float low_;   // 1st percentile of the window at the last recompute
+  float high_;  // 99th
 };
 
 }  // namespace rtmot::tracker

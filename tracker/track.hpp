@@ -37,6 +37,8 @@ struct Track {
   double frames_since_update{0.0};     // the same in nominal frames (equal with per_update)
   double streak_frames{0.0};           // nominal frames covered by the current hit streak
   float score{0.F};
+  double score_sum{0.0};  // of every match, for the track-level confidence
+  std::int32_t matches{0};
   std::int32_t class_id{0};
   TrackState state{TrackState::deleted};
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <utility>
 
@@ -43,7 +44,8 @@ struct Tracker::State {
         // MOT15 peaks at 16 detections a frame: a 64 x 64 workspace rarely has to grow.
         associator(std::min(c.max_detections, kTypicalSceneSize),
                    std::min(c.max_tracks, kTypicalSceneSize)),
-        score_cut(c.score_quantile, c.score_range_cut, kScoreWindow) {
+        score_cut(c.score_quantile, c.score_range_cut, kScoreWindow,
+                  c.birth_range_cut > 0.0 || c.confirm_score_cut > 0.0) {
     const auto tracks = static_cast<std::size_t>(config.max_tracks);
     const auto detections = static_cast<std::size_t>(config.max_detections);
     slots.resize(tracks);
@@ -179,7 +181,10 @@ struct Tracker::State {
   // ByteTrack: low-score detections may only continue the tracks the rounds before left coasting.
   void second_round() {
     collect_coasting_tracks();
-    associate(low, [](int d) { return d; });
+    const double threshold = config.second_round_threshold > 0.0 ? config.second_round_threshold
+                                                                 : config.affinity_threshold;
+    associate(
+        low, [](int d) { return d; }, threshold);
   }
 
   void collect_coasting_tracks() {
@@ -194,13 +199,18 @@ struct Tracker::State {
   // returns its index in `high` or `low` (the cascade associates a subset of `high`).
   template <typename Take>
   void associate(const std::vector<Detection>& detections, Take take) {
+    associate(detections, take, config.affinity_threshold);
+  }
+
+  template <typename Take>
+  void associate(const std::vector<Detection>& detections, Take take, double threshold) {
     candidates.clear();
     for (const int position : positions) {
       const Track& track = slots[order[position]];
       candidates.push_back(AssociationCandidate{track.predicted, track.frames_since_update});
     }
     round_matches.clear();
-    associator.associate(config, detections, candidates, round_matches);
+    associator.associate(config, threshold, detections, candidates, round_matches);
     for (const AssociationMatch& m : round_matches) {
       take(m.detection);
       correct_track(slots[order[positions[m.candidate]]], detections[m.detection]);
@@ -222,6 +232,8 @@ struct Tracker::State {
     track.frames_since_update = 0.0;
     ++track.hit_streak;
     track.score = detection.score;
+    track.score_sum += detection.score;
+    ++track.matches;
     track.state = TrackState::tentative;  // settle_and_report() decides whether it is confirmed
   }
 
@@ -239,10 +251,13 @@ struct Tracker::State {
     kalman = replay;
   }
 
-  // Every high-score detection that no round took starts a tentative track.
+  // Every high-score detection that no round took starts a tentative track (with a birth cut,
+  // only the confident ones: a continuation needs less evidence than a new object).
   void start_tracks() {
+    const float birth = config.birth_range_cut > 0.0 ? score_cut.range_point(config.birth_range_cut)
+                                                     : std::numeric_limits<float>::lowest();
     for (std::size_t d = 0; d < high.size(); ++d) {
-      if (!high_taken[d]) start_track(high[d]);
+      if (!high_taken[d] && high[d].score >= birth) start_track(high[d]);
     }
   }
 
@@ -279,6 +294,8 @@ struct Tracker::State {
     track.steps_since_update = 0;
     track.frames_since_update = 0.0;
     track.score = detection.score;
+    track.score_sum = detection.score;
+    track.matches = 1;
     track.class_id = detection.class_id;
     // sort.py reports a newborn track in the first min_hits frames: it counts as matched now.
     track.state = TrackState::tentative;
@@ -310,12 +327,21 @@ struct Tracker::State {
   }
 
   bool confirmed(const Track& track) const {
+    if (!confident(track)) return false;
     if (track.hit_streak >= config.min_hits || frame_count <= config.min_hits) return true;
     if (!config.confirm_by_duration) return false;
     // The streak's first frame is the birth (or re-match) itself, hence the one frame less than
     // hits; at full rate this is exactly the hit count.
-    return track.hit_streak >= 1 && (track.streak_frames + kFrameTolerance >= config.min_hits ||
-                                     elapsed_frames + kFrameTolerance < config.min_hits);
+    return track.hit_streak >= config.duration_min_hits &&
+           (track.streak_frames + kFrameTolerance >= config.min_hits ||
+            elapsed_frames + kFrameTolerance < config.min_hits);
+  }
+
+  // The track-level confidence: a false positive that recurs at one place is matched often but
+  // scores low on average; a person seen half-occluded scores low only for a while.
+  bool confident(const Track& track) const {
+    if (config.confirm_score_cut <= 0.0 || track.matches == 0) return true;
+    return track.score_sum / track.matches >= score_cut.range_point(config.confirm_score_cut);
   }
 
   void release(int slot) {

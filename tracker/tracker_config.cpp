@@ -19,6 +19,11 @@ TrackerConfig with_every_option(TrackerConfig base) {
   base.confirm_by_duration = true;
   base.min_coast_updates = 1;
   base.max_age = 3;
+  base.duration_min_hits = 2;
+  base.birth_range_cut = 0.6;
+  base.confirm_score_cut = 0.3;
+  base.second_round_threshold = 0.5;
+  base.max_gate_margin = 0.4;
   return base;
 }
 

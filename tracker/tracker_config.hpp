@@ -77,6 +77,21 @@ struct TrackerConfig {
   /// A track also survives this many processed frames without a match, whatever `max_age` says
   /// (with max_age 1, a track at 1/10 rate could otherwise never coast over one missed frame).
   int min_coast_updates{0};
+  /// Confirmation by duration also needs this many matches in the run: at 1/10 rate one match of a
+  /// false positive would otherwise confirm it.
+  int duration_min_hits{1};
+
+  // --- ByteTrack's and our own guards against tracks made of clutter (fractions of the recent
+  // 1st..99th percentile score range, tracker/score_cut.hpp; 0 = off) ---
+  /// A detection no round took starts a track only at or above this fraction (ByteTrack starts
+  /// tracks above track_thresh + 0.1 only).
+  double birth_range_cut{0.0};
+  /// A track is confirmed only once the mean score of its matches reaches this fraction.
+  double confirm_score_cut{0.0};
+  /// Minimum affinity in the second round; 0 = affinity_threshold (ByteTrack: IoU 0.5).
+  double second_round_threshold{0.0};
+  /// The widened gate's largest margin, as a fraction of the box's size on each side.
+  double max_gate_margin{0.6};
 
   // --- particle filter ---
   int particle_count{100};

@@ -10,6 +10,8 @@ inline constexpr long long kMaxParticleStorage = 4000000;  // max_tracks x parti
 inline constexpr int kMaxFrames = 1000000;                 // max_age, min_hits, min_coast_updates
 inline constexpr double kMaxFrameRate = 10000.0;
 inline constexpr double kMaxImageSide = 100000.0;
-inline constexpr double kMaxScoreQuantile = 0.99;  // a cut that keeps 1% still tracks something
+inline constexpr double kMaxScoreQuantile = 0.99;
+inline constexpr double kMaxGateMargin = 5.0;  // a box eleven times its size matches anything  // a
+                                               // cut that keeps 1% still tracks something
 
 }  // namespace rtmot::tracker::limits

@@ -63,7 +63,13 @@ TEST(Affinity, WidenedGateLoosensOnlyAfterAMissedFrame) {
   const double lost_four = affinity(config, a, b, 5.0);
   EXPECT_GT(lost_two, plain);
   EXPECT_GT(lost_four, lost_two);
-  EXPECT_FLOAT_EQ(widened_gate_margin(100.0), widened_gate_margin(1000.0));  // bounded
+  EXPECT_FLOAT_EQ(widened_gate_margin(100.0, config.max_gate_margin),
+                  widened_gate_margin(1000.0, config.max_gate_margin));  // bounded
+  config.max_gate_margin = 0.3;  // a lower cap: lost long, the gate stays tighter
+  const double capped = affinity(config, a, b, 100.0);
+  EXPECT_GT(capped, plain);
+  config.max_gate_margin = 0.6;
+  EXPECT_LT(capped, affinity(config, a, b, 100.0));
 }
 
 }  // namespace

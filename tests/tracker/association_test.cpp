@@ -10,6 +10,7 @@
 namespace rtmot::tracker {
 namespace {
 using test::detection;
+const double kSortIou = TrackerConfig::sort_preset().affinity_threshold;
 
 AssociationCandidate candidate(float x, float y) {
   return AssociationCandidate{Box{x, y, 40.F, 80.F}, 1.0};
@@ -18,7 +19,7 @@ AssociationCandidate candidate(float x, float y) {
 TEST(Associator, PairsEachDetectionWithItsOnlyOverlappingTrack) {
   Associator associator(4, 4);
   std::vector<AssociationMatch> matches;
-  associator.associate(TrackerConfig::sort_preset(),
+  associator.associate(TrackerConfig::sort_preset(), kSortIou,
                        {detection(302.F, 0.F), detection(2.F, 0.F), detection(900.F, 0.F)},
                        {candidate(0.F, 0.F), candidate(300.F, 0.F)}, matches);
   ASSERT_EQ(matches.size(), 2U);
@@ -34,7 +35,8 @@ TEST(Associator, ResolvesContestedDetectionsOptimally) {
   // without a partner; the optimum pairs detection 1 with track 0 and detection 0 with track 1.
   Associator associator(4, 4);
   std::vector<AssociationMatch> matches;
-  associator.associate(TrackerConfig::sort_preset(), {detection(10.F, 0.F), detection(-3.F, 0.F)},
+  associator.associate(TrackerConfig::sort_preset(), kSortIou,
+                       {detection(10.F, 0.F), detection(-3.F, 0.F)},
                        {candidate(0.F, 0.F), candidate(20.F, 0.F)}, matches);
   ASSERT_EQ(matches.size(), 2U);
   EXPECT_EQ(matches[0].detection, 0);
@@ -48,7 +50,8 @@ TEST(Associator, DropsAssignedPairsBelowTheThreshold) {
   // detection 1 and track 1 to detection 0, whose IoU (0.18) is below 0.3: that pair is dropped.
   Associator associator(1, 1);
   std::vector<AssociationMatch> matches;
-  associator.associate(TrackerConfig::sort_preset(), {detection(30.F, 0.F), detection(1.F, 0.F)},
+  associator.associate(TrackerConfig::sort_preset(), kSortIou,
+                       {detection(30.F, 0.F), detection(1.F, 0.F)},
                        {candidate(0.F, 0.F), candidate(2.F, 0.F)}, matches);
   ASSERT_EQ(matches.size(), 1U);
   EXPECT_EQ(matches[0].detection, 1);
@@ -58,8 +61,8 @@ TEST(Associator, DropsAssignedPairsBelowTheThreshold) {
 TEST(Associator, EmptyInputsGiveNoMatches) {
   Associator associator(2, 2);
   std::vector<AssociationMatch> matches;
-  associator.associate(TrackerConfig::sort_preset(), {}, {candidate(0.F, 0.F)}, matches);
-  associator.associate(TrackerConfig::sort_preset(), {detection(0.F, 0.F)}, {}, matches);
+  associator.associate(TrackerConfig::sort_preset(), kSortIou, {}, {candidate(0.F, 0.F)}, matches);
+  associator.associate(TrackerConfig::sort_preset(), kSortIou, {detection(0.F, 0.F)}, {}, matches);
   EXPECT_TRUE(matches.empty());
 }
 

@@ -43,6 +43,11 @@ TEST(TrackerOptions, EveryKnobOfTheConfigCanBeSet) {
                                      {"recent_tracks_first", "true"},
                                      {"confirm_by_duration", "true"},
                                      {"min_coast_updates", "2"},
+                                     {"duration_min_hits", "3"},
+                                     {"birth_range_cut", "0.65"},
+                                     {"confirm_score_cut", "0.35"},
+                                     {"second_round_threshold", "0.45"},
+                                     {"max_gate_margin", "0.25"},
                                      {"particle_count", "33"},
                                      {"seed", "18446744073709551615"},
                                      {"max_tracks", "20"},
@@ -66,11 +71,16 @@ TEST(TrackerOptions, EveryKnobOfTheConfigCanBeSet) {
   EXPECT_TRUE(config.recent_tracks_first);
   EXPECT_TRUE(config.confirm_by_duration);
   EXPECT_EQ(config.min_coast_updates, 2);
+  EXPECT_EQ(config.duration_min_hits, 3);
+  EXPECT_DOUBLE_EQ(config.birth_range_cut, 0.65);
+  EXPECT_DOUBLE_EQ(config.confirm_score_cut, 0.35);
+  EXPECT_DOUBLE_EQ(config.second_round_threshold, 0.45);
+  EXPECT_DOUBLE_EQ(config.max_gate_margin, 0.25);
   EXPECT_EQ(config.particle_count, 33);
   EXPECT_EQ(config.seed, 18446744073709551615ULL);
   EXPECT_EQ(config.max_tracks, 20);
   EXPECT_EQ(config.max_detections, 30);
-  EXPECT_EQ(tracker_options().size(), 23U) << "a new TrackerConfig field needs a line here too";
+  EXPECT_EQ(tracker_options().size(), 28U) << "a new TrackerConfig field needs a line here too";
 }
 
 TEST(TrackerOptions, AnAffinityBringsItsUsualThresholdUnlessOneFollows) {

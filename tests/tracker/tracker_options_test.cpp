@@ -223,6 +223,18 @@ TEST(ConfirmByDuration, AtATenthOfTheRateOneMatchCoversMinHitsFrames) {
   EXPECT_TRUE(reports_id(time[6], 1));
 }
 
+TEST(ConfirmByDuration, DurationMinHitsAsksForASecondMatchAtLowRate) {
+  TrackerConfig config = TrackerConfig::sort_preset();
+  config.max_age = 10;
+  config.confirm_by_duration = true;
+  config.duration_min_hits = 2;
+  const auto two = run_walker(config, 10, 81, 1, 40);
+  ASSERT_EQ(two.size(), 9U);
+  // Born at 41, matched at 51 (one match: not yet) and 61 (two: confirmed).
+  EXPECT_TRUE(two[5].empty());
+  EXPECT_TRUE(reports_id(two[6], 1));
+}
+
 TEST(MinCoastUpdates, LetsATrackSurviveOneMissedProcessedFrameAtLowRate) {
   TrackerConfig config = TrackerConfig::sort_preset();
   config.confirm_by_duration = true;

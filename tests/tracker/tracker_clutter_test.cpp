@@ -1,0 +1,85 @@
+// ByteTrack's birth and second-round rules and the track-level confidence: each on a small scene
+// of a walker and clutter where it changes which tracks start, match or are reported.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <vector>
+
+#include "scene.hpp"
+#include "tracker/tracker.hpp"
+
+namespace rtmot::tracker {
+namespace {
+using test::detection;
+using test::reports_id;
+
+// A walker scoring 0.9, a recurring false positive in one place scoring `clutter_score`, and a
+// faint detection far away scoring 0.1: the stream's score range is 0.1..0.9.
+std::vector<Detection> walker_and_clutter(int frame, float clutter_score) {
+  return {detection(100.F + 3.F * frame, 200.F, 40.F, 80.F, 0.9F),
+          detection(600.F, 300.F, 40.F, 80.F, clutter_score),
+          detection(1200.F, 600.F, 40.F, 80.F, 0.1F)};
+}
+
+// The ids reported in any of `frames` frames of the scene.
+std::vector<int> reported_ids(const TrackerConfig& config, float clutter_score, int frames = 12) {
+  Tracker tracker(config);
+  std::vector<int> ids;
+  for (int f = 1; f <= frames; ++f) {
+    for (const TrackReport& report :
+         tracker.update(walker_and_clutter(f, clutter_score), f / 30.0)) {
+      if (std::find(ids.begin(), ids.end(), report.id) == ids.end()) ids.push_back(report.id);
+    }
+  }
+  return ids;
+}
+
+TEST(BirthRangeCut, OnlyConfidentDetectionsStartTracks) {
+  // Split at half the range (0.5): the clutter at 0.55 is a high detection and starts a track,
+  // unless a birth needs 0.6 of the range (0.58).
+  TrackerConfig config = TrackerConfig::sort_preset();
+  config.score_range_cut = 0.5;
+  config.second_round = true;
+  config.low_score = 0.F;
+  const auto open = reported_ids(config, 0.55F);
+  config.birth_range_cut = 0.6;
+  const auto strict = reported_ids(config, 0.55F);
+  EXPECT_EQ(open.size(), 2U);  // walker and clutter (the 0.1 detection is low: no track)
+  ASSERT_EQ(strict.size(), 1U);
+  EXPECT_EQ(strict.front(), 1);  // the walker, born first
+}
+
+TEST(ConfirmScoreCut, AFalsePositiveThatRecursScoresTooLowOnAverage) {
+  // Every detection may start a track (SORT); the clutter at 0.4 is matched every frame.
+  TrackerConfig config = TrackerConfig::sort_preset();
+  const auto every = reported_ids(config, 0.4F);
+  config.confirm_score_cut = 0.5;  // mean score >= 0.5 of the range 0.1..0.9, i.e. 0.5
+  const auto confident = reported_ids(config, 0.4F);
+  EXPECT_EQ(every.size(), 3U);
+  ASSERT_EQ(confident.size(), 1U);
+  EXPECT_EQ(confident.front(), 1);
+  // A clutter score above the cut is confirmed again: the rule is the score, not the place.
+  EXPECT_EQ(reported_ids(config, 0.6F).size(), 2U);
+}
+
+// A stationary object scoring 0.9 in frames 1..5 and, in frame 6, a low-score (0.3) detection
+// 16 px to the side: IoU 24/56 = 0.43 with the track.
+std::vector<TrackReport> sixth_frame(double second_round_threshold) {
+  TrackerConfig config = TrackerConfig::sort_preset();
+  config.detection_threshold = 0.5F;
+  config.low_score = 0.1F;
+  config.second_round = true;
+  config.second_round_threshold = second_round_threshold;
+  Tracker tracker(config);
+  for (int f = 1; f <= 5; ++f) tracker.update({detection(100.F, 200.F)}, f / 30.0);
+  return tracker.update({detection(116.F, 200.F, 40.F, 80.F, 0.3F)}, 6 / 30.0);
+}
+
+TEST(SecondRoundThreshold, AStricterGateForLowScoreDetections) {
+  EXPECT_TRUE(reports_id(sixth_frame(0.0), 1));  // the first round's IoU 0.3
+  EXPECT_TRUE(sixth_frame(0.5).empty());         // ByteTrack's 0.5: the track coasts
+  EXPECT_TRUE(reports_id(sixth_frame(0.4), 1));
+}
+
+}  // namespace
+}  // namespace rtmot::tracker
