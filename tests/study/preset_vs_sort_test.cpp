@@ -70,9 +70,9 @@ TEST_F(PresetVsSort, DefaultTracksDoNotDependOnTheScoreScale) {
   REQUIRE_DATASET();
   LoadedSequence rescaled = (*dataset_)[8];  // TUD-Campus
   ASSERT_EQ(rescaled.info.name, "TUD-Campus");
-  for (auto& frame : rescaled.detections) {
-    for (auto& detection : frame) detection.score = 11.F * (detection.score - 0.5F) - 0.5F;
-  }
+  rescaled.detections.for_each([](tracker::Detection& detection) {
+    detection.score = 11.F * (detection.score - 0.5F) - 0.5F;
+  });
   const auto config = *tracker::find_preset(tracker::default_preset_name());
   for (const int interval : {1, 5}) {
     const Metrics original =
