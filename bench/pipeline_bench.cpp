@@ -9,6 +9,11 @@
 //   the CPU burnt by the threads that only hand frames over (rtmot-capture, -track, -sink; goal:
 //   < 3% of one core together) and the frame age at message out (capture -> sent p99; goal: <=
 //   the detector's p99 + 5 ms).
+// - BM_PipelineVsDetectorPaired: on a shared machine the detector's speed drifts by 2x within
+//   minutes, so a pipeline run and a detector_bench run minutes apart do not compare. This one
+//   alternates, five times, 40 frames of the detector alone (detect() on frames decoded into
+//   memory, as detector_bench) with 40 frames of the every-frame pipeline, and reports the median
+//   of the five ratios pipeline FPS / detector-alone FPS (goal >= 0.97).
 // - BM_MultiSourceEveryFrame: N copies of vtest.avi through one batched detector, every frame:
 //   aggregate FPS (all sources) against one source, mean batch size, detector time per image.
 // threads:0 is OpenCV's default thread setting (the SSD does not call cv::setNumThreads); that is
@@ -17,6 +22,7 @@
 // force. Needs the model (scripts/fetch_model.sh) and ../shared/data/video/vtest.avi.
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cstdlib>
@@ -53,6 +59,7 @@ std::unique_ptr<pipeline::Pipeline> vtest_pipeline(pipeline::PlaybackMode playba
   ssd.model_path = RTMOT_MODEL_PATH;
   ssd.backend = detector::BackendRequest::cpu;
   ssd.threads = threads;
+  ssd.max_batch = sources;  // one forward pass per batch (needs the dynamic-batch model, format 2)
   std::vector<pipeline::PipelineInput> inputs(static_cast<std::size_t>(sources));
   for (std::size_t i = 0; i < inputs.size(); ++i) {
     inputs[i].source = runner::open_source((shared_dir() / "data/video/vtest.avi").string(), {});
@@ -135,10 +142,86 @@ void BM_PipelineRealtimeWaitCost(benchmark::State& state) {
     state.counters["age_p99_ms"] = ms(report.latency.end_to_end.quantile_ns(0.99));
     state.counters["age_p99_minus_detect_p99_ms"] =
         ms(report.latency.end_to_end.quantile_ns(0.99) - report.latency.detect.quantile_ns(0.99));
+    // What the age adds to the detector, stage by stage: waiting for the detector (queued: the
+    // detector was busy with the previous frame, or slow to wake), tracking, handing to the sinks.
+    state.counters["queued_p99_ms"] = ms(report.latency.queued.quantile_ns(0.99));
+    state.counters["track_p99_ms"] = ms(report.latency.track.quantile_ns(0.99));
+    state.counters["send_p99_ms"] = ms(report.latency.send.quantile_ns(0.99));
   }
 }
 BENCHMARK(BM_PipelineRealtimeWaitCost)
     ->ArgName("threads")
+    ->Arg(2)
+    ->Iterations(1)
+    ->Unit(benchmark::kSecond)
+    ->UseRealTime();
+
+// Frames of vtest.avi decoded into memory through rtmot's own source (no videoio), as
+// detector_bench does: every 25th of the first 400.
+std::vector<cv::Mat> decoded_frames() {
+  std::vector<cv::Mat> frames;
+  auto source = runner::open_source((shared_dir() / "data/video/vtest.avi").string(), {});
+  cv::Mat image;
+  platform::FrameInfo info;
+  for (int i = 0; frames.size() < 16 && source->read(image, info) == platform::ReadStatus::frame;
+       ++i) {
+    if (i % 25 == 0) frames.push_back(image.clone());
+  }
+  return frames;
+}
+
+double median(std::vector<double> values) {
+  std::sort(values.begin(), values.end());
+  return values.empty() ? 0.0 : values[values.size() / 2];
+}
+
+void BM_PipelineVsDetectorPaired(benchmark::State& state) {
+  constexpr int kRounds = 5;
+  constexpr int kFrames = 40;
+  const int threads = static_cast<int>(state.range(0));
+  for (auto _ : state) {
+    std::vector<double> alone_fps;
+    std::vector<double> pipeline_fps;
+    std::vector<double> ratios;
+    try {
+      const std::vector<cv::Mat> frames = decoded_frames();
+      if (frames.empty()) throw std::runtime_error("cannot decode vtest.avi");
+      detector::SsdConfig ssd;
+      ssd.model_path = RTMOT_MODEL_PATH;
+      ssd.backend = detector::BackendRequest::cpu;
+      ssd.threads = threads;
+      detector::SsdDetector alone(ssd);
+      std::vector<tracker::Detection> boxes;
+      alone.detect(frames[0], 1, boxes);  // warm-up, as the pipeline's detector had at start-up
+      for (int round = 0; round < kRounds; ++round) {
+        const auto start = std::chrono::steady_clock::now();
+        for (int i = 0; i < kFrames; ++i) {
+          alone.detect(frames[static_cast<std::size_t>(i) % frames.size()], i + 1, boxes);
+        }
+        const std::chrono::duration<double> took = std::chrono::steady_clock::now() - start;
+        alone_fps.push_back(kFrames / took.count());
+        const std::atomic<bool> stop{false};
+        const auto report =
+            vtest_pipeline(pipeline::PlaybackMode::every_frame, threads, kFrames)->run(stop);
+        pipeline_fps.push_back(report.fps);
+        ratios.push_back(report.fps / alone_fps.back());
+      }
+    } catch (const std::exception& error) {
+      state.SkipWithError(error.what());
+      return;
+    }
+    state.counters["detector_alone_fps"] = median(alone_fps);
+    state.counters["pipeline_fps"] = median(pipeline_fps);
+    state.counters["ratio_median"] = median(ratios);
+    state.counters["ratio_min"] = *std::min_element(ratios.begin(), ratios.end());
+    state.counters["ratio_max"] = *std::max_element(ratios.begin(), ratios.end());
+    state.counters["opencv_threads"] = cv::getNumThreads();
+  }
+}
+BENCHMARK(BM_PipelineVsDetectorPaired)
+    ->ArgName("threads")
+    ->Arg(0)
+    ->Arg(1)
     ->Arg(2)
     ->Iterations(1)
     ->Unit(benchmark::kSecond)

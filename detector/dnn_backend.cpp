@@ -40,13 +40,19 @@ BackendChoice choose_backend(BackendRequest backend, Fp16Request fp16,
                                        ? "this OpenCV was built without the CUDA DNN backend"
                                        : "no CUDA device was found";
   if (backend == BackendRequest::cuda && !cuda_possible) {
-    throw InputError("", 0, "backend", "cuda was requested but " + why_not_cuda, ExitCode::usage);
+    // Named as the configuration's detector section: the message then reads "detector: field
+    // 'backend': ...", with the way out.
+    throw InputError("detector", 0, "backend",
+                     "cuda was requested but " + why_not_cuda +
+                         " (build OpenCV with scripts/build_opencv.sh --cuda: docs/gpu.md)",
+                     ExitCode::usage);
   }
   const bool use_cuda =
       backend == BackendRequest::cuda || (backend == BackendRequest::automatic && cuda_possible);
   if (!use_cuda) {
     if (fp16 == Fp16Request::on) {
-      throw InputError("", 0, "fp16", "fp16 needs the cuda backend; the detector runs on the cpu",
+      throw InputError("detector", 0, "fp16",
+                       "fp16 needs the cuda backend; the detector runs on the cpu",
                        ExitCode::usage);
     }
     const std::string reason = backend == BackendRequest::cpu ? "cpu requested" : why_not_cuda;

@@ -228,9 +228,7 @@ std::vector<SourceConfig> source_list(const RunConfig& config) {
 }
 
 std::uint32_t stream_id_of(const RunConfig& config, std::size_t index) {
-  // A copy: source_list() returns a temporary (a reference into it dangled; found by
-  // fuzz_run_config under ASan).
-  const SourceConfig source = source_list(config).at(index);
+  const SourceConfig& source = config.sources.empty() ? config.source : config.sources.at(index);
   if (source.stream_id >= 0) return static_cast<std::uint32_t>(source.stream_id);
   return config.stream_id + static_cast<std::uint32_t>(index);
 }

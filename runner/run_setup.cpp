@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <opencv2/core/utility.hpp>
 
 #include "common/input_error.hpp"
 #include "detector/dnn_backend.hpp"
@@ -80,7 +81,16 @@ std::unique_ptr<detector::Detector> make_detector(const RunConfig& config) {
   // Both were checked by the config parser.
   ssd.backend = detector::parse_backend_request(wanted.backend).value();
   ssd.fp16 = detector::parse_fp16_request(wanted.fp16).value();
-  ssd.threads = wanted.threads;
+  // 0 ("automatic") is made explicit. Left to itself, a TBB build of OpenCV (Debian's, ours) runs
+  // its DNN in TBB's automatic arena, sized by TBB: it ignores OpenCV's own OPENCV_FOR_THREADS_NUM
+  // (measured) and, depending on the TBB version, a container's CPU quota (docker --cpus), so it
+  // can run more workers than the CPUs we may use, and a layer split over them waits for its
+  // slowest part. OpenCV's CPU count honours the affinity mask, cpusets and the cgroup quota; on a
+  // machine without either both give the same count (measured: no difference on the 2-core CI
+  // machine).
+  ssd.threads = wanted.threads > 0 ? wanted.threads : std::max(1, cv::getNumberOfCPUs());
+  spdlog::info("detector threads: {}{}", ssd.threads,
+               wanted.threads > 0 ? "" : " (the CPUs this process may use)");
   // One forward pass takes one frame of every source (the detect stage batches them): without
   // this the SSD would split each batch into single images again.
   ssd.max_batch = static_cast<int>(

@@ -102,7 +102,7 @@ locate_trees() {
 download() {  # url file
   command -v curl >/dev/null || die "curl not found (apt-get install curl), or give --source"
   log "downloading $1"
-  curl -fL --retry 3 -o "$2.part" "$1" || die "download of $1 failed (no network? give --source)"
+  curl -fL --retry 3 --connect-timeout 20 -o "$2.part" "$1" || die "download of $1 failed (no network? give --source)"
   mv "$2.part" "$2"
 }
 
@@ -147,9 +147,16 @@ else
   fi
   rm -rf "$stage/in"
   for patch_file in "${patches[@]}"; do
-    log "applying $(basename "$patch_file")"
-    patch -p1 --forward --batch --silent -d "$stage/opencv" <"$patch_file" ||
+    # Checked first, so a patch that does not fit leaves the source untouched. It only changes CUDA
+    # code: a CPU build goes on without it (saying so), a CUDA build cannot.
+    if patch -p1 --forward --batch --dry-run --silent -d "$stage/opencv" <"$patch_file" >/dev/null; then
+      log "applying $(basename "$patch_file")"
+      patch -p1 --forward --batch --silent -d "$stage/opencv" <"$patch_file"
+    elif [[ $cuda == 1 ]]; then
       die "$(basename "$patch_file") does not apply to this source (not OpenCV $VERSION?)"
+    else
+      log "warning: $(basename "$patch_file") does not apply to this source; not needed without CUDA"
+    fi
   done
   echo "$fingerprint" >"$stage/.staged"
 fi

@@ -2,7 +2,8 @@
 # Sanitizer builds of the whole suite, sized for CI (2 cores):
 #   build-asan: -DRTMOT_SANITIZE=address,undefined, every test (ctest).
 #   build-tsan: -DRTMOT_SANITIZE=thread, the concurrency tests (pipeline, queues, slot, signals,
-#               reconnecting source): where ThreadSanitizer can find something.
+#               reconnecting source, the study's thread pool and cross-validation): where
+#               ThreadSanitizer can find something.
 # Uses clang (SANITIZE_CC/SANITIZE_CXX to change it): see configure() below for why.
 # Suppressions for uninstrumented system libraries only: TSan's in scripts/sanitizers/tsan.supp; LSan's
 # are compiled into every executable by platform/ (platform/sanitizer/lsan_suppressions.cpp).
@@ -14,7 +15,7 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 jobs=${JOBS:-2}
 asan_dir=${ASAN_DIR:-$root/build-asan}
 tsan_dir=${TSAN_DIR:-$root/build-tsan}
-tsan_targets=${TSAN_TARGETS:-pipeline_handoff_test pipeline_playback_test pipeline_outage_test pipeline_multi_source_test pipeline_stage_threads_test test_platform_capture test_platform_signals test_platform_thread test_reconnecting_source messages_test}
+tsan_targets=${TSAN_TARGETS:-pipeline_handoff_test pipeline_playback_test pipeline_outage_test pipeline_multi_source_test pipeline_stage_threads_test test_platform_capture test_platform_signals test_platform_thread test_reconnecting_source messages_test study_tests}
 supp=$root/scripts/sanitizers
 
 # clang, not g++: g++ took over 16 minutes for half of the ASan+UBSan build on CI's 2 cores (its

@@ -90,7 +90,8 @@ struct TrackerConfig {
   static TrackerConfig sort_preset();
 };
 
-/// `base` with every optional mechanism switched on (second round, re-update, widened gate, recent
+/// `base` with every optional mechanism switched on (both relative score cuts, second round,
+/// re-update, widened gate, recent
 /// tracks first, confirmation by duration, minimum coasting): the costliest configuration, for
 /// benchmarks and the allocation tests.
 TrackerConfig with_every_option(TrackerConfig base);

@@ -145,7 +145,8 @@ std::vector<TrackerOption> make_table() {
       real("image_height", "image height for the linear affinity (default: the source's)",
            &C::image_height, 0.0, limits::kMaxImageSide, true),
       flag("second_round",
-           "ByteTrack: a second round for detections in [low_score, detection_threshold)",
+           "ByteTrack: detections below the score cuts (and >= low_score) only continue tracks, "
+           "in a second round",
            &C::second_round),
       real("low_score", "lowest score the second round uses (absolute)", &C::low_score, -kHuge,
            kHuge),

@@ -150,6 +150,30 @@ TEST(DnnBackend, ForcingWhatCannotBeHadIsAClearError) {
   EXPECT_THROW(choose_backend(BackendRequest::cpu, Fp16Request::on, none), InputError);
 }
 
+// The real detector asked for CUDA: on a build or machine without it (Debian's OpenCV, CI) a usage
+// error at start-up that says why and where to go; where CUDA is there (the GPU machine) it runs on
+// it and says so.
+TEST_F(SsdModelErrors, CudaRequestedWhereItCannotBeHad) {
+  std::filesystem::copy_file(real_model_, dir_ / kModelName);
+  auto config = config_for(dir_ / kModelName);
+  config.backend = BackendRequest::cuda;
+  const auto caps = probe_backend_capabilities();
+  if (caps.opencv_has_cuda && caps.cuda_devices > 0) {
+    SsdDetector detector(config);
+    EXPECT_EQ(detector.backend().name, "cuda") << detector.describe();
+    EXPECT_NE(detector.describe().find("cuda requested"), std::string::npos);
+    return;
+  }
+  try {
+    SsdDetector detector(config);
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.exit_code(), ExitCode::usage);
+    EXPECT_EQ(e.field(), "backend");
+    EXPECT_NE(std::string(e.what()).find("docs/gpu.md"), std::string::npos) << e.what();
+  }
+}
+
 TEST(DnnBackend, ParsesConfigWords) {
   EXPECT_EQ(parse_backend_request("cuda"), BackendRequest::cuda);
   EXPECT_EQ(parse_backend_request("gpu"), std::nullopt);

@@ -37,6 +37,35 @@ printf 'source:\n  uri: test://ball\ndetector:\n  kind: ssd\n  model: models/x.o
   >"$out/run_config/minimal.yaml"
 printf 'sources:\n  - a.avi\n  - {uri: rtsp://cam/1, width: 640, stream_id: 3}\nstream_id: 2\nthreads:\n  capture: {cpu: 0, fifo_priority: 20}\n  sink: {cpu: -1}\ndetector:\n  kind: replay\n  det_file: d.txt\n' \
   >"$out/run_config/sources_threads.yaml"
+# Every tracker option (tracker/tracker_options.cpp) once, so the fuzzer starts inside each of the
+# option parsers the YAML reader and the command line share.
+cat >"$out/run_config/tracker-options.yaml" <<'YAML'
+tracker:
+  preset: bytetrack
+  predictor: particle
+  affinity: exponential
+  affinity_threshold: 0.4
+  detection_threshold: -0.5
+  score_quantile: 0.2
+  score_range_cut: 0.5
+  max_age: 7
+  min_hits: 2
+  time_step: elapsed
+  frame_rate: 12.5
+  image_width: 640
+  image_height: 480
+  second_round: true
+  low_score: -1e30
+  observation_centric_reupdate: on
+  time_widened_gate: false
+  recent_tracks_first: yes
+  confirm_by_duration: true
+  min_coast_updates: 1
+  particle_count: 50
+  seed: 18446744073709551615
+  max_tracks: 64
+  max_detections: 64
+YAML
 
 # Addresses as configurations give them.
 i=0

@@ -8,6 +8,7 @@
 #include "allocation_counter.hpp"
 #include "mot_detections.hpp"
 #include "shared_data.hpp"
+#include "tracker/presets.hpp"
 #include "tracker/tracker.hpp"
 
 namespace rtmot::tracker {
@@ -41,6 +42,28 @@ TEST_P(SteadyState, AllocatesNothingAfterWarmUp) {
   }
   EXPECT_EQ(during, 0) << "allocations over " << sequence.frames.size() - half << " frames";
   EXPECT_GT(reported, 0);  // it did track something
+}
+
+// The default preset as `rtmot track` runs it (elapsed time steps, the relative split): the same.
+TEST(SteadyStateDefault, AllocatesNothingAfterWarmUp) {
+  const auto dir = test::shared_path("data/mot15-train/ADL-Rundle-6");
+  RTMOT_REQUIRE_FILE(dir / "det" / "det.txt");
+  const test::MotSequence sequence = test::load_mot_sequence(dir);
+  TrackerConfig config = *find_preset(default_preset_name());
+  config.frame_rate = 30.0;
+  Tracker tracker(config);
+  const std::size_t half = sequence.frames.size() / 2;
+  for (std::size_t f = 0; f < half; ++f) tracker.update(sequence.frames[f], f / 30.0);
+  long reported = 0;
+  long during = 0;
+  {
+    const test::CountingScope counting;
+    for (std::size_t f = half; f < sequence.frames.size(); ++f)
+      reported += static_cast<long>(tracker.update(sequence.frames[f], f / 30.0).size());
+    during = counting.allocations();
+  }
+  EXPECT_EQ(during, 0);
+  EXPECT_GT(reported, 0);
 }
 
 TEST(AllocationCounter, CountsAllocations) {
