@@ -5,17 +5,22 @@
 
 #include <cstdint>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "apps/number_checks.hpp"
 #include "apps/subcommand.hpp"
 #include "common/input_error.hpp"
+#include "detector/coco_labels.hpp"
 #include "messages/jsonl_sink.hpp"
 #include "messages/message_file_reader.hpp"
 #include "messages/message_format.hpp"
 #include "messages/message_stream_stats.hpp"
+#include "outputs/mqtt_subscriber.hpp"
+#include "outputs/mqtt_uri.hpp"
 #include "platform/clock.hpp"
 #include "platform/signals.hpp"
 #include "platform/udp_socket.hpp"
@@ -36,6 +41,7 @@ struct ListenOptions {
   double stats_every_s{5.0};
   std::string jsonl_path;
   std::string read_path;
+  std::string mqtt_uri;
   bool quiet{false};
 };
 
@@ -131,7 +137,7 @@ class MessageHandler {
  public:
   explicit MessageHandler(const ListenOptions& options) : quiet_(options.quiet) {
     if (!options.jsonl_path.empty())
-      jsonl_ = std::make_unique<messages::JsonlSink>(options.jsonl_path);
+      jsonl_ = std::make_unique<messages::JsonlSink>(options.jsonl_path, &detector::coco_label);
   }
 
   void handle(const std::uint8_t* data, std::size_t size) {
@@ -202,6 +208,46 @@ int listen_udp(const ListenOptions& options) {
   return to_int(ExitCode::ok);
 }
 
+int listen_mqtt(const ListenOptions& options) {
+  platform::StopSignals signals;  // before libmosquitto's thread exists: see its header
+  std::string problem;
+  const auto uri = outputs::parse_mqtt_uri(options.mqtt_uri, problem);
+  if (!uri) throw InputError(options.mqtt_uri, 0, "--mqtt", problem, ExitCode::usage);
+  MessageHandler handler(options);
+  // The handler runs on libmosquitto's thread; the main thread reads the counts for the stats
+  // line, the limits and the summary. A listener is not a hot path: a mutex is the simple choice.
+  std::mutex handler_mutex;
+  std::uint64_t messages_seen = 0;
+  outputs::MqttSubscriber subscriber(*uri, [&](const std::uint8_t* payload, std::size_t size) {
+    const std::lock_guard<std::mutex> lock(handler_mutex);
+    ++messages_seen;
+    handler.handle(payload, size);
+  });
+  spdlog::info("listening on {}", outputs::to_string(*uri));
+
+  const std::int64_t start_ns = platform::steady_now_ns();
+  const auto elapsed_s = [start_ns] {
+    return static_cast<double>(platform::steady_now_ns() - start_ns) / 1e9;
+  };
+  double next_stats_s = options.stats_every_s;
+  while (!signals.stop_requested()) {
+    {
+      const std::lock_guard<std::mutex> lock(handler_mutex);
+      if (options.count > 0 && messages_seen >= options.count) break;
+      if (options.stats_every_s > 0 && elapsed_s() >= next_stats_s) {
+        print_stats_line(handler.stats(), elapsed_s());
+        next_stats_s += options.stats_every_s;
+      }
+    }
+    if (options.duration_s > 0 && elapsed_s() >= options.duration_s) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(poll_interval_ms));
+  }
+  const std::lock_guard<std::mutex> lock(handler_mutex);
+  handler.flush();
+  print_summary(handler.stats(), elapsed_s());
+  return to_int(ExitCode::ok);
+}
+
 int read_file(const ListenOptions& options) {
   messages::MessageFileReader reader(options.read_path);
   MessageHandler handler(options);
@@ -250,12 +296,18 @@ Subcommand add_listen_command(CLI::App& parent) {
       cli->add_option("--read", options->read_path, "decode a binary message file instead of UDP");
   cli->add_flag("--quiet,-q", options->quiet,
                 "print no line per message, only stats and the summary");
+  auto* mqtt = cli->add_option(
+      "--mqtt", options->mqtt_uri,
+      "subscribe to an MQTT broker instead of UDP: mqtt://HOST[:PORT]/TOPIC (wildcards + and # "
+      "allowed; binary payloads, as `run --mqtt` publishes by default)");
   read->excludes(port)->excludes(bind)->excludes(duration);
-  cli->callback([port, read] {
-    if (port->count() == 0 && read->count() == 0)
-      throw CLI::RequiredError("--port (or --read FILE)");
+  mqtt->excludes(port)->excludes(bind)->excludes(read);
+  cli->callback([port, read, mqtt] {
+    if (port->count() == 0 && read->count() == 0 && mqtt->count() == 0)
+      throw CLI::RequiredError("--port (or --read FILE, or --mqtt URI)");
   });
   return {cli, [options] {
+            if (!options->mqtt_uri.empty()) return listen_mqtt(*options);
             return options->read_path.empty() ? listen_udp(*options) : read_file(*options);
           }};
 }

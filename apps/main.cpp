@@ -5,6 +5,7 @@
 
 #include <csignal>
 #include <exception>
+#include <opencv2/core/utils/logger.hpp>
 #include <string_view>
 #include <vector>
 
@@ -70,6 +71,9 @@ int main(int argc, char** argv) {
 
   CLI::App app{"rtmot: real-time multiple-object tracking (SSD detector + SORT tracker)"};
   app.require_subcommand(1);
+  // Global options (--log-level) are accepted after the subcommand too: subcommands created below
+  // inherit fallthrough and hand options they do not know to this parser.
+  app.fallthrough();
   app.set_version_flag("--version", "rtmot " RTMOT_VERSION);
   std::string log_level = "info";
   app.add_option("--log-level", log_level, "trace, debug, info, warn, error, off")
@@ -93,6 +97,11 @@ int main(int argc, char** argv) {
     return code == 0 ? 0 : rtmot::to_int(rtmot::ExitCode::usage);
   }
   spdlog::set_level(spdlog::level::from_str(log_level));
+  // OpenCV's own warnings would surround our one error line with lines of its own: it speaks only
+  // when asked for debug output.
+  cv::utils::logging::setLogLevel(log_level == "trace" || log_level == "debug"
+                                      ? cv::utils::logging::LOG_LEVEL_INFO
+                                      : cv::utils::logging::LOG_LEVEL_SILENT);
   for (const auto& subcommand : subcommands) {
     if (!subcommand.cli->parsed()) continue;
     if (!subcommand.stops_on_signals) unblock_stop_signals();

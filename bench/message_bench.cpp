@@ -66,7 +66,8 @@ void BM_JsonLine(benchmark::State& state) {
   fmt::memory_buffer line;
   for (auto _ : state) {
     line.clear();
-    append_json_line(frame, static_cast<std::uint32_t>(frame.tracks.size()), false, line);
+    append_json_line(frame, static_cast<std::uint32_t>(frame.tracks.size()), false,
+                     JsonLineExtras{wall_now_ns(), nullptr}, line);
     benchmark::DoNotOptimize(line.data());
   }
   state.SetItemsProcessed(state.iterations());

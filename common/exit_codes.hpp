@@ -13,7 +13,8 @@ enum class ExitCode : int {
   bad_model = 4,       // the detector model is missing, truncated or does not load
   source_failed = 5,   // a video source cannot be opened or decoded
   network = 6,         // a socket cannot be opened/bound (e.g. port in use)
-  io_error = 7,        // reading or writing a file failed: disk full, EIO (not the data's fault)
+  io_error = 7,        // reading or writing a file failed: disk full, EIO (not the data's fault);
+                       // the annotated video's write failing mid-run
 };
 
 constexpr int to_int(ExitCode code) {

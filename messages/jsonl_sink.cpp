@@ -1,6 +1,8 @@
 #include "messages/jsonl_sink.hpp"
 
+#include <chrono>
 #include <cmath>
+#include <ctime>
 #include <iterator>
 
 namespace rtmot::messages {
@@ -17,23 +19,46 @@ void append_number(float value, fmt::memory_buffer& out) {
   }
 }
 
+// ISO 8601 UTC with milliseconds, e.g. 2026-11-23T12:47:01.123Z: what dashboards parse.
+void append_utc(std::int64_t wall_ns, fmt::memory_buffer& out) {
+  const std::time_t seconds = static_cast<std::time_t>(wall_ns / 1000000000);
+  std::tm utc{};
+  gmtime_r(&seconds, &utc);
+  fmt::format_to(std::back_inserter(out), "{:04}-{:02}-{:02}T{:02}:{:02}:{:02}.{:03}Z",
+                 utc.tm_year + 1900, utc.tm_mon + 1, utc.tm_mday, utc.tm_hour, utc.tm_min,
+                 utc.tm_sec, (wall_ns / 1000000) % 1000);
+}
+
 }  // namespace
 
+std::int64_t wall_now_ns() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(
+             std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
+
 void append_json_line(const FrameResult& frame, std::uint32_t total_track_count, bool truncated,
-                      fmt::memory_buffer& out) {
+                      const JsonLineExtras& extras, fmt::memory_buffer& out) {
   auto to = std::back_inserter(out);
+  fmt::format_to(to, R"({{"schema":{},"time":")", json_schema_version);
+  append_utc(extras.wall_ns, out);
   fmt::format_to(
       to,
-      R"({{"stream":{},"sequence":{},"frame":{},"pts_ns":{},"captured_ns":{},"latency_ns":{},)"
+      R"(","wall_ns":{},"stream":{},"sequence":{},"frame":{},"pts_ns":{},"captured_ns":{},"latency_ns":{},)"
       R"("frames_dropped":{},"source_outage":{},"truncated":{},"total_tracks":{},"tracks":[)",
-      frame.stream_id, frame.sequence, frame.frame_number, frame.pts_ns, frame.times.captured_ns,
+      extras.wall_ns, frame.stream_id, frame.sequence, frame.frame_number, frame.pts_ns,
+      frame.times.captured_ns,
       static_cast<std::int64_t>(static_cast<std::uint64_t>(frame.times.sent_ns) -
                                 static_cast<std::uint64_t>(frame.times.captured_ns)),
       frame.frames_dropped, frame.source_outage, truncated, total_track_count);
   bool first = true;
   for (const auto& track : frame.tracks) {
-    fmt::format_to(to, R"({}{{"id":{},"class":{},"score":)", first ? "" : ",", track.id,
-                   track.class_id);
+    fmt::format_to(to, R"({}{{"id":{},"class":{},)", first ? "" : ",", track.id, track.class_id);
+    if (extras.labels != nullptr) {
+      // Label maps hold plain words: no JSON escaping needed (checked by the sink's test).
+      fmt::format_to(to, R"("label":"{}",)", extras.labels(track.class_id));
+    }
+    fmt::format_to(to, R"("score":)");
     append_number(track.score, out);
     fmt::format_to(to, R"(,"x":)");
     append_number(track.box.x, out);
@@ -49,7 +74,8 @@ void append_json_line(const FrameResult& frame, std::uint32_t total_track_count,
   fmt::format_to(to, "]}}\n");
 }
 
-JsonlSink::JsonlSink(const std::filesystem::path& path) : file_(path) {}
+JsonlSink::JsonlSink(const std::filesystem::path& path, ClassLabelFn labels)
+    : file_(path), labels_(labels) {}
 
 void JsonlSink::write(const FrameResult& result) {
   write_line(result, static_cast<std::uint32_t>(result.tracks.size()), false);
@@ -62,7 +88,8 @@ void JsonlSink::write(const DecodedMessage& message) {
 void JsonlSink::write_line(const FrameResult& frame, std::uint32_t total_track_count,
                            bool truncated) {
   line_.clear();
-  append_json_line(frame, total_track_count, truncated, line_);
+  append_json_line(frame, total_track_count, truncated, JsonLineExtras{wall_now_ns(), labels_},
+                   line_);
   file_.write(line_.data(), line_.size());
 }
 

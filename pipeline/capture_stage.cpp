@@ -66,6 +66,7 @@ CaptureStage::Next CaptureStage::read_frame(FrameSlotItem& item, const std::atom
   last_capture_ns_ = item.info.capture_ns;
   item.outage = false;
   frames_captured_.store(captured + 1, std::memory_order_relaxed);
+  if (tap_ != nullptr) tap_->on_frame(item.image, item.info);
   return Next::frame;
 }
 

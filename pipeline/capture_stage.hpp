@@ -8,6 +8,7 @@
 #include <memory>
 #include <string>
 
+#include "pipeline/frame_tap.hpp"
 #include "pipeline/latest_frame_slot.hpp"
 #include "pipeline/playback_mode.hpp"
 #include "platform/video_source.hpp"
@@ -41,6 +42,8 @@ class CaptureStage {
   void finish() { slot_.close(); }
 
   LatestFrameSlot& slot() { return slot_; }
+  /// Before run(): every real frame is shown to `tap` (nullptr: none).
+  void set_tap(FrameTap* tap) { tap_ = tap; }
   const platform::VideoSource& source() const { return *source_; }
   bool live() const { return live_; }
   PlaybackMode playback() const { return playback_; }
@@ -74,6 +77,7 @@ class CaptureStage {
   std::int64_t last_capture_ns_{0};  // the last real frame's
   std::int64_t first_capture_ns_{0};
   std::string source_error_;
+  FrameTap* tap_{nullptr};
 };
 
 }  // namespace rtmot::pipeline

@@ -1,7 +1,7 @@
 #pragma once
 // What the sink stage (pipeline/sink_stage.hpp) hands every message to: a list of per-frame
 // consumers, called in order on the sink thread. The message sinks (UDP, files) and the annotated
-// video are consumers; a new output (a video stream, metrics) is one more.
+// video (outputs/annotated_video.hpp) are consumers; a new output is one more.
 #include <memory>
 #include <opencv2/core/mat.hpp>
 #include <string>
@@ -9,7 +9,6 @@
 #include <vector>
 
 #include "messages/frame_result.hpp"
-#include "pipeline/annotated_video_writer.hpp"
 
 namespace rtmot::pipeline {
 
@@ -35,6 +34,8 @@ class TrackSinkConsumer : public FrameConsumer {
   explicit TrackSinkConsumer(std::unique_ptr<messages::TrackSink> sink) : sink_(std::move(sink)) {}
   void consume(const SinkFrame& frame) override { sink_->write(frame.result); }
   void finish() override { sink_->flush(); }
+  /// Gives the sink back (the consumer is empty afterwards).
+  std::unique_ptr<messages::TrackSink> release() { return std::move(sink_); }
 
  private:
   std::unique_ptr<messages::TrackSink> sink_;
@@ -48,18 +49,5 @@ inline std::vector<std::unique_ptr<FrameConsumer>> as_consumers(
     consumers.push_back(std::make_unique<TrackSinkConsumer>(std::move(sink)));
   return consumers;
 }
-
-/// The annotated video (output.video_file) as a consumer: real frames only.
-class AnnotatedVideoConsumer : public FrameConsumer {
- public:
-  AnnotatedVideoConsumer(std::string path, double fps) : writer_(std::move(path), fps) {}
-  void consume(const SinkFrame& frame) override {
-    if (!frame.result.source_outage) writer_.write(frame.image, frame.result, frame.recent_fps);
-  }
-  void finish() override { writer_.close(); }
-
- private:
-  AnnotatedVideoWriter writer_;
-};
 
 }  // namespace rtmot::pipeline

@@ -46,10 +46,10 @@ struct Pipeline::Stages {
          std::vector<std::unique_ptr<FrameConsumer>> consumers, PipelineOptions options_in)
       : options(std::move(options_in)) {
     if (inputs.empty()) throw std::invalid_argument("a pipeline needs at least one source");
-    if (inputs.size() > 1 && !options.video_file.empty()) {
+    if (inputs.size() > 1 && options.keep_images) {
       throw std::invalid_argument("the annotated video needs a single source");
     }
-    const bool keep_images = !options.video_file.empty();
+    const bool keep_images = options.keep_images;
     const CaptureOptions capture{options.playback, options.simulated_latency_ms,
                                  options.max_frames};
     std::vector<LatestFrameSlot*> slots;
@@ -58,6 +58,7 @@ struct Pipeline::Stages {
     for (auto& input : inputs) {
       captures.push_back(
           std::make_unique<CaptureStage>(std::move(input.source), capture, &frames_ready));
+      captures.back()->set_tap(input.tap);
       slots.push_back(&captures.back()->slot());
       trackers.push_back({input.tracker, input.stream_id});
       stream_ids.push_back(input.stream_id);
@@ -73,10 +74,6 @@ struct Pipeline::Stages {
                                            detect_options);
     track = std::make_unique<TrackStage>(trackers, detect->output(), options.queue_capacity,
                                          keep_images);
-    if (keep_images) {
-      consumers.push_back(std::make_unique<AnnotatedVideoConsumer>(
-          options.video_file, captures.front()->source().info().fps));
-    }
     sink = std::make_unique<SinkStage>(
         stream_ids, track->output(), std::move(consumers), options.stats_interval_s,
         [this](std::size_t input) { return captures[input]->frames_captured(); });

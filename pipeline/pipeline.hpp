@@ -16,6 +16,7 @@
 #include "detector/detector.hpp"
 #include "messages/frame_result.hpp"
 #include "pipeline/frame_consumer.hpp"
+#include "pipeline/frame_tap.hpp"
 #include "pipeline/pipeline_report.hpp"
 #include "pipeline/playback_mode.hpp"
 #include "platform/video_source.hpp"
@@ -41,10 +42,12 @@ struct PipelineOptions {
   /// Live sources always use the latest-frame slot whatever this says (no pacing, no waiting).
   PlaybackMode playback{PlaybackMode::realtime};
   double simulated_latency_ms{250.0};
-  std::uint32_t stream_id{0};     // the single-source constructor's stream id
-  std::int64_t max_frames{0};     // per source: stop after this many captured frames; 0 = no limit
-  double stats_interval_s{5.0};   // periodic log line; 0 = off
-  std::string video_file;         // annotated video output (one source only); empty = off
+  std::uint32_t stream_id{0};    // the single-source constructor's stream id
+  std::int64_t max_frames{0};    // per source: stop after this many captured frames; 0 = no limit
+  double stats_interval_s{5.0};  // periodic log line; 0 = off
+  /// Hand each frame's picture through the queues to the consumers (an annotated video: one
+  /// source only). Off, the pictures stay in the capture stage.
+  bool keep_images{false};
   std::size_t queue_capacity{4};  // items in each of the two queues (at least one per source)
   /// Several sources: once one has a new frame, how long the detector waits for the others'
   /// before it runs the batch without them.
@@ -57,6 +60,8 @@ struct PipelineInput {
   std::unique_ptr<platform::VideoSource> source;
   tracker::TrackerConfig tracker;
   std::uint32_t stream_id{0};
+  /// Sees every frame of this source (pipeline/frame_tap.hpp); not owned, must outlive run().
+  FrameTap* tap{nullptr};
 };
 
 class Pipeline {
@@ -66,9 +71,8 @@ class Pipeline {
            const tracker::TrackerConfig& tracker_config,
            std::vector<std::unique_ptr<messages::TrackSink>> sinks, PipelineOptions options);
   /// Several sources through one detector (batched); the sink stage hands every message to each
-  /// consumer in order (then to the annotated video if options.video_file is set). Throws
-  /// std::invalid_argument if `inputs` is empty or a video file is asked for with more than one
-  /// source.
+  /// consumer in order. Throws std::invalid_argument if `inputs` is empty or images are kept
+  /// (options.keep_images) with more than one source.
   Pipeline(std::vector<PipelineInput> inputs, std::unique_ptr<detector::Detector> detector,
            std::vector<std::unique_ptr<FrameConsumer>> consumers, PipelineOptions options);
   ~Pipeline();

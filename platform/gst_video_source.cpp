@@ -130,8 +130,15 @@ void GstVideoSource::open() {
   if (!adopt_caps(gst_sample_get_caps(first_sample_.get()))) {
     fail_open("unusable video caps from the decoder");
   }
-  spdlog::info("{}: {}x{} at {} fps{}", uri_.text, info_.width, info_.height, info_.fps,
-               info_.live ? " (live)" : "");
+  gint64 duration_ns = 0;
+  if (!info_.live && info_.fps > 0.0 &&
+      gst_element_query_duration(pipeline_.get(), GST_FORMAT_TIME, &duration_ns) &&
+      duration_ns > 0) {
+    info_.frame_count = std::llround(static_cast<double>(duration_ns) * info_.fps / 1e9);
+  }
+  spdlog::info("{}: {}x{} at {} fps{}{}", uri_.text, info_.width, info_.height, info_.fps,
+               info_.live ? " (live)" : "",
+               info_.frame_count > 0 ? ", " + std::to_string(info_.frame_count) + " frames" : "");
 }
 
 void GstVideoSource::stop() {

@@ -24,12 +24,27 @@ ReconnectClock ReconnectClock::steady() {
 }
 
 ReconnectingSource::ReconnectingSource(Factory factory, ReconnectPolicy policy,
-                                       ReconnectClock clock)
+                                       ReconnectClock clock, SourceInfo expected)
     : factory_(std::move(factory)),
       policy_(policy),
       clock_(std::move(clock)),
-      source_(factory_()),
       delay_(policy_.initial_delay) {
+  try {
+    source_ = factory_();
+  } catch (const InputError& error) {
+    if (!policy_.retry_first_open) throw;
+    // Cold start: the camera is not there yet. Start as an outage; the first reopen comes after
+    // the initial delay and backs off like any other.
+    info_ = std::move(expected);
+    info_.live = true;
+    ++stats_.outages;
+    ++stats_.failed_attempts;
+    frame_since_reopen_ = false;
+    last_error_ = std::string("reconnecting: not available at start-up: ") + error.what();
+    outage_start_ns_ = clock_.now_ns();
+    next_attempt_ns_ = outage_start_ns_ + to_ns(delay_);
+    return;
+  }
   if (!source_)
     throw InputError("", 0, "", "the video source factory returned no source",
                      ExitCode::source_failed);
@@ -97,11 +112,15 @@ ReadStatus ReconnectingSource::wait_or_reopen(cv::Mat& bgr, FrameInfo& info) {
   frame_since_reopen_ = false;
   info_.width = source_->info().width;
   info_.height = source_->info().height;
+  if (info_.fps <= 0.0) info_.fps = source_->info().fps;  // a cold start did not know it
 
   // The new source counts from frame 1 and pts 0 again; continue our numbering after the gap.
   const std::int64_t outage_ns = std::max<std::int64_t>(clock_.now_ns() - outage_start_ns_, 1);
-  const std::int64_t lost =
-      info_.fps > 0.0 ? std::llround(static_cast<double>(outage_ns) * info_.fps * 1e-9) : 0;
+  // Nothing was lost before the first frame of a cold start: the camera was not there yet.
+  const bool delivered_before = last_frame_number_ > 0;
+  const std::int64_t lost = info_.fps > 0.0 && delivered_before
+                                ? std::llround(static_cast<double>(outage_ns) * info_.fps * 1e-9)
+                                : 0;
   stats_.frames_lost += lost;
   frame_offset_ = last_frame_number_ + lost;
   pts_offset_ns_ = last_pts_ns_ + outage_ns;

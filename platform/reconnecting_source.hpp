@@ -19,6 +19,9 @@ struct ReconnectPolicy {
   std::chrono::milliseconds max_delay{5000};     // the doubling delay is capped here
   /// Longest a read() blocks while disconnected before returning `error` (the caller's tick).
   std::chrono::milliseconds poll_interval{100};
+  /// Cold start: a source that cannot be opened at start-up is retried with the same backoff as an
+  /// outage (a camera that boots slower than the board) instead of failing the construction.
+  bool retry_first_open{false};
 };
 
 struct ReconnectStats {
@@ -39,10 +42,13 @@ class ReconnectingSource final : public VideoSource {
  public:
   using Factory = std::function<std::unique_ptr<VideoSource>()>;
 
-  /// Opens the first source now: if that fails the factory's InputError propagates (a camera that
-  /// is not there at start-up is a configuration error, not an outage).
+  /// Opens the first source now. If that fails, the factory's InputError propagates, unless
+  /// policy.retry_first_open: then the source starts disconnected (an outage from the start:
+  /// read() returns `error`, reconnecting() is true) and `expected` stands for its info (uri, live,
+  /// the configured fps and size, 0 where unknown) until the source opens.
   explicit ReconnectingSource(Factory factory, ReconnectPolicy policy = {},
-                              ReconnectClock clock = ReconnectClock::steady());
+                              ReconnectClock clock = ReconnectClock::steady(),
+                              SourceInfo expected = {});
 
   /// Frame numbers continue across reconnects, with a gap for the frames the outage cost (estimated
   /// from the nominal fps), and pts_ns keeps increasing: downstream never sees time run backwards.

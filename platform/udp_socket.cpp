@@ -12,16 +12,12 @@
 #include <memory>
 
 #include "common/input_error.hpp"
+#include "platform/host_port.hpp"
 
 namespace rtmot::platform {
 namespace {
 
 static_assert(sizeof(sockaddr_storage) <= 128, "UdpSender::address_ holds a sockaddr_storage");
-
-std::string endpoint_name(const std::string& host, std::uint16_t port) {
-  const bool ipv6_literal = host.find(':') != std::string::npos;
-  return (ipv6_literal ? "[" + host + "]" : host) + ":" + std::to_string(port);
-}
 
 [[noreturn]] void throw_network(const std::string& endpoint, const std::string& problem) {
   throw InputError("udp://" + endpoint, 0, "", problem, ExitCode::network);
@@ -93,7 +89,7 @@ int SocketHandle::release() noexcept {
 }
 
 UdpSender::UdpSender(const std::string& host, std::uint16_t port)
-    : destination_(endpoint_name(host, port)) {
+    : destination_(format_host_port(host, port)) {
   if (host.empty()) throw_network(destination_, "empty host");
   if (port == 0) throw_network(destination_, "port 0 is not a destination");
   const AddrinfoList list = resolve(host, port, false, destination_);
@@ -123,7 +119,7 @@ bool UdpSender::send(const std::uint8_t* data, std::size_t size) {
 }
 
 UdpReceiver::UdpReceiver(const std::string& bind_address, std::uint16_t port)
-    : local_address_(endpoint_name(bind_address, port)) {
+    : local_address_(format_host_port(bind_address, port)) {
   const AddrinfoList list = resolve(bind_address, port, true, local_address_);
   socket_ = open_first(
       list, local_address_,
@@ -146,7 +142,7 @@ UdpReceiver::UdpReceiver(const std::string& bind_address, std::uint16_t port)
                     : ntohs(reinterpret_cast<const sockaddr_in*>(&bound)->sin_port);
         return std::string();
       });
-  local_address_ = endpoint_name(bind_address, port_);
+  local_address_ = format_host_port(bind_address, port_);
 }
 
 ReceiveStatus UdpReceiver::receive(std::uint8_t* buffer, std::size_t capacity, int timeout_ms,

@@ -21,6 +21,9 @@ struct SourceInfo {
   double fps{0.0};   // nominal rate; 0 if unknown
   int width{0};
   int height{0};
+  /// Files: frames in the whole file (from the container's duration and the rate), for progress
+  /// and ETA; 0 if unknown (live sources, containers without a duration).
+  std::int64_t frame_count{0};
 };
 
 enum class ReadStatus { frame, end_of_stream, error };

@@ -8,6 +8,7 @@
 #include <set>
 
 #include "common/input_error.hpp"
+#include "platform/host_port.hpp"
 
 namespace rtmot::platform {
 namespace {
@@ -209,8 +210,16 @@ VideoUri parse_video_uri(const std::string& text) {
     uri.sensor_id = parse_int(text, "sensor-id", rest, 0, 63);
   } else if (scheme == "rtsp" || scheme == "rtsps") {
     uri.kind = SourceKind::rtsp;
-    const std::string host = rest.substr(0, rest.find('/'));
-    if (host.empty() || host[0] == ':') fail(text, "host", "no host in the rtsp:// URL");
+    std::string authority = rest.substr(0, rest.find('/'));
+    authority = authority.substr(authority.rfind('@') == std::string::npos
+                                     ? 0
+                                     : authority.rfind('@') + 1);  // user:password@
+    if (authority.empty() || authority[0] == ':') fail(text, "host", "no host in the rtsp:// URL");
+    // The one HOST:PORT parser: [::1]:8554 works, a port out of range fails here, at once.
+    std::string problem;
+    if (!parse_host_port(authority, problem, scheme == "rtsps" ? 322 : 554)) {
+      fail(text, "host", problem);
+    }
     uri.location = text;
   } else if (scheme == "images") {
     uri.kind = SourceKind::images;

@@ -1,17 +1,15 @@
 #pragma once
-// HOST:PORT as the run configuration and `--udp` take it: a name or an IPv4 address, or an IPv6
-// address in brackets ([::1]:5600), and a port in 1..65535.
-#include <cstdint>
+// HOST:PORT as the run configuration and `--udp` take it, with the error a user sees (file, line,
+// field, exit code). The parsing itself is platform/host_port.hpp's, the one parser of addresses:
+// a name or an IPv4 address, or an IPv6 address in brackets ([::1]:5600), and a port in 1..65535.
 #include <string>
 
 #include "common/exit_codes.hpp"
+#include "platform/host_port.hpp"
 
 namespace rtmot::runner {
 
-struct HostPort {
-  std::string host;  // without the brackets of an IPv6 address
-  std::uint16_t port{0};
-};
+using HostPort = platform::HostPort;
 
 /// Throws InputError naming `file`, `line` and `field`, with `code` (bad_input for a configuration
 /// file, usage for the command line), if `text` is not HOST:PORT.

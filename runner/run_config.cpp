@@ -8,6 +8,10 @@
 #include "common/input_error.hpp"
 #include "common/input_file.hpp"
 #include "detector/dnn_backend.hpp"
+#include "outputs/mqtt_uri.hpp"
+#include "outputs/overlay.hpp"
+#include "outputs/video_target.hpp"
+#include "platform/host_port.hpp"
 #include "runner/host_port.hpp"
 #include "runner/sequence_clock_source.hpp"
 #include "runner/yaml_section.hpp"
@@ -153,8 +157,14 @@ void read_output(Section section, OutputConfig& output) {
   }
   section.read("binary_file", output.binary_file);
   section.read("jsonl_file", output.jsonl_file);
+  section.read("mqtt", output.mqtt);
   section.read("video_file", output.video_file);
+  section.read("overlay", output.overlay);
   section.read("report_file", output.report_file);
+  read_checked(
+      section, "metrics_port", output.metrics_port, [](int v) { return v >= 0 && v <= 65535; },
+      "a TCP port 0..65535 (0 = off)");
+  section.read("metrics_bind", output.metrics_bind);
   section.reject_unknown();
 }
 
@@ -219,6 +229,13 @@ RunConfig parse_run_config(const std::string& yaml_text, const std::string& file
   return config;
 }
 
+RunConfig default_run_config() {
+  RunConfig config = parse_run_config("tracker: {}\n", "(defaults)");
+  config.file = "(command line)";
+  config.detector.model = "models/ssdlite_mobilenet_v2_coco.onnx";
+  return config;
+}
+
 RunConfig load_run_config(const std::string& path) {
   return parse_run_config(read_text_file(path, kMaxConfigBytes), path);
 }
@@ -265,6 +282,22 @@ void validate(const RunConfig& config) {
     if (!config.output.video_file.empty()) {
       missing("output.video_file", "a mot-seq:// source has no images to annotate");
     }
+  }
+  // Every output is checked here, before the model loads: a typo costs no start-up time.
+  std::string problem;
+  if (!config.output.udp.empty() && !platform::parse_host_port(config.output.udp, problem)) {
+    missing("output.udp",
+            "expected HOST:PORT or [IPV6]:PORT, got '" + config.output.udp + "': " + problem);
+  }
+  if (!config.output.mqtt.empty() && !outputs::parse_mqtt_uri(config.output.mqtt, problem)) {
+    missing("output.mqtt", "'" + config.output.mqtt + "': " + problem);
+  }
+  if (!config.output.video_file.empty() &&
+      !outputs::parse_video_target(config.output.video_file, problem)) {
+    missing("output.video_file", "'" + config.output.video_file + "': " + problem);
+  }
+  if (!outputs::parse_overlay_flags(config.output.overlay, problem)) {
+    missing("output.overlay", problem);
   }
 }
 

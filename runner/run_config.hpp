@@ -45,8 +45,12 @@ struct OutputConfig {
   std::string udp;          // HOST:PORT, empty = off
   std::string binary_file;  // empty = off
   std::string jsonl_file;   // empty = off
-  std::string video_file;   // annotated video, empty = off
-  std::string report_file;  // JSON report, empty = off
+  std::string mqtt;         // mqtt://HOST[:PORT]/TOPIC[?qos=0|1&format=binary|json], empty = off
+  std::string video_file;  // annotated video by path or URI (outputs/video_target.hpp), empty = off
+  std::string overlay{"box,labels,conf,track,trail,stats"};  // what the video shows
+  std::string report_file;                                   // JSON report, empty = off
+  int metrics_port{0};                    // Prometheus endpoint on this TCP port, 0 = off
+  std::string metrics_bind{"127.0.0.1"};  // address the endpoint listens on
 };
 
 struct RunConfig {
@@ -73,6 +77,9 @@ std::uint32_t stream_id_of(const RunConfig& config, std::size_t index);
 
 /// Reads a YAML run configuration. Relative paths in it stay as written (relative to the cwd).
 RunConfig load_run_config(const std::string& path);
+/// The configuration without a file: every default of docs/config.md (tracker preset `rtmot`, the
+/// model scripts/fetch_model.sh writes); the command line supplies the rest.
+RunConfig default_run_config();
 /// Same, from text; `file_name` names it in errors.
 RunConfig parse_run_config(const std::string& yaml_text, const std::string& file_name);
 

@@ -1,11 +1,14 @@
 #include "runner/run_setup.hpp"
 
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <opencv2/core/utility.hpp>
 
 #include "common/input_error.hpp"
+#include "detector/coco_labels.hpp"
 #include "detector/dnn_backend.hpp"
 #include "detector/replay_detector.hpp"
 #include "detector/ssd_detector.hpp"
@@ -13,7 +16,14 @@
 #include "messages/jsonl_sink.hpp"
 #include "messages/udp_sink.hpp"
 #include "motio/mot_files.hpp"
+#include "outputs/annotated_video.hpp"
+#include "outputs/mqtt_publisher.hpp"
+#include "outputs/overlay.hpp"
+#include "outputs/video_stream.hpp"
+#include "outputs/video_target.hpp"
+#include "platform/host_port.hpp"
 #include "runner/host_port.hpp"
+#include "runner/progress_sink.hpp"
 #include "runner/source_factory.hpp"
 #include "tracker/score_scale.hpp"
 
@@ -98,21 +108,120 @@ std::unique_ptr<detector::Detector> make_detector(const RunConfig& config) {
   return std::make_unique<detector::SsdDetector>(ssd);
 }
 
-std::vector<std::unique_ptr<messages::TrackSink>> make_sinks(const RunConfig& config) {
+RunOutputs make_outputs(const RunConfig& config, std::vector<pipeline::PipelineInput>& inputs) {
+  RunOutputs outputs;
   std::vector<std::unique_ptr<messages::TrackSink>> sinks;
+  const platform::SourceInfo first =
+      inputs.empty() ? platform::SourceInfo{} : inputs.front().source->info();
+  std::vector<outputs::OutputProbe> probes;
   const OutputConfig& output = config.output;
+  // Files: missing folders are created (out/tracks.jsonl on a fresh clone), and the log says when
+  // an existing file is replaced.
+  const auto file_line = [](const char* kind, const std::string& path) {
+    std::error_code error;
+    const std::filesystem::path parent = std::filesystem::path(path).parent_path();
+    if (!parent.empty()) std::filesystem::create_directories(parent, error);
+    return fmt::format("{} -> {}{}", kind, path,
+                       std::filesystem::exists(path, error) ? " (replaces the existing file)" : "");
+  };
   if (!output.udp.empty()) {
     // Checked when the file was read (with its line) or the override given.
     const HostPort target =
         parse_host_port(output.udp, config.file, 0, "output.udp", ExitCode::bad_input);
-    sinks.push_back(std::make_unique<messages::UdpSink>(target.host, target.port));
+    auto sink = std::make_unique<messages::UdpSink>(target.host, target.port);
+    const messages::UdpSink* udp = sink.get();
+    probes.push_back(
+        {"udp", [udp] { return udp->messages_sent(); }, [udp] { return udp->send_failures(); }});
+    outputs.destinations.push_back("udp -> " +
+                                   platform::format_host_port(target.host, target.port));
+    sinks.push_back(std::move(sink));
   }
   if (!output.binary_file.empty()) {
+    outputs.destinations.push_back(file_line("binary", output.binary_file));
     sinks.push_back(std::make_unique<messages::BinaryFileSink>(output.binary_file));
   }
-  if (!output.jsonl_file.empty())
-    sinks.push_back(std::make_unique<messages::JsonlSink>(output.jsonl_file));
+  if (!output.mqtt.empty()) {
+    std::string problem;  // checked by validate()
+    outputs::MqttPublisherOptions mqtt;
+    mqtt.uri = outputs::parse_mqtt_uri(output.mqtt, problem).value();
+    auto sink =
+        std::make_unique<outputs::MqttPublisher>(mqtt, config.stream_id, &detector::coco_label);
+    const outputs::MqttPublisher* publisher = sink.get();
+    probes.push_back({"mqtt", [publisher] { return publisher->counters().published.load(); },
+                      [publisher] {
+                        return publisher->counters().dropped.load() +
+                               publisher->counters().failed.load();
+                      }});
+    outputs.destinations.push_back("mqtt -> " + outputs::to_string(mqtt.uri));
+    sinks.push_back(std::move(sink));
+  }
+  if (!output.jsonl_file.empty()) {
+    outputs.destinations.push_back(file_line("jsonl", output.jsonl_file));
+    sinks.push_back(
+        std::make_unique<messages::JsonlSink>(output.jsonl_file, &detector::coco_label));
+  }
+  std::unique_ptr<pipeline::FrameConsumer> video;
+  if (!output.video_file.empty()) {
+    std::string problem;  // both checked by validate()
+    const outputs::VideoTarget target =
+        outputs::parse_video_target(output.video_file, problem).value();
+    auto annotated = std::make_unique<outputs::AnnotatedVideo>(
+        target, first, outputs::parse_overlay_flags(output.overlay, problem).value(),
+        &detector::coco_label);
+    // One source (validate() checked it): the video sees every one of its frames.
+    if (!inputs.empty()) inputs.front().tap = annotated->tap();
+    video = std::move(annotated);
+    outputs.destinations.push_back("video -> " + output.video_file + " (H.264, overlay " +
+                                   output.overlay + ")");
+  }
+  if (!output.report_file.empty()) {
+    outputs.destinations.push_back(file_line("report", output.report_file));
+  }
+  if (config.stats_interval_s > 0.0 && inputs.size() == 1) {
+    sinks.push_back(std::make_unique<ProgressSink>(config.stats_interval_s, first.frame_count));
+  }
+  if (output.metrics_port > 0) {
+    outputs.metrics = std::make_unique<outputs::PipelineMetrics>(std::move(probes));
+    outputs.metrics_server = std::make_unique<outputs::MetricsServer>(
+        *outputs.metrics, output.metrics_bind, static_cast<std::uint16_t>(output.metrics_port));
+    sinks.push_back(std::make_unique<outputs::MetricsSink>(*outputs.metrics));
+    outputs.destinations.push_back("metrics -> " + outputs.metrics_server->url());
+  }
+  outputs.consumers = pipeline::as_consumers(std::move(sinks));
+  // The video last: it draws on the picture, after every message went out.
+  if (video) outputs.consumers.push_back(std::move(video));
+  return outputs;
+}
+
+std::vector<std::unique_ptr<messages::TrackSink>> make_sinks(const RunConfig& config) {
+  RunConfig messages_only = config;
+  messages_only.output.video_file.clear();
+  messages_only.output.metrics_port = 0;
+  messages_only.stats_interval_s = 0.0;
+  std::vector<std::unique_ptr<messages::TrackSink>> sinks;
+  // make_outputs' consumers are the message sinks in order; unwrap them.
+  std::vector<pipeline::PipelineInput> no_inputs;
+  for (auto& consumer : make_outputs(messages_only, no_inputs).consumers) {
+    sinks.push_back(static_cast<pipeline::TrackSinkConsumer&>(*consumer).release());
+  }
   return sinks;
+}
+
+void prepare_video_output(const RunConfig& config) {
+  if (config.output.video_file.empty()) return;
+  std::string problem;
+  const auto target = outputs::parse_video_target(config.output.video_file, problem);
+  const auto fail = [&](const std::string& why) {
+    throw InputError(config.output.video_file, 0, "output.video_file", why);
+  };
+  if (!target) fail(problem);
+  problem = outputs::check_video_elements(*target);
+  if (!problem.empty()) fail(problem);
+  if (target->kind == outputs::VideoTargetKind::mp4_file ||
+      target->kind == outputs::VideoTargetKind::mkv_file) {
+    problem = outputs::prepare_video_file(*target);
+    if (!problem.empty()) fail("cannot write the video: " + problem);
+  }
 }
 
 tracker::TrackerConfig complete_tracker_config(const RunConfig& config,
@@ -134,8 +243,12 @@ pipeline::PipelineOptions make_options(const RunConfig& config) {
   options.simulated_latency_ms = config.playback.latency_ms;
   options.stream_id = config.stream_id;
   options.max_frames = config.max_frames;
-  options.stats_interval_s = config.stats_interval_s;
-  options.video_file = config.output.video_file;
+  // One source: the progress line is ProgressSink's (make_outputs), with the total and ETA the
+  // engine's own line cannot know. Several: the engine's line, per source.
+  options.stats_interval_s = source_list(config).size() == 1 ? 0.0 : config.stats_interval_s;
+  // The annotated video takes its pictures through the source's tap (make_outputs), not through
+  // the queues.
+  options.keep_images = false;
   options.threads = config.threads;
   return options;
 }

@@ -2,10 +2,13 @@
 // Turns a validated RunConfig into the parts of a Pipeline: source, detector, tracker config, sinks
 // and options. Each throws rtmot::InputError naming the config field at fault.
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "detector/detector.hpp"
 #include "messages/frame_result.hpp"
+#include "outputs/metrics_server.hpp"
+#include "outputs/pipeline_metrics.hpp"
 #include "pipeline/pipeline.hpp"
 #include "platform/video_source.hpp"
 #include "runner/run_config.hpp"
@@ -19,8 +22,28 @@ std::unique_ptr<platform::VideoSource> make_source(const RunConfig& config);
 /// configuration completed from that source and its stream id.
 std::vector<pipeline::PipelineInput> make_inputs(const RunConfig& config);
 std::unique_ptr<detector::Detector> make_detector(const RunConfig& config);
-/// UDP, binary file and JSON lines, in that order, as configured.
+/// What a run sends its tracks to, built from the output section.
+struct RunOutputs {
+  /// For the sink stage, in order: UDP, binary file, MQTT, JSON lines as configured, the progress
+  /// line (one source), the metrics (with metrics_port), then the annotated video.
+  std::vector<std::unique_ptr<pipeline::FrameConsumer>> consumers;
+  /// With output.metrics_port: the numbers (fed by the MetricsSink) and the HTTP endpoint. Keep
+  /// both alive longer than the Pipeline that owns the consumers.
+  std::unique_ptr<outputs::PipelineMetrics> metrics;
+  std::unique_ptr<outputs::MetricsServer> metrics_server;
+  /// One line per destination ("udp -> [::1]:5600", "jsonl -> tracks.jsonl (replaces an existing
+  /// file)"), for the start-up log.
+  std::vector<std::string> destinations;
+};
+/// `inputs` (opened) give the progress line its total (a file's frame count) and the video its
+/// rate; the video sets the first input's tap (every source frame reaches it).
+RunOutputs make_outputs(const RunConfig& config, std::vector<pipeline::PipelineInput>& inputs);
+/// Only the message sinks (UDP, binary, MQTT, JSON lines), for runs without video or metrics.
 std::vector<std::unique_ptr<messages::TrackSink>> make_sinks(const RunConfig& config);
+
+/// Before the model loads: checks the annotated video's target (GStreamer has its elements; a
+/// file's folders are created and the file can be written). Throws InputError with one clear line.
+void prepare_video_output(const RunConfig& config);
 /// The configured tracker with what the file left unset (0) taken from the source.
 tracker::TrackerConfig complete_tracker_config(const RunConfig& config,
                                                const platform::SourceInfo& source);

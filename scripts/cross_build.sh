@@ -29,14 +29,18 @@ sysroot_packages=(
   libgstreamer1.0-dev libgstreamer-plugins-base1.0-dev gstreamer1.0-tools
   gstreamer1.0-plugins-base gstreamer1.0-plugins-good gstreamer1.0-libav
   libspdlog-dev libfmt-dev libcli11-dev libyaml-cpp-dev nlohmann-json3-dev
+  gstreamer1.0-plugins-ugly libgstrtspserver-1.0-dev libmosquitto-dev libcivetweb-dev
   libgtest-dev libgmock-dev libbenchmark-dev
 )
 # The GStreamer plugins our pipelines use (platform/gst_pipelines.cpp): core elements, decodebin and
 # typefinding, AVI demuxing and the libav decoders (vtest.avi is MS-MPEG4v3), videoconvert, appsink,
-# the test source, V4L2 and JPEG for cameras, RTSP (rtspsrc and its RTP/UDP helpers).
+# the test source, V4L2 and JPEG for cameras, RTSP (rtspsrc and its RTP/UDP helpers); the video
+# outputs (outputs/gst_video_output.cpp): x264, MP4 and Matroska muxing and demuxing, PNG for the
+# tests' frame checks.
 gst_plugins=(
   coreelements playback typefindfunctions app videoconvertscale videotestsrc
   avi libav jpeg video4linux2 videorate rtsp rtpmanager rtp udp
+  x264 isomp4 matroska png
 )
 host_packages=(crossbuild-essential-arm64 qemu-user mmdebstrap cmake ninja-build pkg-config file python3)
 

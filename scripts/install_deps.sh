@@ -9,6 +9,10 @@ packages=(
   libopencv-dev libeigen3-dev zlib1g-dev
   libgstreamer1.0-dev libgstreamer-plugins-base1.0-dev
   gstreamer1.0-plugins-base gstreamer1.0-plugins-good gstreamer1.0-libav gstreamer1.0-tools
+  gstreamer1.0-plugins-ugly                   # x264enc: the annotated video's H.264
+  libgstrtspserver-1.0-dev gstreamer1.0-rtsp  # rtsp:// video output (gst-rtsp-server)
+  libmosquitto-dev mosquitto                  # MQTT output; the tests start Debian's broker
+  libcivetweb-dev                             # the Prometheus metrics endpoint
   libspdlog-dev libcli11-dev libyaml-cpp-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   python3 python3-numpy python3-onnx   # model conversion (see docs/model.md)

@@ -18,8 +18,6 @@ shared_source="$(ls "$root"/../shared/opencv/opencv-4.10.0-*.tar.xz 2>/dev/null 
 opencv_source="${RTMOT_OPENCV_SOURCE:-$shared_source}"
 if [[ ${RTMOT_OPENCV:-auto} == debian ]]; then
   echo "setup_and_run.sh: OpenCV: Debian's (RTMOT_OPENCV=debian)"
-elif grep -q opencv_videoio "$root/pipeline/CMakeLists.txt"; then
-  echo "setup_and_run.sh: OpenCV: Debian's (pipeline/ still links videoio, which the pinned build leaves out)"
 elif [[ -f $pinned/lib/cmake/opencv4/OpenCVConfig.cmake ]] ||
   bash scripts/build_opencv.sh --prefix "$pinned" ${opencv_source:+--source "$opencv_source"} --jobs "$(nproc)"; then
   echo "setup_and_run.sh: OpenCV: the pinned 4.10 build in $pinned"

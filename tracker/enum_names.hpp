@@ -1,9 +1,9 @@
 #pragma once
 // One table of names per enum, read both ways: to_string() and parse(). Every enum that a user can
-// name (YAML, CLI, reports) defines its table once with this, so the spelling lives in one place and
-// help texts list exactly what the parser accepts.
-// It lives in tracker/ because tracker/ is the bottom of the dependency order (it may include
-// nothing from other folders) and its own enums need it; every other folder includes it from here.
+// name (YAML, CLI, reports) defines its table once with this, so the spelling lives in one place
+// and help texts list exactly what the parser accepts. It lives in tracker/ because tracker/ is the
+// bottom of the dependency order (it may include nothing from other folders) and its own enums need
+// it; every other folder includes it from here.
 #include <array>
 #include <cstddef>
 #include <optional>

@@ -315,12 +315,14 @@ std::vector<CatalogueCase> first_round() {
        run_yaml,
        ExitCode::source_failed,
        {"fake.avi"}},
-      {"run_camera_unreachable",
-       "v4l2:///dev/video99 does not exist",
-       config_file(run_config("v4l2:///dev/video99")),
+      // An absent camera is no longer an error (cold start: it is retried as an outage, see
+      // tests/outputs/cold_start_test.cpp); a camera URI that cannot be right still fails at once.
+      {"run_camera_bad_port",
+       "rtsp://camera.local:99999/stream: port out of range",
+       config_file(run_config("rtsp://camera.local:99999/stream")),
        run_yaml,
        ExitCode::source_failed,
-       {"/dev/video99"}},
+       {"rtsp://camera.local:99999/stream", "99999"}},
       {"run_uri_unknown_scheme",
        "source uri gopher://x",
        config_file(run_config("gopher://x")),

@@ -10,7 +10,7 @@ mot=$shared/data/mot15-train
 [[ -d $mot ]] || { echo "missing test data: $mot" >&2; exit 1; }
 
 rm -rf "$out"
-mkdir -p "$out"/{mot_rows,seqinfo,run_config,host_port,video_uri,message_decoder}
+mkdir -p "$out"/{mot_rows,seqinfo,run_config,host_port,video_uri,message_decoder,output_uri}
 
 # MOT rows: the first byte picks the kind (0 det, 1 gt, 2 results; +0x80 = with a length check).
 prefixed() {  # BYTE FILE OUT
@@ -82,6 +82,15 @@ for uri in "$root/data/vtest.avi" "file:///work/data/vtest.avi" "v4l2:///dev/vid
   "test://ball?is-live=true&width=64&height=48&fps=60&error-after=5" \
   "test://smpte?num-buffers=10&stall-after=3&stall-ms=100&eos-after=8"; do
   printf '%s' "$uri" >"$out/video_uri/uri-$i"
+  i=$((i + 1))
+done
+
+# Output addresses and URIs (HOST:PORT, mqtt://, video targets, overlay flags).
+i=0
+for text in "localhost:5600" "[::1]:5600" "[fe80::1%eth0]:65535" "mqtt://[::1]:1883/fleet/board7?qos=0&format=json" \
+  "mqtt://broker/rtmot/#" "out/demo.mp4" "file://out/demo.mkv" "rtsp://:8554/tracks" "rtp://127.0.0.1:5004" \
+  "display://0" "box,labels,conf,track,trail,stats" "none"; do
+  printf '%s' "$text" >"$out/output_uri/text-$i"
   i=$((i + 1))
 done
 

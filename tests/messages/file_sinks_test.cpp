@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -114,10 +115,16 @@ TEST_F(FileSinks, JsonLinesParseBackToTheSameFrames) {
   ASSERT_EQ(frames.size(), 60U);
   ASSERT_FALSE(frames[3].tracks.empty());
   frames[3].tracks[0].score = std::numeric_limits<float>::infinity();  // JSON has no Inf: null
+  // MOT15's detections are all pedestrians (class 1); a label map for them.
+  const ClassLabelFn labels = [](int class_id) -> std::string_view {
+    return class_id == 1 ? "person" : "";
+  };
+  const std::int64_t before_ns = wall_now_ns();
   {
-    JsonlSink sink(file("tracks.jsonl"));
+    JsonlSink sink(file("tracks.jsonl"), labels);
     for (const auto& frame : frames) sink.write(frame);
   }
+  const std::int64_t after_ns = wall_now_ns();
   std::ifstream in(file("tracks.jsonl"));
   std::string line;
   std::size_t index = 0;
@@ -125,6 +132,18 @@ TEST_F(FileSinks, JsonLinesParseBackToTheSameFrames) {
     ASSERT_LT(index, frames.size());
     const FrameResult& frame = frames[index++];
     const auto json = nlohmann::json::parse(line);  // throws, failing the test, if not JSON
+    EXPECT_EQ(json.at("schema").get<int>(), json_schema_version);
+    const auto wall_ns = json.at("wall_ns").get<std::int64_t>();
+    EXPECT_GE(wall_ns, before_ns);
+    EXPECT_LE(wall_ns, after_ns);
+    // "time" is wall_ns in ISO 8601 UTC, to the millisecond.
+    const std::time_t seconds = static_cast<std::time_t>(wall_ns / 1000000000);
+    std::tm utc{};
+    gmtime_r(&seconds, &utc);
+    char expected[32];
+    std::strftime(expected, sizeof expected, "%Y-%m-%dT%H:%M:%S", &utc);
+    EXPECT_EQ(json.at("time").get<std::string>(),
+              fmt::format("{}.{:03}Z", expected, (wall_ns / 1000000) % 1000));
     EXPECT_EQ(json.at("stream").get<std::uint32_t>(), frame.stream_id);
     EXPECT_EQ(json.at("sequence").get<std::uint64_t>(), frame.sequence);
     EXPECT_EQ(json.at("frame").get<std::int64_t>(), frame.frame_number);
@@ -139,6 +158,7 @@ TEST_F(FileSinks, JsonLinesParseBackToTheSameFrames) {
       const auto& track = frame.tracks[i];
       EXPECT_EQ(tracks[i].at("id").get<std::int32_t>(), track.id);
       EXPECT_EQ(tracks[i].at("class").get<std::int32_t>(), track.class_id);
+      EXPECT_EQ(tracks[i].at("label").get<std::string>(), "person");
       // Shortest round-trip formatting: the float read back is the float written.
       EXPECT_EQ(tracks[i].at("x").get<float>(), track.box.x);
       EXPECT_EQ(tracks[i].at("y").get<float>(), track.box.y);

@@ -275,7 +275,7 @@ TEST(MultiSource, AnnotatedVideoWithSeveralSourcesIsRefused) {
   inputs.push_back(input(std::make_unique<PatternSource>(1), 0, 30.0));
   inputs.push_back(input(std::make_unique<PatternSource>(1), 1, 30.0));
   auto options = quiet(PlaybackMode::realtime);
-  options.video_file = "out.avi";
+  options.keep_images = true;  // what an annotated video asks for
   EXPECT_THROW(Pipeline(std::move(inputs), std::make_unique<FixedBoxDetector>(), {}, options),
                std::invalid_argument);
 }

@@ -203,7 +203,7 @@ TEST(LivePipeline, LatestFrameUnderRandomDelaysNeverTearsRepeatsOrReorders) {
   std::atomic<int> torn{0};
   Collected collected;
   auto options = quiet(PlaybackMode::every_frame);  // ignored: a live source takes the latest
-  options.video_file.clear();
+  options.keep_images = false;
   Pipeline pipeline(std::make_unique<PatternSource>(4000), std::make_unique<CheckingDetector>(torn),
                     sort_for(1000.0), sinks_into(collected), options);
   const std::atomic<bool> stop{false};

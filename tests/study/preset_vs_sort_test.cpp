@@ -6,6 +6,8 @@
 
 #include <memory>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "mot/metrics.hpp"
 #include "mot/study_dataset.hpp"

@@ -1,0 +1,171 @@
+#include "outputs/gst_video_output.hpp"
+
+#include <fmt/format.h>
+#include <gst/app/gstappsrc.h>
+
+#include <cmath>
+#include <cstring>
+
+#include "common/input_error.hpp"
+
+namespace rtmot::outputs {
+namespace {
+
+using platform::gst::ErrorPtr;
+using platform::gst::MessagePtr;
+using platform::gst::ObjectPtr;
+using platform::gst::StringPtr;
+
+constexpr GstClockTime close_timeout = 60 * GST_SECOND;  // x264 drains its lookahead, mp4mux
+                                                         // rewrites the index (faststart)
+
+std::string raw_caps(int width, int height, double fps) {
+  int numerator = 0;
+  int denominator = 1;
+  gst_util_double_to_fraction(fps, &numerator, &denominator);
+  return fmt::format("video/x-raw,format=BGR,width={},height={},framerate={}/{}", width, height,
+                     numerator, denominator);
+}
+
+}  // namespace
+
+std::string describe_pipeline(const VideoTarget& target, int width, int height, double fps) {
+  const int keyframe_interval = std::max(1, static_cast<int>(std::lround(fps * 2.0)));
+  // A file waits for the encoder (block=true, a few frames of room): every frame is written. A
+  // stream never holds the sink stage: once half a second of frames waits for the encoder (its
+  // start-up, or an encoder slower than the source), a new frame is dropped
+  // (leaky-type=downstream) rather than let latency grow.
+  const bool file =
+      target.kind == VideoTargetKind::mp4_file || target.kind == VideoTargetKind::mkv_file;
+  const std::string source = fmt::format(
+      "appsrc name=src format=time is-live={} block={} max-buffers={} {} caps=\"{}\" ! "
+      "videoconvert ! video/x-raw,format=I420 ! ",
+      file ? "false" : "true", file ? "true" : "false",
+      file ? 4 : std::max(4, keyframe_interval / 4), file ? "" : "leaky-type=downstream",
+      raw_caps(width, height, fps));
+  // Browsers play H.264 High profile 4:2:0 in MP4 with the index first (faststart) and `avc1`
+  // sample entries (x264enc's default stream-format=avc).
+  const std::string file_encoder =
+      fmt::format("x264enc speed-preset=superfast key-int-max={} ! video/x-h264,profile=high ! ",
+                  keyframe_interval);
+  const std::string live_encoder = fmt::format(
+      "x264enc speed-preset=ultrafast tune=zerolatency key-int-max={} ! ", keyframe_interval);
+  switch (target.kind) {
+    case VideoTargetKind::mp4_file:
+      return source + file_encoder + "mp4mux faststart=true ! filesink name=sink";
+    case VideoTargetKind::mkv_file:
+      return source + file_encoder + "matroskamux ! filesink name=sink";
+    case VideoTargetKind::rtp:
+      return source + live_encoder +
+             fmt::format(
+                 "rtph264pay config-interval=1 pt=96 ! udpsink host={} port={} sync=false "
+                 "async=false",
+                 target.host, target.port);
+    case VideoTargetKind::display:
+      return fmt::format(
+          "appsrc name=src format=time is-live=true block=false max-buffers=2 "
+          "leaky-type=downstream caps=\"{}\" ! videoconvert ! ximagesink display=:{} sync=false",
+          raw_caps(width, height, fps), target.display);
+    case VideoTargetKind::rtsp:
+      break;  // served by RtspVideoServer
+  }
+  return "";
+}
+
+GstVideoOutput::GstVideoOutput(VideoTarget target, double fps)
+    : target_(std::move(target)), fps_(fps > 0.0 ? fps : 30.0) {
+  platform::gst::ensure_initialized();
+}
+
+GstVideoOutput::~GstVideoOutput() {
+  if (pipeline_) gst_element_set_state(pipeline_.get(), GST_STATE_NULL);
+}
+
+void GstVideoOutput::fail(const std::string& problem) {
+  if (pipeline_) gst_element_set_state(pipeline_.get(), GST_STATE_NULL);
+  closed_ = true;
+  throw InputError(target_.text, 0, "output.video_file", problem, ExitCode::io_error);
+}
+
+void GstVideoOutput::start(int width, int height) {
+  const std::string description = describe_pipeline(target_, width, height, fps_);
+  GError* raw_error = nullptr;
+  pipeline_.reset(gst_parse_launch(description.c_str(), &raw_error));
+  const ErrorPtr error(raw_error);
+  if (!pipeline_ || error) {
+    fail(std::string("cannot build the video pipeline: ") + (error ? error->message : "?"));
+  }
+  source_.reset(gst_bin_get_by_name(GST_BIN(pipeline_.get()), "src"));
+  if (const ObjectPtr<GstElement> sink{gst_bin_get_by_name(GST_BIN(pipeline_.get()), "sink")}) {
+    g_object_set(sink.get(), "location", target_.path.c_str(), nullptr);
+  }
+  bus_.reset(gst_element_get_bus(pipeline_.get()));
+  if (gst_element_set_state(pipeline_.get(), GST_STATE_PLAYING) == GST_STATE_CHANGE_FAILURE) {
+    throw_if_error();
+    fail("the video pipeline does not start");
+  }
+}
+
+void GstVideoOutput::throw_if_error() {
+  if (!bus_) return;
+  const MessagePtr message(gst_bus_pop_filtered(bus_.get(), GST_MESSAGE_ERROR));
+  if (!message) return;
+  GError* raw_error = nullptr;
+  gchar* raw_debug = nullptr;
+  gst_message_parse_error(message.get(), &raw_error, &raw_debug);
+  const ErrorPtr error(raw_error);
+  const StringPtr debug(raw_debug);
+  fail(std::string("writing the video failed: ") + (error ? error->message : "unknown error"));
+}
+
+void GstVideoOutput::push(const cv::Mat& bgr) {
+  if (closed_ || bgr.empty()) return;
+  if (!pipeline_) start(bgr.cols, bgr.rows);
+  const gsize row_bytes = static_cast<gsize>(bgr.cols) * 3;
+  GstBuffer* buffer =
+      gst_buffer_new_allocate(nullptr, row_bytes * static_cast<gsize>(bgr.rows), nullptr);
+  GstMapInfo map;
+  gst_buffer_map(buffer, &map, GST_MAP_WRITE);
+  for (int row = 0; row < bgr.rows; ++row) {
+    std::memcpy(map.data + row_bytes * static_cast<gsize>(row), bgr.ptr(row), row_bytes);
+  }
+  gst_buffer_unmap(buffer, &map);
+  // Constant frame rate: frame n at n / fps, so the file lasts as long as the source.
+  const GstClockTime duration = static_cast<GstClockTime>(std::llround(1e9 / fps_));
+  GST_BUFFER_PTS(buffer) = frames_ * duration;
+  GST_BUFFER_DURATION(buffer) = duration;
+  ++frames_;
+  const GstFlowReturn flow = gst_app_src_push_buffer(GST_APP_SRC(source_.get()), buffer);
+  throw_if_error();
+  if (flow != GST_FLOW_OK && flow != GST_FLOW_FLUSHING) {
+    fail(std::string("the encoder refused a frame: ") + gst_flow_get_name(flow));
+  }
+}
+
+void GstVideoOutput::close() {
+  if (closed_ || !pipeline_) {
+    closed_ = true;
+    return;
+  }
+  closed_ = true;
+  gst_app_src_end_of_stream(GST_APP_SRC(source_.get()));
+  const MessagePtr message(gst_bus_timed_pop_filtered(
+      bus_.get(), close_timeout, static_cast<GstMessageType>(GST_MESSAGE_EOS | GST_MESSAGE_ERROR)));
+  if (message && GST_MESSAGE_TYPE(message.get()) == GST_MESSAGE_ERROR) {
+    GError* raw_error = nullptr;
+    gst_message_parse_error(message.get(), &raw_error, nullptr);
+    const ErrorPtr error(raw_error);
+    gst_element_set_state(pipeline_.get(), GST_STATE_NULL);
+    throw InputError(
+        target_.text, 0, "output.video_file",
+        std::string("finishing the video failed: ") + (error ? error->message : "unknown error"),
+        ExitCode::io_error);
+  }
+  gst_element_set_state(pipeline_.get(), GST_STATE_NULL);
+  if (!message) {
+    throw InputError(target_.text, 0, "output.video_file", "the encoder did not finish within 60 s",
+                     ExitCode::io_error);
+  }
+}
+
+}  // namespace rtmot::outputs

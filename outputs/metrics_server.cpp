@@ -1,0 +1,51 @@
+#include "outputs/metrics_server.hpp"
+
+#include <civetweb.h>
+
+#include <mutex>
+
+#include "common/input_error.hpp"
+#include "platform/host_port.hpp"
+
+namespace rtmot::outputs {
+namespace {
+
+// mg_init_library must run once per process before the first server.
+void ensure_library() {
+  static std::once_flag once;
+  std::call_once(once, [] { mg_init_library(0); });
+}
+
+}  // namespace
+
+MetricsServer::MetricsServer(const PipelineMetrics& metrics, const std::string& bind_address,
+                             std::uint16_t port)
+    : metrics_(metrics),
+      url_("http://" + platform::format_host_port(bind_address, port) + "/metrics") {
+  ensure_library();
+  const std::string ports = platform::format_host_port(bind_address, port);
+  const char* options[] = {"listening_ports", ports.c_str(), "num_threads", "1", nullptr};
+  mg_callbacks callbacks{};
+  context_ = mg_start(&callbacks, nullptr, options);
+  if (context_ == nullptr) {
+    throw InputError(url_, 0, "output.metrics_port", "cannot listen (port in use?)",
+                     ExitCode::network);
+  }
+  mg_set_request_handler(context_, "/metrics", &MetricsServer::handle, this);
+}
+
+MetricsServer::~MetricsServer() {
+  if (context_ != nullptr) mg_stop(context_);
+}
+
+int MetricsServer::handle(mg_connection* connection, void* self) {
+  const std::string body = static_cast<MetricsServer*>(self)->metrics_.render();
+  mg_printf(connection,
+            "HTTP/1.1 200 OK\r\nContent-Type: text/plain; version=0.0.4; charset=utf-8\r\n"
+            "Content-Length: %zu\r\nConnection: close\r\n\r\n",
+            body.size());
+  mg_write(connection, body.data(), body.size());
+  return 200;
+}
+
+}  // namespace rtmot::outputs

@@ -1,0 +1,82 @@
+#include "outputs/mqtt_uri.hpp"
+
+#include <string_view>
+
+#include "platform/host_port.hpp"
+
+namespace rtmot::outputs {
+namespace {
+
+constexpr std::string_view scheme = "mqtt://";
+constexpr std::uint16_t default_port = 1883;
+
+bool read_parameter(std::string_view key, std::string_view value, MqttUri& uri,
+                    std::string& problem) {
+  if (key == "qos") {
+    if (value != "0" && value != "1") {
+      problem = "qos must be 0 or 1, got '" + std::string(value) + "'";
+      return false;
+    }
+    uri.qos = value == "1" ? 1 : 0;
+    return true;
+  }
+  if (key == "format") {
+    if (value != "binary" && value != "json") {
+      problem = "format must be binary or json, got '" + std::string(value) + "'";
+      return false;
+    }
+    uri.payload = value == "json" ? MqttPayload::json : MqttPayload::binary;
+    return true;
+  }
+  problem = "unknown parameter '" + std::string(key) + "' (qos, format)";
+  return false;
+}
+
+}  // namespace
+
+std::optional<MqttUri> parse_mqtt_uri(const std::string& text, std::string& problem) {
+  const std::string_view all(text);
+  if (all.substr(0, scheme.size()) != scheme) {
+    problem = "expected mqtt://HOST[:PORT]/TOPIC";
+    return std::nullopt;
+  }
+  std::string_view rest = all.substr(scheme.size());
+  const auto query_start = rest.find('?');
+  const std::string_view query =
+      query_start == std::string_view::npos ? std::string_view() : rest.substr(query_start + 1);
+  rest = rest.substr(0, query_start);
+  const auto slash = rest.find('/');
+  if (slash == std::string_view::npos || slash + 1 == rest.size()) {
+    problem = "missing /TOPIC after the broker's address";
+    return std::nullopt;
+  }
+  const auto address = platform::parse_host_port(rest.substr(0, slash), problem, default_port);
+  if (!address) return std::nullopt;
+  MqttUri uri;
+  uri.host = address->host;
+  uri.port = address->port;
+  uri.topic = std::string(rest.substr(slash + 1));
+  std::string_view parameters = query;
+  while (!parameters.empty()) {
+    const auto amp = parameters.find('&');
+    const std::string_view pair = parameters.substr(0, amp);
+    const auto equals = pair.find('=');
+    if (equals == std::string_view::npos) {
+      problem = "parameter '" + std::string(pair) + "' has no '=VALUE'";
+      return std::nullopt;
+    }
+    if (!read_parameter(pair.substr(0, equals), pair.substr(equals + 1), uri, problem)) {
+      return std::nullopt;
+    }
+    parameters = amp == std::string_view::npos ? std::string_view() : parameters.substr(amp + 1);
+  }
+  return uri;
+}
+
+std::string to_string(const MqttUri& uri) {
+  return "mqtt://" + platform::format_host_port(uri.host, uri.port) + "/" + uri.topic +
+         "?qos=" + std::to_string(uri.qos) +
+         (uri.payload == MqttPayload::json ? "&format=json" : "&format=binary");
+}
+
+}  // namespace rtmot::outputs

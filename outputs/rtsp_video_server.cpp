@@ -1,0 +1,135 @@
+#include "outputs/rtsp_video_server.hpp"
+
+#include <fmt/format.h>
+#include <gst/app/gstappsrc.h>
+#include <gst/rtsp-server/rtsp-server.h>
+#include <spdlog/spdlog.h>
+
+#include <cmath>
+#include <cstring>
+
+#include "common/input_error.hpp"
+#include "platform/gst_ptr.hpp"
+
+namespace rtmot::outputs {
+
+RtspVideoServer::RtspVideoServer(VideoTarget target, double fps)
+    : target_(std::move(target)), fps_(fps > 0.0 ? fps : 30.0) {
+  platform::gst::ensure_initialized();
+  context_ = g_main_context_new();
+  loop_ = g_main_loop_new(context_, FALSE);
+  server_ = gst_rtsp_server_new();
+  gst_rtsp_server_set_address(server_, target_.host.c_str());
+  const std::string service = std::to_string(target_.port);
+  gst_rtsp_server_set_service(server_, service.c_str());
+
+  GstRTSPMediaFactory* factory = gst_rtsp_media_factory_new();
+  const int keyframe_interval = std::max(1, static_cast<int>(std::lround(fps_)));
+  // The caps (frame size) are set on the appsrc at the first frame it gets; do-timestamp stamps
+  // each buffer with the pipeline's running time, as a live source does.
+  const std::string launch = fmt::format(
+      "( appsrc name=src format=time is-live=true do-timestamp=true block=false max-buffers=2 "
+      "leaky-type=downstream ! videoconvert ! video/x-raw,format=I420 ! x264enc "
+      "speed-preset=ultrafast tune=zerolatency key-int-max={} ! rtph264pay name=pay0 pt=96 "
+      "config-interval=1 )",
+      keyframe_interval);
+  gst_rtsp_media_factory_set_launch(factory, launch.c_str());
+  gst_rtsp_media_factory_set_shared(factory, TRUE);
+  g_signal_connect(factory, "media-configure", G_CALLBACK(&RtspVideoServer::on_media_configure),
+                   this);
+  GstRTSPMountPoints* mounts = gst_rtsp_server_get_mount_points(server_);
+  gst_rtsp_mount_points_add_factory(mounts, target_.mount.c_str(), factory);  // takes factory
+  g_object_unref(mounts);
+
+  source_id_ = gst_rtsp_server_attach(server_, context_);
+  if (source_id_ == 0) {
+    g_object_unref(server_);
+    g_main_loop_unref(loop_);
+    g_main_context_unref(context_);
+    throw InputError(target_.text, 0, "output.video_file",
+                     "cannot listen for RTSP clients on " + service + " (port in use?)",
+                     ExitCode::network);
+  }
+  loop_thread_ = std::thread([this] {
+    g_main_context_push_thread_default(context_);
+    g_main_loop_run(loop_);
+    g_main_context_pop_thread_default(context_);
+  });
+  spdlog::info("video: serving rtsp://{}:{}{}", target_.host == "0.0.0.0" ? "HOST" : target_.host,
+               target_.port, target_.mount);
+}
+
+RtspVideoServer::~RtspVideoServer() {
+  close();
+}
+
+void RtspVideoServer::close() {
+  if (closed_) return;
+  closed_ = true;
+  g_main_loop_quit(loop_);
+  loop_thread_.join();
+  {
+    const std::lock_guard<std::mutex> lock(media_mutex_);
+    if (appsrc_ != nullptr) gst_object_unref(appsrc_);
+    appsrc_ = nullptr;
+  }
+  GSource* source = g_main_context_find_source_by_id(context_, source_id_);
+  if (source != nullptr) g_source_destroy(source);
+  g_object_unref(server_);
+  g_main_loop_unref(loop_);
+  g_main_context_unref(context_);
+}
+
+bool RtspVideoServer::has_client() {
+  const std::lock_guard<std::mutex> lock(media_mutex_);
+  return appsrc_ != nullptr;
+}
+
+void RtspVideoServer::on_media_configure(GstRTSPMediaFactory*, GstRTSPMedia* media, gpointer self) {
+  auto& server = *static_cast<RtspVideoServer*>(self);
+  GstElement* element = gst_rtsp_media_get_element(media);
+  GstElement* appsrc = gst_bin_get_by_name_recurse_up(GST_BIN(element), "src");
+  gst_object_unref(element);
+  g_signal_connect(media, "unprepared", G_CALLBACK(&RtspVideoServer::on_media_unprepared), self);
+  const std::lock_guard<std::mutex> lock(server.media_mutex_);
+  if (server.appsrc_ != nullptr) gst_object_unref(server.appsrc_);
+  server.appsrc_ = appsrc;
+  server.caps_set_ = false;
+}
+
+void RtspVideoServer::on_media_unprepared(GstRTSPMedia*, gpointer self) {
+  auto& server = *static_cast<RtspVideoServer*>(self);
+  const std::lock_guard<std::mutex> lock(server.media_mutex_);
+  if (server.appsrc_ != nullptr) gst_object_unref(server.appsrc_);
+  server.appsrc_ = nullptr;
+}
+
+void RtspVideoServer::push(const cv::Mat& bgr) {
+  if (closed_ || bgr.empty()) return;
+  std::unique_lock<std::mutex> lock(media_mutex_, std::try_to_lock);
+  if (!lock.owns_lock() || appsrc_ == nullptr) return;
+  if (!caps_set_) {
+    int numerator = 0;
+    int denominator = 1;
+    gst_util_double_to_fraction(fps_, &numerator, &denominator);
+    const platform::gst::CapsPtr caps(gst_caps_new_simple(
+        "video/x-raw", "format", G_TYPE_STRING, "BGR", "width", G_TYPE_INT, bgr.cols, "height",
+        G_TYPE_INT, bgr.rows, "framerate", GST_TYPE_FRACTION, numerator, denominator, nullptr));
+    gst_app_src_set_caps(GST_APP_SRC(appsrc_), caps.get());
+    caps_set_ = true;
+  }
+  const gsize row_bytes = static_cast<gsize>(bgr.cols) * 3;
+  GstBuffer* buffer =
+      gst_buffer_new_allocate(nullptr, row_bytes * static_cast<gsize>(bgr.rows), nullptr);
+  GstMapInfo map;
+  gst_buffer_map(buffer, &map, GST_MAP_WRITE);
+  for (int row = 0; row < bgr.rows; ++row) {
+    std::memcpy(map.data + row_bytes * static_cast<gsize>(row), bgr.ptr(row), row_bytes);
+  }
+  gst_buffer_unmap(buffer, &map);
+  ++frames_;
+  // A refused buffer (client just left, media flushing) is simply not streamed.
+  gst_app_src_push_buffer(GST_APP_SRC(appsrc_), buffer);
+}
+
+}  // namespace rtmot::outputs

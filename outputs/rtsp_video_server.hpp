@@ -1,0 +1,57 @@
+#pragma once
+// rtsp://ADDRESS:PORT/NAME: an RTSP server (gst-rtsp-server) that clients pull the annotated video
+// from. One shared media for every client: appsrc -> x264enc (zero latency) -> rtph264pay. The
+// server runs its own GLib main loop on a thread (it handles RTSP requests there); frames are only
+// encoded while at least one client watches.
+#include <gst/gst.h>
+
+#include <atomic>
+#include <cstdint>
+#include <mutex>
+#include <thread>
+
+#include "outputs/video_stream.hpp"
+
+typedef struct _GstRTSPServer GstRTSPServer;
+typedef struct _GstRTSPMedia GstRTSPMedia;
+typedef struct _GstRTSPMediaFactory GstRTSPMediaFactory;
+
+namespace rtmot::outputs {
+
+class RtspVideoServer final : public VideoStream {
+ public:
+  /// Listens at once; throws InputError (ExitCode::network) if the port cannot be bound.
+  RtspVideoServer(VideoTarget target, double fps);
+  ~RtspVideoServer() override;
+  RtspVideoServer(const RtspVideoServer&) = delete;
+  RtspVideoServer& operator=(const RtspVideoServer&) = delete;
+
+  /// Never waits: with no client, or when the RTSP thread holds the media for a moment, the frame
+  /// is not streamed (a live stream shows the newest frame, it does not queue old ones).
+  void push(const cv::Mat& bgr) override;
+  void close() override;
+
+  /// Whether a client is watching (its media is prepared): for tests and logs.
+  bool has_client();
+
+ private:
+  static void on_media_configure(GstRTSPMediaFactory*, GstRTSPMedia* media, gpointer self);
+  static void on_media_unprepared(GstRTSPMedia* media, gpointer self);
+
+  VideoTarget target_;
+  double fps_;
+  GMainContext* context_{nullptr};
+  GMainLoop* loop_{nullptr};
+  GstRTSPServer* server_{nullptr};
+  guint source_id_{0};
+  std::thread loop_thread_;
+  // The appsrc of the current media: set and cleared on the RTSP thread, used by push() on the sink
+  // stage. A mutex that push() only try_locks: the sink stage never waits for the RTSP thread.
+  std::mutex media_mutex_;
+  GstElement* appsrc_{nullptr};
+  bool caps_set_{false};
+  std::uint64_t frames_{0};
+  bool closed_{false};
+};
+
+}  // namespace rtmot::outputs

@@ -1,0 +1,116 @@
+#include "outputs/video_target.hpp"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <system_error>
+
+#include "platform/host_port.hpp"
+
+namespace rtmot::outputs {
+namespace {
+
+bool starts_with(const std::string& text, const std::string& prefix) {
+  return text.compare(0, prefix.size(), prefix) == 0;
+}
+
+bool ends_with(const std::string& text, const std::string& suffix) {
+  return text.size() >= suffix.size() &&
+         text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+std::optional<VideoTarget> parse_file(const std::string& text, std::string path,
+                                      std::string& problem) {
+  VideoTarget target;
+  target.text = text;
+  if (ends_with(path, ".mp4")) {
+    target.kind = VideoTargetKind::mp4_file;
+  } else if (ends_with(path, ".mkv")) {
+    target.kind = VideoTargetKind::mkv_file;
+  } else {
+    problem = "a video file must end in .mp4 or .mkv (H.264), got '" + path + "'";
+    return std::nullopt;
+  }
+  target.path = std::move(path);
+  return target;
+}
+
+std::optional<VideoTarget> parse_rtsp(const std::string& text, std::string& problem) {
+  const std::string rest = text.substr(std::string("rtsp://").size());
+  const auto slash = rest.find('/');
+  if (slash == std::string::npos || slash + 1 == rest.size()) {
+    problem = "expected rtsp://[ADDRESS]:PORT/NAME";
+    return std::nullopt;
+  }
+  VideoTarget target;
+  target.kind = VideoTargetKind::rtsp;
+  target.text = text;
+  target.mount = rest.substr(slash);
+  std::string address = rest.substr(0, slash);
+  if (!address.empty() && address.front() == ':') address = "0.0.0.0" + address;  // rtsp://:8554/x
+  const auto parsed = platform::parse_host_port(address, problem, 8554);
+  if (!parsed) return std::nullopt;
+  target.host = parsed->host;
+  target.port = parsed->port;
+  return target;
+}
+
+}  // namespace
+
+std::optional<VideoTarget> parse_video_target(const std::string& text, std::string& problem) {
+  if (text.empty()) {
+    problem = "empty video target";
+    return std::nullopt;
+  }
+  if (starts_with(text, "rtsp://")) return parse_rtsp(text, problem);
+  if (starts_with(text, "rtp://")) {
+    const auto parsed = platform::parse_host_port(text.substr(6), problem);
+    if (!parsed) return std::nullopt;
+    VideoTarget target;
+    target.kind = VideoTargetKind::rtp;
+    target.text = text;
+    target.host = parsed->host;
+    target.port = parsed->port;
+    return target;
+  }
+  if (starts_with(text, "display://")) {
+    const std::string number = text.substr(10);
+    if (number.empty() || number.size() > 3 ||
+        number.find_first_not_of("0123456789") != std::string::npos) {
+      problem = "expected display://N";
+      return std::nullopt;
+    }
+    VideoTarget target;
+    target.kind = VideoTargetKind::display;
+    target.text = text;
+    target.display = std::stoi(number);
+    return target;
+  }
+  if (starts_with(text, "file://")) return parse_file(text, text.substr(7), problem);
+  if (text.find("://") != std::string::npos) {
+    problem = "unknown scheme (file path, file://, rtsp://, rtp://, display://)";
+    return std::nullopt;
+  }
+  return parse_file(text, text, problem);
+}
+
+std::string prepare_video_file(const VideoTarget& target) {
+  const std::filesystem::path path(target.path);
+  std::error_code error;
+  if (path.has_parent_path()) {
+    std::filesystem::create_directories(path.parent_path(), error);
+    if (error)
+      return "cannot create folder " + path.parent_path().string() + ": " + error.message();
+  }
+  if (std::filesystem::is_directory(path, error)) return "is a directory";
+  // Created (or truncated) now, as the writer will: what fails here would fail later.
+  const int fd = ::open(target.path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0) return std::strerror(errno);
+  ::close(fd);
+  return "";
+}
+
+}  // namespace rtmot::outputs

@@ -1,0 +1,144 @@
+// Cold start, with rtmot itself as a child process: a live source (an RTSP camera) that is absent
+// when the service starts is retried with the outage backoff: rtmot runs, sends source_outage
+// messages, and tracks once the camera (an RTSP server started here, streaming vtest.avi) appears.
+// A missing file and a malformed URI still fail at once.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <atomic>
+#include <chrono>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <thread>
+
+#include "child_process.hpp"
+#include "outputs/rtsp_video_server.hpp"
+#include "platform/video_source.hpp"
+#include "shared_data.hpp"
+
+namespace rtmot::outputs {
+namespace {
+
+using namespace std::chrono_literals;
+
+class ColdStart : public ::testing::Test {
+ protected:
+  std::filesystem::path folder_ = std::filesystem::path(::testing::TempDir()) /
+                                  ("rtmot-cold-" + std::to_string(::getpid()) + "-" +
+                                   ::testing::UnitTest::GetInstance()->current_test_info()->name());
+  std::filesystem::path model_ = test::source_path("models/ssdlite_mobilenet_v2_coco.onnx");
+  void SetUp() override { std::filesystem::create_directories(folder_); }
+
+  int run_to_end(const std::vector<std::string>& args) {
+    std::vector<std::string> argv{RTMOT_BINARY};
+    argv.insert(argv.end(), args.begin(), args.end());
+    test::ChildProcess rtmot(argv, folder_ / "out.txt", folder_ / "err.txt");
+    const int status = rtmot.wait(60s);
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  }
+};
+
+TEST_F(ColdStart, AbsentCameraIsAnOutageUntilItAppears) {
+  RTMOT_REQUIRE_FILE(model_);
+  const auto video = test::shared_path("data/video/vtest.avi");
+  RTMOT_REQUIRE_FILE(video);
+  const unsigned short port = test::free_tcp_port();
+  const std::string camera = "rtsp://127.0.0.1:" + std::to_string(port) + "/camera";
+  const auto jsonl = folder_ / "tracks.jsonl";
+  test::ChildProcess rtmot(
+      {RTMOT_BINARY, "run", "--source", camera, "--model", model_.string(), "--jsonl",
+       jsonl.string(), "--max-frames", "40", "--stats-interval", "0"},
+      folder_ / "out.txt", folder_ / "err.txt");
+  // Up and reporting the outage while nothing listens on the port (start-up is slow under qemu).
+  const auto deadline = std::chrono::steady_clock::now() + 60s;
+  while (test::read_text(folder_ / "err.txt").find("retrying with backoff") == std::string::npos &&
+         std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(100ms);
+  }
+  std::this_thread::sleep_for(2s);  // a couple of seconds of outage ticks
+  ASSERT_TRUE(rtmot.running());
+  ASSERT_NE(test::read_text(folder_ / "err.txt").find("retrying with backoff"), std::string::npos)
+      << test::read_text(folder_ / "err.txt");
+
+  // The camera appears: vtest.avi's people at 10 fps, until rtmot has its 40 frames and ends.
+  RtspVideoServer server(
+      [&] {
+        VideoTarget target;
+        target.kind = VideoTargetKind::rtsp;
+        target.text = camera;
+        target.host = "127.0.0.1";
+        target.port = port;
+        target.mount = "/camera";
+        return target;
+      }(),
+      10.0);
+  std::atomic<bool> done{false};
+  std::thread camera_thread([&] {
+    auto source = platform::open_video_source(video.string());
+    cv::Mat frame;
+    platform::FrameInfo info;
+    while (!done && source->read(frame, info) == platform::ReadStatus::frame) {
+      server.push(frame);
+      std::this_thread::sleep_for(100ms);
+    }
+  });
+  const int status = rtmot.wait(90s);
+  done = true;
+  camera_thread.join();
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0)
+      << status << "\n"
+      << test::read_text(folder_ / "err.txt");
+
+  std::ifstream lines(jsonl);
+  std::string line;
+  int outage = 0;
+  int tracked = 0;
+  int with_people = 0;
+  bool outage_after_tracking = false;
+  while (std::getline(lines, line)) {
+    const auto json = nlohmann::json::parse(line);
+    if (json.at("source_outage").get<bool>()) {
+      ++outage;
+      outage_after_tracking = outage_after_tracking || tracked > 0;
+    } else {
+      ++tracked;
+      if (!json.at("tracks").empty()) ++with_people;
+    }
+  }
+  EXPECT_GT(outage, 5);  // ticks while the camera was absent (about 10 a second)
+  EXPECT_GT(tracked, 10);
+  EXPECT_GT(with_people, 5);  // vtest.avi's pedestrians were tracked once it appeared
+  EXPECT_FALSE(outage_after_tracking);
+}
+
+TEST_F(ColdStart, MissingFileAndMalformedUriFailAtOnce) {
+  EXPECT_EQ(run_to_end(
+                {"run", "--source", (folder_ / "absent.avi").string(), "--model", model_.string()}),
+            5);
+  EXPECT_EQ(run_to_end({"run", "--source", "rtsp://127.0.0.1:99999/x", "--model", model_.string()}),
+            5);
+  const std::string err = test::read_text(folder_ / "err.txt");
+  EXPECT_EQ(err.find("retrying"), std::string::npos) << err;
+}
+
+}  // namespace
+}  // namespace rtmot::outputs
+
+namespace rtmot::outputs {
+namespace {
+
+// The systemd unit matches the cold start: it never stops restarting (no start limit), and it
+// does not treat exit 5 (source failed) as final.
+TEST(ColdStartUnit, ServiceNeverGivesUp) {
+  const std::string unit = test::read_text(test::source_path("scripts/deploy/rtmot.service"));
+  ASSERT_FALSE(unit.empty());
+  EXPECT_NE(unit.find("\nStartLimitIntervalSec=0\n"), std::string::npos);
+  EXPECT_NE(unit.find("\nRestart=on-failure\n"), std::string::npos);
+  const auto prevent = unit.find("\nRestartPreventExitStatus=");
+  ASSERT_NE(prevent, std::string::npos);
+  const std::string codes = unit.substr(prevent, unit.find('\n', prevent + 1) - prevent);
+  EXPECT_EQ(codes.find('5'), std::string::npos) << codes;
+}
+
+}  // namespace
+}  // namespace rtmot::outputs

@@ -1,0 +1,107 @@
+// The Prometheus endpoint: started on a free loopback port, fed with realistic frames (MOT15
+// detections timed as a 30 fps capture, an outage in the middle), scraped over HTTP here.
+#include <arpa/inet.h>
+#include <gtest/gtest.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <regex>
+#include <string>
+
+#include "child_process.hpp"
+#include "common/input_error.hpp"
+#include "message_test_data.hpp"
+#include "outputs/metrics_server.hpp"
+#include "outputs/pipeline_metrics.hpp"
+
+namespace rtmot::outputs {
+namespace {
+
+// GET `path` from 127.0.0.1:port with a plain socket; the whole response (headers and body).
+std::string http_get(unsigned short port, const std::string& path) {
+  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in address{};
+  address.sin_family = AF_INET;
+  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  address.sin_port = htons(port);
+  std::string response;
+  if (::connect(fd, reinterpret_cast<sockaddr*>(&address), sizeof address) == 0) {
+    const std::string request = "GET " + path + " HTTP/1.1\r\nHost: localhost\r\n\r\n";
+    (void)!::write(fd, request.data(), request.size());
+    char buffer[4096];
+    for (ssize_t n; (n = ::read(fd, buffer, sizeof buffer)) > 0;) response.append(buffer, n);
+  }
+  ::close(fd);
+  return response;
+}
+
+double value_of(const std::string& text, const std::string& series) {
+  const std::regex line("(^|\n)" + std::regex_replace(series, std::regex(R"([{}+."])"), R"(\$&)") +
+                        " ([0-9.e+-]+)");
+  std::smatch match;
+  if (!std::regex_search(text, match, line)) {
+    ADD_FAILURE() << "no series " << series;
+    return -1.0;
+  }
+  return std::stod(match[2]);
+}
+
+TEST(Metrics, EndpointServesPrometheusText) {
+  auto frames = test::frames_from_detections("TUD-Stadtmitte", 120);
+  ASSERT_EQ(frames.size(), 120U);
+  std::uint64_t sent = 0;
+  std::uint64_t dropped = 0;
+  PipelineMetrics metrics({OutputProbe{"udp", [&] { return sent; }, [&] { return dropped; }}});
+  const unsigned short port = test::free_tcp_port();
+  MetricsServer server(metrics, "127.0.0.1", port);
+  EXPECT_EQ(server.url(), "http://127.0.0.1:" + std::to_string(port) + "/metrics");
+
+  MetricsSink sink(metrics);
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    auto& frame = frames[i];
+    frame.frames_dropped = static_cast<std::uint32_t>(i / 10);
+    frame.source_outage = i >= 50 && i < 55;  // one outage, five ticks long
+    if (frame.source_outage) frame.tracks.clear();
+    ++sent;
+    dropped += i % 40 == 0 ? 1 : 0;
+    sink.write(frame);
+  }
+  const std::string response = http_get(port, "/metrics");
+  ASSERT_NE(response.find("200 OK"), std::string::npos) << response;
+  EXPECT_NE(response.find("Content-Type: text/plain; version=0.0.4"), std::string::npos);
+  EXPECT_EQ(value_of(response, "rtmot_frames_processed_total"), 120.0);
+  EXPECT_EQ(value_of(response, "rtmot_frames_captured_total"),
+            static_cast<double>(frames.back().frame_number));
+  EXPECT_EQ(value_of(response, "rtmot_frames_skipped_total"), 11.0);
+  EXPECT_EQ(value_of(response, "rtmot_source_outages_total"), 1.0);
+  EXPECT_EQ(value_of(response, "rtmot_outage_messages_total"), 5.0);
+  EXPECT_EQ(value_of(response, R"(rtmot_output_messages_total{output="udp",outcome="sent"})"),
+            120.0);
+  EXPECT_EQ(value_of(response, R"(rtmot_output_messages_total{output="udp",outcome="dropped"})"),
+            3.0);
+  // Every processed frame that was not an outage tick is in each stage's histogram; buckets are
+  // cumulative and end with +Inf = count.
+  EXPECT_EQ(value_of(response, R"(rtmot_stage_latency_seconds_count{stage="end_to_end"})"), 115.0);
+  EXPECT_EQ(value_of(response, R"(rtmot_stage_latency_seconds_bucket{stage="detect",le="+Inf"})"),
+            115.0);
+  EXPECT_LE(value_of(response, R"(rtmot_stage_latency_seconds_bucket{stage="detect",le="0.001"})"),
+            value_of(response, R"(rtmot_stage_latency_seconds_bucket{stage="detect",le="0.1"})"));
+  EXPECT_GT(value_of(response, "rtmot_fps"), 0.0);
+  EXPECT_NE(http_get(port, "/other").find("404"), std::string::npos);
+}
+
+TEST(Metrics, PortInUseIsANetworkError) {
+  PipelineMetrics metrics({});
+  const unsigned short port = test::free_tcp_port();
+  MetricsServer first(metrics, "127.0.0.1", port);
+  try {
+    MetricsServer second(metrics, "127.0.0.1", port);
+    FAIL() << "two servers on one port";
+  } catch (const InputError& error) {
+    EXPECT_EQ(error.exit_code(), ExitCode::network);
+  }
+}
+
+}  // namespace
+}  // namespace rtmot::outputs

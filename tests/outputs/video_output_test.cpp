@@ -1,0 +1,222 @@
+// Video outputs through GStreamer, each read back by a GStreamer pipeline started here: MP4 and
+// Matroska files (every frame, H.264, index first), RTP on a loopback port, and an RTSP server
+// pulled by an rtspsrc client. One decoded frame is saved as a PNG and its overlay checked.
+#include <gst/app/gstappsink.h>
+#include <gst/gst.h>
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <fstream>
+#include <opencv2/imgcodecs.hpp>
+#include <thread>
+
+#include "child_process.hpp"
+#include "common/input_error.hpp"
+#include "gst_read_back.hpp"
+#include "outputs/overlay.hpp"
+#include "outputs/rtsp_video_server.hpp"
+#include "outputs/video_stream.hpp"
+#include "outputs/video_target.hpp"
+#include "platform/gst_ptr.hpp"
+#include "platform/video_source.hpp"
+
+namespace rtmot::outputs {
+namespace {
+
+using test::read_back;
+using test::ReadBack;
+using test::to_bgr_sink;
+
+using namespace std::chrono_literals;
+
+constexpr int frame_count = 60;
+constexpr const char* test_source = "test://ball?width=320&height=240&num-buffers=60";
+
+VideoTarget target_of(const std::string& text) {
+  std::string problem;
+  const auto target = parse_video_target(text, problem);
+  EXPECT_TRUE(target.has_value()) << text << ": " << problem;
+  return target.value_or(VideoTarget{});
+}
+
+// One track whose box follows the test pattern's frame number, so a decoded frame can be checked.
+messages::FrameResult result_for(std::int64_t frame) {
+  messages::FrameResult result;
+  result.frame_number = frame;
+  tracker::TrackReport track;
+  track.id = 7;
+  track.class_id = 1;
+  track.score = 0.9F;
+  track.box = {100.F, 60.F, 120.F, 140.F};
+  result.tracks.push_back(track);
+  return result;
+}
+
+// Reads the test source and pushes every frame, annotated, into `stream`. `pace`: sleep between
+// frames (streams are live: a frame pushed while the encoder is busy may be dropped).
+int push_test_frames(VideoStream& stream, std::chrono::milliseconds pace) {
+  auto source = platform::open_video_source(test_source);
+  Overlay overlay(OverlayFlags{~0U}, [](int) -> std::string_view { return "person"; });
+  cv::Mat frame;
+  platform::FrameInfo info;
+  int pushed = 0;
+  while (source->read(frame, info) == platform::ReadStatus::frame) {
+    overlay.draw(frame, result_for(info.frame_number), false, OverlayStats{30.0, 12.0});
+    stream.push(frame);
+    ++pushed;
+    std::this_thread::sleep_for(pace);
+  }
+  return pushed;
+}
+
+// The overlay survived the encoding: the box's left edge has the track's colour, the pixels just
+// inside and outside it do not (the test pattern's background is black, its ball white).
+void expect_overlay(const cv::Mat& frame, const std::filesystem::path& png) {
+  ASSERT_FALSE(frame.empty());
+  ASSERT_TRUE(cv::imwrite(png.string(), frame));
+  const cv::Mat reread = cv::imread(png.string());
+  ASSERT_EQ(reread.size(), cv::Size(320, 240));
+  const cv::Scalar colour = colour_of(7);
+  const cv::Vec3b edge = reread.at<cv::Vec3b>(150, 100);  // left edge, mid-height, 2 px thick
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(edge[c], colour[c], 40.0) << "channel " << c;
+  const cv::Vec3b outside = reread.at<cv::Vec3b>(150, 90);
+  EXPECT_GT(cv::norm(cv::Vec3d(outside) - cv::Vec3d(colour[0], colour[1], colour[2])), 100.0);
+}
+
+class VideoOutputs : public ::testing::Test {
+ protected:
+  std::filesystem::path folder_ = std::filesystem::path(::testing::TempDir()) /
+                                  ("rtmot-video-" + std::to_string(::getpid()) + "-" +
+                                   ::testing::UnitTest::GetInstance()->current_test_info()->name());
+  void SetUp() override { std::filesystem::create_directories(folder_); }
+};
+
+TEST(VideoTarget, ReadsEveryKind) {
+  EXPECT_EQ(target_of("out/demo.mp4").kind, VideoTargetKind::mp4_file);
+  EXPECT_EQ(target_of("file://out/demo.mkv").path, "out/demo.mkv");
+  const VideoTarget rtsp = target_of("rtsp://:8554/cam");
+  EXPECT_EQ(rtsp.kind, VideoTargetKind::rtsp);
+  EXPECT_EQ(rtsp.host, "0.0.0.0");
+  EXPECT_EQ(rtsp.port, 8554);
+  EXPECT_EQ(rtsp.mount, "/cam");
+  const VideoTarget rtp = target_of("rtp://[::1]:5004");
+  EXPECT_EQ(rtp.host, "::1");
+  EXPECT_EQ(rtp.port, 5004);
+  EXPECT_EQ(target_of("display://0").kind, VideoTargetKind::display);
+  std::string problem;
+  EXPECT_FALSE(parse_video_target("out/demo.avi", problem));
+  EXPECT_EQ(problem, "a video file must end in .mp4 or .mkv (H.264), got 'out/demo.avi'");
+  EXPECT_FALSE(parse_video_target("rtp://host", problem));
+  EXPECT_EQ(problem, "missing ':PORT'");
+  EXPECT_FALSE(parse_video_target("http://x/y.mp4", problem));
+}
+
+TEST_F(VideoOutputs, MissingFoldersAreCreatedUnwritableTargetsSaySo) {
+  EXPECT_EQ(prepare_video_file(target_of((folder_ / "a/b/demo.mp4").string())), "");
+  EXPECT_TRUE(std::filesystem::exists(folder_ / "a/b/demo.mp4"));
+  std::filesystem::create_directories(folder_ / "dir.mp4");
+  EXPECT_EQ(prepare_video_file(target_of((folder_ / "dir.mp4").string())), "is a directory");
+  EXPECT_NE(prepare_video_file(target_of("/proc/rtmot/demo.mp4")), "");
+}
+
+TEST_F(VideoOutputs, Mp4HasEveryFrameAsH264IndexFirst) {
+  const auto path = folder_ / "demo.mp4";
+  const VideoTarget target = target_of(path.string());
+  ASSERT_EQ(check_video_elements(target), "");
+  auto stream = open_video_stream(target, 30.0);
+  EXPECT_EQ(push_test_frames(*stream, 0ms), frame_count);
+  stream->close();
+
+  const ReadBack back = read_back(
+      "filesrc location=" + path.string() + " ! qtdemux ! video/x-h264 ! avdec_h264" + to_bgr_sink,
+      frame_count / 2, 10000, 60s);
+  EXPECT_EQ(back.frames, frame_count);
+  expect_overlay(back.saved, folder_ / "frame30.png");
+  // Browsers: H.264 in `avc1` sample entries, and the index (moov) before the data (mdat).
+  std::ifstream file(path, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+  EXPECT_NE(bytes.find("avc1"), std::string::npos);
+  ASSERT_NE(bytes.find("moov"), std::string::npos);
+  EXPECT_LT(bytes.find("moov"), bytes.find("mdat"));
+}
+
+TEST_F(VideoOutputs, MkvHasEveryFrame) {
+  const auto path = folder_ / "demo.mkv";
+  auto stream = open_video_stream(target_of(path.string()), 30.0);
+  EXPECT_EQ(push_test_frames(*stream, 0ms), frame_count);
+  stream->close();
+  const ReadBack back = read_back("filesrc location=" + path.string() +
+                                      " ! matroskademux ! video/x-h264 ! avdec_h264" + to_bgr_sink,
+                                  5, 10000, 60s);
+  EXPECT_EQ(back.frames, frame_count);
+  expect_overlay(back.saved, folder_ / "frame5.png");
+}
+
+TEST_F(VideoOutputs, RtpStreamReachesAReceiver) {
+  const unsigned short port = test::free_tcp_port();  // free for UDP too in practice
+  auto stream = open_video_stream(target_of("rtp://127.0.0.1:" + std::to_string(port)), 30.0);
+  std::thread pusher;
+  // A large receive buffer: on a loaded machine the decoder thread may fall behind for a moment,
+  // and a datagram the kernel drops for want of room is a lost frame. The sender starts once the
+  // receiver's socket is bound (the pipeline is playing): a stream's
+  // first keyframe sent into nothing would leave the decoder waiting for the next one.
+  const ReadBack back =
+      read_back("udpsrc address=127.0.0.1 buffer-size=8388608 port=" + std::to_string(port) +
+                    " caps=\"application/x-rtp,media=video,encoding-name=H264,payload=96,"
+                    "clock-rate=90000\" ! rtph264depay ! avdec_h264" +
+                    to_bgr_sink,
+                frame_count / 2, frame_count, 30s, [&] {
+                  pusher = std::thread([&] {
+                    std::this_thread::sleep_for(200ms);
+                    push_test_frames(*stream, 33ms);  // a 30 fps camera's pace
+                  });
+                });
+  pusher.join();
+  stream->close();
+  EXPECT_EQ(back.frames, frame_count);
+  expect_overlay(back.saved, folder_ / "rtp.png");
+}
+
+TEST_F(VideoOutputs, RtspServerIsPulledByAClient) {
+  const unsigned short port = test::free_tcp_port();
+  const VideoTarget target = target_of("rtsp://127.0.0.1:" + std::to_string(port) + "/tracks");
+  RtspVideoServer server(target, 30.0);
+  ReadBack back;
+  std::thread pusher;
+  back = read_back("rtspsrc location=rtsp://127.0.0.1:" + std::to_string(port) +
+                       "/tracks protocols=tcp latency=0 ! rtph264depay ! avdec_h264" + to_bgr_sink,
+                   frame_count / 2, frame_count, 30s, [&] {
+                     pusher = std::thread([&] {
+                       // Frames go out once a client has the media (a live stream starts when
+                       // watched).
+                       const auto deadline = std::chrono::steady_clock::now() + 20s;
+                       while (!server.has_client() && std::chrono::steady_clock::now() < deadline) {
+                         std::this_thread::sleep_for(10ms);
+                       }
+                       std::this_thread::sleep_for(300ms);  // the client's PLAY reached the media
+                       push_test_frames(server, 15ms);
+                     });
+                   });
+  pusher.join();
+  server.close();
+  EXPECT_EQ(back.frames, frame_count);
+  expect_overlay(back.saved, folder_ / "rtsp.png");
+}
+
+// A full disk mid-run is an error (exit code io_error), not a video silently lost.
+TEST_F(VideoOutputs, FullDiskIsAnError) {
+  if (!std::filesystem::exists("/dev/full")) GTEST_SKIP() << "no /dev/full";
+  std::filesystem::create_symlink("/dev/full", folder_ / "full.mkv");
+  auto stream = open_video_stream(target_of((folder_ / "full.mkv").string()), 30.0);
+  try {
+    push_test_frames(*stream, 0ms);
+    stream->close();
+    FAIL() << "writing to a full disk succeeded";
+  } catch (const InputError& error) {
+    EXPECT_EQ(error.exit_code(), ExitCode::io_error);
+    EXPECT_NE(std::string(error.what()).find("No space left"), std::string::npos) << error.what();
+  }
+}
+
+}  // namespace
+}  // namespace rtmot::outputs
