@@ -95,6 +95,13 @@ int run_track(const TrackCommandOptions& options) {
         motio::load_detections(sequence.dir / track_options.detections, sequence.info),
         sequence.info, track_options, progress);
     if (run.stopped) break;
+    if (run.frames_over_capacity > 0) {
+      spdlog::warn(
+          "{}: {} frames had more detections than max_detections ({}, up to {}): the tracker used "
+          "the first {} of each (raise --max-detections)",
+          run.info.name, run.frames_over_capacity, track_options.config.max_detections,
+          run.most_detections, track_options.config.max_detections);
+    }
     const fs::path out_file = motio::sequence_file(options.out_dir, run.info.name, ".txt");
     motio::write_results(out_file, run.tracks);
     ++written;

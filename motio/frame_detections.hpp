@@ -24,6 +24,14 @@ class FrameDetections {
 
   /// Frame `frame`'s detections (1-based); empty for a frame without any, or outside the file.
   const std::vector<tracker::Detection>& at(std::int64_t frame) const;
+  /// Calls `visit(detection)` on every detection, which it may change (e.g. a score's scale).
+  template <typename Visit>
+  void for_each(Visit&& visit) {
+    for (auto& frame : detections_) {
+      for (auto& detection : frame) visit(detection);
+    }
+  }
+
   /// The last frame holding a detection, 0 if none.
   int last_frame() const { return frames_.empty() ? 0 : frames_.back(); }
   /// How many frames hold detections.

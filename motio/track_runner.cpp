@@ -1,5 +1,6 @@
 #include "motio/track_runner.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdint>
 
@@ -57,8 +58,13 @@ TrackRun track_detections(const FrameDetections& detections, const SequenceInfo&
       break;
     }
     const double time = static_cast<double>(frame - 1) / info.frame_rate;
+    const auto& in_frame = detections.at(frame);
+    if (in_frame.size() > static_cast<std::size_t>(config.max_detections)) {
+      ++run.frames_over_capacity;
+      run.most_detections = std::max(run.most_detections, in_frame.size());
+    }
     const auto start = Clock::now();
-    const auto& reports = tracker.update(detections.at(frame), time);
+    const auto& reports = tracker.update(in_frame, time);
     in_update += Clock::now() - start;
     for (const auto& report : reports) {
       MotRow row;

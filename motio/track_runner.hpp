@@ -31,6 +31,10 @@ struct TrackRun {
   int frames_processed{0};
   double seconds_in_update{0.0};  // time spent inside Tracker::update only
   bool stopped{false};            // by TrackOptions::stop, before the sequence's end
+  /// Frames with more detections than the tracker's max_detections (it used the first ones of
+  /// each), and the most detections one frame had: the caller says so rather than cut silently.
+  int frames_over_capacity{0};
+  std::size_t most_detections{0};
 };
 
 /// Called after each processed frame with (frame, sequence length); for progress reports.

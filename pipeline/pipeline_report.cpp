@@ -2,7 +2,6 @@
 
 #include <fmt/format.h>
 
-#include "common/input_error.hpp"
 #include "common/output_file.hpp"
 
 namespace rtmot::pipeline {

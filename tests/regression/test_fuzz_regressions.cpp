@@ -33,5 +33,24 @@ TEST(FuzzRegression, RunConfigComplexKeyIsABadInputError) {
   }
 }
 
+// fuzz_run_config, 2026-11-23: validate() asked stream_id_of() for every source, which kept a
+// reference into the temporary vector source_list() returned: a heap use-after-free on any valid
+// configuration (ASan; the plain build read freed memory silently). Fix: runner/run_config.cpp.
+TEST(FuzzRegression, StreamIdsOfAValidConfigurationReadNoFreedMemory) {
+  const std::string text =
+      "source:\n  uri: test://ball\ndetector:\n  kind: ssd\n  model: models/x.onnx\n"
+      "stream_id: 7\n";
+  const auto config = runner::parse_run_config(text, "fuzz.yaml");
+  runner::validate(config);
+  EXPECT_EQ(runner::stream_id_of(config, 0), 7U);
+  const auto two = runner::parse_run_config(
+      "sources:\n  - test://ball\n  - {uri: test://snow, stream_id: 42}\ndetector:\n  kind: ssd\n"
+      "  model: models/x.onnx\nstream_id: 7\n",
+      "fuzz.yaml");
+  runner::validate(two);
+  EXPECT_EQ(runner::stream_id_of(two, 0), 7U);
+  EXPECT_EQ(runner::stream_id_of(two, 1), 42U);
+}
+
 }  // namespace
 }  // namespace rtmot

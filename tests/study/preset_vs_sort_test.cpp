@@ -72,12 +72,9 @@ TEST_F(PresetVsSort, DefaultTracksDoNotDependOnTheScoreScale) {
   REQUIRE_DATASET();
   LoadedSequence rescaled = (*dataset_)[8];  // TUD-Campus
   ASSERT_EQ(rescaled.info.name, "TUD-Campus");
-  std::vector<std::vector<tracker::Detection>> frames;
-  for (std::int64_t frame = 1; frame <= rescaled.detections.last_frame(); ++frame) {
-    frames.push_back(rescaled.detections.at(frame));
-    for (auto& detection : frames.back()) detection.score = 11.F * (detection.score - 0.5F) - 0.5F;
-  }
-  rescaled.detections = motio::FrameDetections::from_frames(std::move(frames));
+  rescaled.detections.for_each([](tracker::Detection& detection) {
+    detection.score = 11.F * (detection.score - 0.5F) - 0.5F;
+  });
   const auto config = *tracker::find_preset(tracker::default_preset_name());
   for (const int interval : {1, 5}) {
     const Metrics original =
