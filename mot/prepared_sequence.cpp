@@ -30,7 +30,8 @@ std::map<int, std::vector<std::size_t>> rows_by_frame(const std::vector<motio::M
 // conf) with the result boxes on 1 - IoU, pairs below IoU 0.5 forbidden; a result box matched to a
 // distractor or to a too-occluded box is dropped.
 std::vector<bool> results_to_keep(const std::vector<motio::MotRow>& gt_rows,
-                                  const std::vector<motio::MotRow>& result_rows, double min_visibility) {
+                                  const std::vector<motio::MotRow>& result_rows,
+                                  double min_visibility) {
   std::vector<bool> keep(result_rows.size(), true);
   const auto gt_frames = rows_by_frame(gt_rows);
   const auto result_frames = rows_by_frame(result_rows);
@@ -125,9 +126,11 @@ PreparedSequence prepare_sequence(const std::vector<motio::MotRow>& gt_rows,
   }
   int last_frame = options.sequence_length;
   if (!gt.empty()) {
-    last_frame = (*std::max_element(gt.begin(), gt.end(), [](const motio::MotRow* a, const motio::MotRow* b) {
-                   return a->frame < b->frame;
-                 }))->frame;
+    last_frame = (*std::max_element(gt.begin(), gt.end(),
+                                    [](const motio::MotRow* a, const motio::MotRow* b) {
+                                      return a->frame < b->frame;
+                                    }))
+                     ->frame;
   }
   std::vector<const motio::MotRow*> results;
   for (std::size_t i = 0; i < result_rows.size(); ++i) {

@@ -27,6 +27,7 @@ struct ScoreRange {
 /// A warning (without the file's name) when `config` has an absolute score cut and `scores` look
 /// like another scale: outside [0, 1] (the scale the presets' and options' absolute numbers are
 /// on), or wholly on one side of the cut. nullopt when nothing is amiss or nothing was seen.
-std::optional<std::string> score_scale_warning(const TrackerConfig& config, const ScoreRange& scores);
+std::optional<std::string> score_scale_warning(const TrackerConfig& config,
+                                               const ScoreRange& scores);
 
 }  // namespace rtmot::tracker

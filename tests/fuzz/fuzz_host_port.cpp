@@ -11,8 +11,8 @@
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);
   try {
-    const auto parsed =
-        rtmot::runner::parse_host_port(text, "fuzz.yaml", 1, "output.udp", rtmot::ExitCode::bad_input);
+    const auto parsed = rtmot::runner::parse_host_port(text, "fuzz.yaml", 1, "output.udp",
+                                                       rtmot::ExitCode::bad_input);
     if (parsed.port == 0 || parsed.host.empty()) std::abort();
   } catch (const rtmot::InputError&) {
   }

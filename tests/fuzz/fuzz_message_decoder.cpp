@@ -18,7 +18,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   // An exact-size heap copy, so that AddressSanitizer sees any read past the end.
   const std::vector<std::uint8_t> bytes(data, data + size);
   static messages::ListenerStats stats(8);
-  if (messages::decode_message(bytes.data(), bytes.size(), decoded) == messages::DecodeError::none) {
+  if (messages::decode_message(bytes.data(), bytes.size(), decoded) ==
+      messages::DecodeError::none) {
     stats.record(decoded);
   }
 

@@ -7,9 +7,9 @@
 #include <map>
 #include <vector>
 
-#include "motio/mot_files.hpp"
 #include "messages/binary_file_sink.hpp"
 #include "messages/message_format.hpp"
+#include "motio/mot_files.hpp"
 
 int main(int argc, char** argv) {
   if (argc != 3) {

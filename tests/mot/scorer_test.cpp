@@ -28,7 +28,8 @@ motio::MotRow gt_row(int frame, int id, float x, int class_id, float visibility 
   return r;
 }
 
-Metrics score(const std::vector<motio::MotRow>& gt, const std::vector<motio::MotRow>& results, int interval = 1) {
+Metrics score(const std::vector<motio::MotRow>& gt, const std::vector<motio::MotRow>& results,
+              int interval = 1) {
   PrepareOptions options;
   options.interval = interval;
   return summarize(count_all(prepare_sequence(gt, results, options)));
@@ -131,7 +132,8 @@ TEST(Scorer, SwitchIsCountedOnlyIfTheGtBoxWasInThePreviousFrame) {
   const std::vector<motio::MotRow> gt_with_gap = {row(1, 1, 100.F), row(3, 1, 100.F)};
   const std::vector<motio::MotRow> results = {row(1, 1, 100.F), row(3, 2, 100.F)};
   EXPECT_EQ(score(gt_with_gap, results).id_switches, 0);
-  const std::vector<motio::MotRow> gt_without_gap = {row(1, 1, 100.F), row(2, 1, 100.F), row(3, 1, 100.F)};
+  const std::vector<motio::MotRow> gt_without_gap = {row(1, 1, 100.F), row(2, 1, 100.F),
+                                                     row(3, 1, 100.F)};
   EXPECT_EQ(score(gt_without_gap, results).id_switches, 1);
 }
 
@@ -166,7 +168,7 @@ TEST(Scorer, ZeroConfidenceGtIsIgnored) {
 TEST(Scorer, ResultsOnDistractorsAreRemovedAndOnlyPedestriansCount) {
   // MOT16/17 gt: a pedestrian, a static person (7, distractor) and a car (3, neither).
   const std::vector<motio::MotRow> gt = {gt_row(1, 1, 100.F, 1), gt_row(1, 2, 300.F, 7),
-                                  gt_row(1, 3, 600.F, 3)};
+                                         gt_row(1, 3, 600.F, 3)};
   const std::vector<motio::MotRow> results = {row(1, 1, 100.F), row(1, 2, 300.F), row(1, 3, 600.F)};
   const Metrics m = score(gt, results);
   EXPECT_EQ(m.gt_tracks, 1);

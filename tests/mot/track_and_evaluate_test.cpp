@@ -7,11 +7,11 @@
 #include "common/input_error.hpp"
 #include "mot/evaluation.hpp"
 #include "mot/prepared_sequence.hpp"
-#include "motio/results_writer.hpp"
 #include "mot/scorer.hpp"
+#include "motio/results_writer.hpp"
 #include "motio/track_runner.hpp"
-#include "tracker/presets.hpp"
 #include "shared_data.hpp"
+#include "tracker/presets.hpp"
 
 namespace rtmot::mot {
 namespace {
