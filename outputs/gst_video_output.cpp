@@ -4,9 +4,9 @@
 #include <gst/app/gstappsrc.h>
 
 #include <cmath>
-#include <cstring>
 
 #include "common/input_error.hpp"
+#include "outputs/bgr_buffer.hpp"
 
 namespace rtmot::outputs {
 namespace {
@@ -121,15 +121,7 @@ void GstVideoOutput::throw_if_error() {
 void GstVideoOutput::push(const cv::Mat& bgr) {
   if (closed_ || bgr.empty()) return;
   if (!pipeline_) start(bgr.cols, bgr.rows);
-  const gsize row_bytes = static_cast<gsize>(bgr.cols) * 3;
-  GstBuffer* buffer =
-      gst_buffer_new_allocate(nullptr, row_bytes * static_cast<gsize>(bgr.rows), nullptr);
-  GstMapInfo map;
-  gst_buffer_map(buffer, &map, GST_MAP_WRITE);
-  for (int row = 0; row < bgr.rows; ++row) {
-    std::memcpy(map.data + row_bytes * static_cast<gsize>(row), bgr.ptr(row), row_bytes);
-  }
-  gst_buffer_unmap(buffer, &map);
+  GstBuffer* buffer = copy_to_gst_buffer(bgr);
   // Constant frame rate: frame n at n / fps, so the file lasts as long as the source.
   const GstClockTime duration = static_cast<GstClockTime>(std::llround(1e9 / fps_));
   GST_BUFFER_PTS(buffer) = frames_ * duration;

@@ -6,9 +6,9 @@
 #include <spdlog/spdlog.h>
 
 #include <cmath>
-#include <cstring>
 
 #include "common/input_error.hpp"
+#include "outputs/bgr_buffer.hpp"
 #include "platform/gst_ptr.hpp"
 
 namespace rtmot::outputs {
@@ -118,15 +118,7 @@ void RtspVideoServer::push(const cv::Mat& bgr) {
     gst_app_src_set_caps(GST_APP_SRC(appsrc_), caps.get());
     caps_set_ = true;
   }
-  const gsize row_bytes = static_cast<gsize>(bgr.cols) * 3;
-  GstBuffer* buffer =
-      gst_buffer_new_allocate(nullptr, row_bytes * static_cast<gsize>(bgr.rows), nullptr);
-  GstMapInfo map;
-  gst_buffer_map(buffer, &map, GST_MAP_WRITE);
-  for (int row = 0; row < bgr.rows; ++row) {
-    std::memcpy(map.data + row_bytes * static_cast<gsize>(row), bgr.ptr(row), row_bytes);
-  }
-  gst_buffer_unmap(buffer, &map);
+  GstBuffer* buffer = copy_to_gst_buffer(bgr);
   ++frames_;
   // A refused buffer (client just left, media flushing) is simply not streamed.
   gst_app_src_push_buffer(GST_APP_SRC(appsrc_), buffer);

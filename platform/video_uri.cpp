@@ -62,6 +62,25 @@ bool parse_bool(const std::string& uri, const std::string& key, const std::strin
   fail(uri, key, "'" + value + "' is not a boolean (true/false)");
 }
 
+// Calls `apply(key, value)` for each `key=value` of a URI's query (`a=1&b=2`); a pair without
+// '=' or a key given twice is an error naming it.
+template <typename Apply>
+void for_each_query_pair(const std::string& uri, const std::string& query, Apply apply) {
+  std::set<std::string> seen;
+  std::size_t start = 0;
+  while (start <= query.size()) {
+    const auto amp = std::min(query.find('&', start), query.size());
+    const std::string pair = query.substr(start, amp - start);
+    start = amp + 1;
+    if (pair.empty()) continue;
+    const auto equals = pair.find('=');
+    if (equals == std::string::npos) fail(uri, pair, "expected key=value");
+    const std::string key = pair.substr(0, equals);
+    if (!seen.insert(key).second) fail(uri, key, "given twice");
+    apply(key, pair.substr(equals + 1));
+  }
+}
+
 constexpr int max_frames = 1'000'000'000;
 
 void apply_test_parameter(const std::string& uri, const std::string& key, const std::string& value,
@@ -104,20 +123,10 @@ TestSourceParams parse_test(const std::string& uri, const std::string& rest) {
   }
   if (question == std::string::npos) return params;
 
-  std::set<std::string> seen;
-  const std::string query = rest.substr(question + 1);
-  std::size_t start = 0;
-  while (start <= query.size()) {
-    const auto amp = std::min(query.find('&', start), query.size());
-    const std::string pair = query.substr(start, amp - start);
-    start = amp + 1;
-    if (pair.empty()) continue;
-    const auto equals = pair.find('=');
-    if (equals == std::string::npos) fail(uri, pair, "expected key=value");
-    const std::string key = pair.substr(0, equals);
-    if (!seen.insert(key).second) fail(uri, key, "given twice");
-    apply_test_parameter(uri, key, pair.substr(equals + 1), params);
-  }
+  for_each_query_pair(uri, rest.substr(question + 1),
+                      [&](const std::string& key, const std::string& value) {
+                        apply_test_parameter(uri, key, value, params);
+                      });
   if ((params.stall_after >= 0) != (params.stall_ms > 0)) {
     fail(uri, "stall-after", "stall-after and stall-ms go together");
   }
@@ -126,18 +135,7 @@ TestSourceParams parse_test(const std::string& uri, const std::string& rest) {
 
 ImageFolderParams parse_images_query(const std::string& uri, const std::string& query) {
   ImageFolderParams params;
-  std::set<std::string> seen;
-  std::size_t start = 0;
-  while (start <= query.size()) {
-    const auto amp = std::min(query.find('&', start), query.size());
-    const std::string pair = query.substr(start, amp - start);
-    start = amp + 1;
-    if (pair.empty()) continue;
-    const auto equals = pair.find('=');
-    if (equals == std::string::npos) fail(uri, pair, "expected key=value");
-    const std::string key = pair.substr(0, equals);
-    const std::string value = pair.substr(equals + 1);
-    if (!seen.insert(key).second) fail(uri, key, "given twice");
+  for_each_query_pair(uri, query, [&](const std::string& key, const std::string& value) {
     if (key == "fps") {
       params.fps = parse_fps(uri, key, value);
     } else if (key == "loop") {
@@ -145,7 +143,7 @@ ImageFolderParams parse_images_query(const std::string& uri, const std::string& 
     } else {
       fail(uri, key, "unknown images:// parameter (known: fps, loop)");
     }
-  }
+  });
   return params;
 }
 
