@@ -206,7 +206,13 @@ if [[ "${CROSS_SKIP_TESTS:-0}" != 1 ]]; then
   begin "ctest under qemu"
   (
     . "$root/scripts/cross_env.sh"
-    ctest --test-dir "$build" --output-on-failure -j"$jobs"
+    # Left out under emulation (they run in the native and sanitizer stages): their pass criterion
+    # is real-time pace, which qemu cannot keep: live RTP/RTSP streams of an x264 encoder lose
+    # frames (measured 56 and 45 of 60), and the cold-start test's camera appears before the
+    # emulated rtmot has started. The untimed-MJPEG test writes its input with a GStreamer JPEG
+    # encoder that fails in the arm64 sysroot's plugin set (its reader side is what it tests).
+    ctest --test-dir "$build" --output-on-failure -j"$jobs" \
+      -E '^(VideoOutputs\.(RtpStreamReachesAReceiver|RtspServerIsPulledByAClient)|ColdStart\.AbsentCameraIsAnOutageUntilItAppears|FileSource\.FramesWithoutTimestampsAreTimedAtARate)$'
   )
 fi
 
