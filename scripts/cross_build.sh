@@ -210,9 +210,11 @@ if [[ "${CROSS_SKIP_TESTS:-0}" != 1 ]]; then
     # is real-time pace, which qemu cannot keep: live RTP/RTSP streams of an x264 encoder lose
     # frames (measured 56 and 45 of 60), and the cold-start test's camera appears before the
     # emulated rtmot has started. The untimed-MJPEG test writes its input with a GStreamer JPEG
-    # encoder that fails in the arm64 sysroot's plugin set (its reader side is what it tests).
+    # encoder that fails in the arm64 sysroot's plugin set (its reader side is what it tests). The
+    # demo-video run forwards the real SSD on ~60 of 150 frames, about 5 s each under qemu: more
+    # than its 300 s limit (the SSD's accuracy under qemu is the reference test's, which runs).
     ctest --test-dir "$build" --output-on-failure -j"$jobs" \
-      -E '^(VideoOutputs\.(RtpStreamReachesAReceiver|RtspServerIsPulledByAClient)|ColdStart\.AbsentCameraIsAnOutageUntilItAppears|FileSource\.FramesWithoutTimestampsAreTimedAtARate)$'
+      -E '^(VideoOutputs\.(RtpStreamReachesAReceiver|RtspServerIsPulledByAClient)|ColdStart\.AbsentCameraIsAnOutageUntilItAppears|RunVideo\.DemoWritesEverySourceFrameAsBrowserPlayableH264|FileSource\.FramesWithoutTimestampsAreTimedAtARate)$'
   )
 fi
 
