@@ -59,6 +59,28 @@ void* operator new(std::size_t size) {
 void* operator new[](std::size_t size) {
   return rtmot::test::counted_allocation(size);
 }
+// The nothrow forms too (std::stable_sort's temporary buffer uses them): left to the runtime's
+// own, their memory would reach the free() below, a mismatch AddressSanitizer reports.
+void* operator new(std::size_t size, const std::nothrow_t&) noexcept {
+  try {
+    return rtmot::test::counted_allocation(size);
+  } catch (const std::bad_alloc&) {
+    return nullptr;
+  }
+}
+void* operator new[](std::size_t size, const std::nothrow_t&) noexcept {
+  try {
+    return rtmot::test::counted_allocation(size);
+  } catch (const std::bad_alloc&) {
+    return nullptr;
+  }
+}
+void operator delete(void* p, const std::nothrow_t&) noexcept {
+  std::free(p);
+}
+void operator delete[](void* p, const std::nothrow_t&) noexcept {
+  std::free(p);
+}
 void operator delete(void* p) noexcept {
   std::free(p);
 }
