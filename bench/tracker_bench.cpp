@@ -104,9 +104,9 @@ void BM_ModelMot15(benchmark::State& state) {
 // Every predictor with every affinity. (Apply rather than ArgsProduct: Ubuntu 20.04's
 // Google Benchmark 1.5.0, on JetPack 5 boards, predates ArgsProduct.)
 void every_model(benchmark::internal::Benchmark* bench) {
-  for (auto predictor : {PredictorKind::kalman, PredictorKind::stationary, PredictorKind::particle})
-    for (auto affinity : {AffinityKind::iou, AffinityKind::linear, AffinityKind::exponential})
-      bench->Args({static_cast<int>(predictor), static_cast<int>(affinity)});
+  for (const auto& predictor : rtmot::tracker::kPredictorNames.entries())
+    for (const auto& affinity : rtmot::tracker::kAffinityNames.entries())
+      bench->Args({static_cast<int>(predictor.first), static_cast<int>(affinity.first)});
 }
 BENCHMARK(BM_ModelMot15)->Apply(every_model)->Unit(benchmark::kMillisecond);
 

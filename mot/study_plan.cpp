@@ -11,6 +11,7 @@ namespace rtmot::mot {
 namespace {
 
 using tracker::AffinityKind;
+using tracker::GateClock;
 using tracker::PredictorKind;
 using tracker::TimeStep;
 using tracker::TrackerConfig;
@@ -46,6 +47,9 @@ std::vector<StudyConfiguration> option_configurations() {
              {{"second_round", "true"}, {"detection_threshold", "0.7"}, {"low_score", "0.5"}}),
       option("oru", {{"observation_centric_reupdate", "true"}}),
       option("widened-gate", {{"time_widened_gate", "true"}}),
+      option("frame-gap-gate", {{"time_widened_gate", "true"}, {"gate_clock", "frame_gap"}}),
+      option("keep-confirmation", {{"keep_confirmation", "true"}}),
+      option("tentative-dies", {{"tentative_dies_on_miss", "true"}}),
       option("cascade", {{"recent_tracks_first", "true"}}),
       option("confirm-by-duration", {{"confirm_by_duration", "true"}}),
       option("coast-1", {{"min_coast_updates", "1"}}),
@@ -69,8 +73,6 @@ std::vector<StudyConfiguration> ablation_configurations() {
   const TrackerConfig sort = TrackerConfig::sort_preset();
   return {
       ablation("-per-update", [&](TrackerConfig& c) { c.time_step = sort.time_step; }),
-      ablation("-threshold",
-               [&](TrackerConfig& c) { c.affinity_threshold = sort.affinity_threshold; }),
       ablation("-split",
                [](TrackerConfig& c) {
                  c.score_range_cut = 0.0;
@@ -87,10 +89,15 @@ std::vector<StudyConfiguration> ablation_configurations() {
       ablation("-duration", [](TrackerConfig& c) { c.confirm_by_duration = false; }),
       ablation("-coast", [](TrackerConfig& c) { c.min_coast_updates = 0; }),
       ablation("-gate", [](TrackerConfig& c) { c.time_widened_gate = false; }),
+      ablation("-gate-clock", [](TrackerConfig& c) { c.gate_clock = GateClock::since_match; }),
       ablation("-sr-iou", [](TrackerConfig& c) { c.second_round_threshold = 0.0; }),
-      ablation("-track-score", [](TrackerConfig& c) { c.confirm_score_cut = 0.0; }),
+      ablation("-sr-recent", [](TrackerConfig& c) { c.second_round_recent_only = false; }),
+      ablation("-keep", [](TrackerConfig& c) { c.keep_confirmation = false; }),
+      ablation("-dies", [](TrackerConfig& c) { c.tentative_dies_on_miss = false; }),
       ablation("+oru", [](TrackerConfig& c) { c.observation_centric_reupdate = true; }),
       ablation("+cascade", [](TrackerConfig& c) { c.recent_tracks_first = true; }),
+      ablation("+confirmed-first", [](TrackerConfig& c) { c.confirmed_tracks_first = true; }),
+      ablation("+track-score", [](TrackerConfig& c) { c.confirm_score_cut = 0.5; }),
   };
 }
 
@@ -98,10 +105,8 @@ std::vector<StudyConfiguration> ablation_configurations() {
 
 std::vector<StudyConfiguration> study_configurations(bool quick) {
   std::vector<StudyConfiguration> configurations;
-  for (const auto predictor :
-       {PredictorKind::kalman, PredictorKind::stationary, PredictorKind::particle}) {
-    for (const auto affinity :
-         {AffinityKind::iou, AffinityKind::linear, AffinityKind::exponential}) {
+  for (const auto& [predictor, predictor_name] : tracker::kPredictorNames.entries()) {
+    for (const auto& [affinity, affinity_name] : tracker::kAffinityNames.entries()) {
       const bool keep =
           !quick || (predictor == PredictorKind::kalman && affinity == AffinityKind::iou);
       if (keep) {
@@ -134,7 +139,10 @@ std::vector<StudyConfiguration> cv_candidates(bool quick) {
   };
   const std::vector<Choice> cuts =
       quick ? std::vector<Choice>{{"none", {}}, split("quantile-0.3", "score_quantile", "0.3")}
-            : std::vector<Choice>{{"none", {}}, split("range-0.5", "score_range_cut", "0.5")};
+            : std::vector<Choice>{{"none", {}},
+                                  split("range-0.3", "score_range_cut", "0.3"),
+                                  split("range-0.4", "score_range_cut", "0.4"),
+                                  split("range-0.5", "score_range_cut", "0.5")};
   const auto values = [quick](std::string name, std::string_view option,
                               std::vector<std::string_view> all) {
     std::vector<Choice> choices;
@@ -145,36 +153,35 @@ std::vector<StudyConfiguration> cv_candidates(bool quick) {
     return choices;
   };
   // Every combination of one choice per dimension, on top of SORT with elapsed time steps, one
-  // update of coasting, min_hits 2 or as long in time and the widened gate (what the first grids
-  // chose on every fold; docs/study/reading.md lists the dimensions each grid had and why some
-  // were dropped). This grid adds ByteTrack's birth and second-round rules and a track-level
-  // confidence against clutter.
+  // update of coasting, confirmation as long in time, the widened gate, 30 frames kept and
+  // ByteTrack's track life and second round (what the earlier grids chose on every fold, or
+  // ByteTrack's published rules where they were tried: docs/study/reading.md lists the dimensions
+  // each grid had and why some were fixed or dropped).
   const std::vector<std::vector<Choice>> dimensions = {
       cuts,
-      values("sr-iou", "second_round_threshold", {"0", "0.5"}),
+      values("gate", "gate_clock", {"since_match", "frame_gap"}),
       // The track-level confidence (confirm_score_cut) stays an option but not a candidate: a
       // fraction of the score range as the bar for reporting a track assumes how a detector's
       // true and false detections separate; on a weak one (synthetic DPM) it removed true tracks
       // wholesale (docs/study/reading.md).
-      values("track-score", "confirm_score_cut", {"0"}),
       values("iou", "affinity_threshold", {"0.3", "0.2"}),
-      values("age", "max_age", {"20", "30"}),
+      values("hits", "min_hits", {"1", "2"}),
   };
   std::vector<StudyConfiguration> candidates = {
       {"", "cv",
        tracker::with_options(TrackerConfig::sort_preset(), {{"time_step", "elapsed"},
                                                             {"min_coast_updates", "1"},
-                                                            {"min_hits", "2"},
                                                             {"confirm_by_duration", "true"},
-                                                            {"time_widened_gate", "true"}})}};
+                                                            {"time_widened_gate", "true"},
+                                                            {"max_age", "30"},
+                                                            {"keep_confirmation", "true"},
+                                                            {"tentative_dies_on_miss", "true"},
+                                                            {"second_round_threshold", "0.5"},
+                                                            {"second_round_recent_only", "true"}})}};
   for (const auto& dimension : dimensions) {
     std::vector<StudyConfiguration> grown;
     for (const auto& partial : candidates) {
       for (const auto& choice : dimension) {
-        // Without a second round its threshold changes nothing: one candidate, not two.
-        const bool idle = !partial.config.second_round && choice.name.rfind("sr-iou-", 0) == 0 &&
-                          choice.name != "sr-iou-0";
-        if (idle) continue;
         grown.push_back({partial.name.empty() ? choice.name : partial.name + "_" + choice.name,
                          "cv", tracker::with_options(partial.config, choice.options)});
       }

@@ -39,15 +39,15 @@ double exponential_affinity(const Box& track, const Box& detection) {
   return std::isfinite(result) ? result : 0.0;
 }
 
-float widened_gate_margin(double frames_unmatched, double max_margin) {
+float widened_gate_margin(double gate_frames, double max_margin) {
   return static_cast<float>(
-      std::clamp((frames_unmatched - 1.0) * kMarginPerLostFrame, 0.0, max_margin));
+      std::clamp((gate_frames - 1.0) * kMarginPerLostFrame, 0.0, max_margin));
 }
 
 double affinity(const TrackerConfig& config, const Box& track, const Box& detection,
-                double frames_unmatched) {
+                double gate_frames) {
   const float margin = config.time_widened_gate
-                           ? widened_gate_margin(frames_unmatched, config.max_gate_margin)
+                           ? widened_gate_margin(gate_frames, config.max_gate_margin)
                            : 0.F;
   switch (config.affinity) {
     case AffinityKind::iou:

@@ -19,14 +19,15 @@ inline constexpr double kMaxLinearAffinity = 1e12;
 /// exp(-0.5((dx/w)^2 + (dy/h)^2)) * exp(-1.5(|dh|/(h+h') + |dw|/(w+w'))), w and h of the track.
 double exponential_affinity(const Box& track, const Box& detection);
 
-/// The affinity the config selects. With `time_widened_gate`, `frames_unmatched` (nominal frames
-/// since the track's last match, >= 1 after a prediction) loosens the comparison: IoU is taken on
-/// boxes enlarged with the time lost (as C-BIoU), the other kinds are scaled up by it.
+/// The affinity the config selects. With `time_widened_gate`, `gate_frames` (nominal frames since
+/// the track's last match or since the previous processed frame, per `gate_clock`; >= 1 after a
+/// prediction) loosens the comparison: IoU is taken on boxes enlarged with that time (as C-BIoU),
+/// the other kinds are scaled up by it.
 double affinity(const TrackerConfig& config, const Box& track, const Box& detection,
-                double frames_unmatched);
+                double gate_frames);
 
-/// The enlargement margin (fraction of the size per side) after `frames_unmatched` frames, at most
+/// The enlargement margin (fraction of the size per side) after `gate_frames` frames, at most
 /// `max_margin`.
-float widened_gate_margin(double frames_unmatched, double max_margin);
+float widened_gate_margin(double gate_frames, double max_margin);
 
 }  // namespace rtmot::tracker

@@ -12,7 +12,7 @@ namespace rtmot::tracker {
 /// What association needs to know of a track.
 struct AssociationCandidate {
   Box predicted;
-  double frames_unmatched{1.0};  // nominal frames since its last match (widens the gate)
+  double gate_frames{1.0};  // nominal frames that widen its gate (TrackerConfig::gate_clock)
 };
 
 struct AssociationMatch {

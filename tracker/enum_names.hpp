@@ -10,6 +10,7 @@
 #include <string>
 #include <string_view>
 #include <utility>
+#include <vector>
 
 namespace rtmot::tracker {
 
@@ -51,6 +52,14 @@ class EnumNames {
  private:
   std::array<Entry, N> entries_;
 };
+
+/// Every value of a table, in its order (for tests and grids that cover them all).
+template <typename Enum, std::size_t N>
+std::vector<Enum> every_value(const EnumNames<Enum, N>& names) {
+  std::vector<Enum> values;
+  for (const auto& entry : names.entries()) values.push_back(entry.first);
+  return values;
+}
 
 template <typename Enum, typename... Entries>
 constexpr auto make_enum_names(Entries... entries) {

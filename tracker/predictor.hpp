@@ -6,11 +6,13 @@
 #include "tracker/kalman_predictor.hpp"
 #include "tracker/particle_predictor.hpp"
 #include "tracker/stationary_predictor.hpp"
+#include "tracker/xyah_kalman_predictor.hpp"
 
 namespace rtmot::tracker {
 
 using Predictor =
-    std::variant<std::monostate, KalmanPredictor, StationaryPredictor, ParticlePredictor>;
+    std::variant<std::monostate, KalmanPredictor, XyahKalmanPredictor, StationaryPredictor,
+                 ParticlePredictor>;
 
 inline Box advance(Predictor& predictor, double dt) {
   return std::visit(

@@ -1,5 +1,6 @@
 #include "tracker/score_scale.hpp"
 
+#include <algorithm>
 #include <limits>
 #include <sstream>
 
@@ -29,13 +30,17 @@ std::optional<std::string> score_scale_warning(const TrackerConfig& config,
     cuts << (highest_cut > kNoCut ? " and " : "") << "low_score " << config.low_score;
     if (highest_cut == kNoCut) highest_cut = config.low_score;
   }
+  if (config.birth_threshold > kNoCut) {
+    cuts << (highest_cut > kNoCut ? " and " : "") << "birth_threshold " << config.birth_threshold;
+    highest_cut = std::max(highest_cut, config.birth_threshold);
+  }
   if (cuts.str().empty()) return std::nullopt;  // relative cuts only: any scale fits
   if (scores.low < 0.F || scores.high > 1.F) {
     return describe(scores) + ", not [0, 1]: the absolute cut (" + cuts.str() +
            ") assumes another detector's scale; use score_quantile or score_range_cut instead";
   }
   if (highest_cut > scores.high) {
-    return describe(scores) + ": the absolute cut (" + cuts.str() + ") drops every detection";
+    return describe(scores) + ": no detection reaches the absolute cut (" + cuts.str() + ")";
   }
   return std::nullopt;
 }

@@ -41,6 +41,7 @@ struct Track {
   std::int32_t matches{0};
   std::int32_t class_id{0};
   TrackState state{TrackState::deleted};
+  bool ever_confirmed{false};  // for keep_confirmation and tentative_dies_on_miss
 
   bool matched_now() const {
     return state == TrackState::tentative || state == TrackState::confirmed;

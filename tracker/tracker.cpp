@@ -84,11 +84,12 @@ struct Tracker::State {
                                          double time_seconds) {
     ++frame_count;
     const double dt = step_length(time_seconds);
+    step_frames = dt;
     if (frame_count > 1) elapsed_frames += dt;
     split_by_score(detections);
     predict_tracks(dt);
     first_round();
-    if (config.recent_tracks_first) cascade_round();
+    if (config.recent_tracks_first || config.confirmed_tracks_first) cascade_round();
     if (config.second_round && !low.empty()) second_round();
     start_tracks();
     settle_and_report();
@@ -147,12 +148,15 @@ struct Tracker::State {
   }
 
   // SORT's association: the high-score detections against every live track (with the cascade,
-  // against the tracks matched in the previous update only).
+  // against the tracks matched in the previous update only; with confirmed_tracks_first, against
+  // the confirmed ones only).
   void first_round() {
     positions.clear();
     for (int t = 0; t < static_cast<int>(order.size()); ++t) {
-      if (!config.recent_tracks_first || slots[order[t]].steps_since_update == 1)
-        positions.push_back(t);
+      const Track& track = slots[order[t]];
+      if (config.recent_tracks_first && track.steps_since_update != 1) continue;
+      if (config.confirmed_tracks_first && !track.ever_confirmed) continue;
+      positions.push_back(t);
     }
     associate(high, [&](int d) {
       high_taken[static_cast<std::size_t>(d)] = 1;
@@ -161,7 +165,8 @@ struct Tracker::State {
   }
 
   // DeepSORT's matching cascade in two levels: the tracks lost for a while (whose gate is wide and
-  // whose prediction is poor) only get the detections the recently matched tracks left over.
+  // whose prediction is poor), and with confirmed_tracks_first the tracks not yet confirmed, only
+  // get the detections the first round left over.
   void cascade_round() {
     rest.clear();
     rest_index.clear();
@@ -178,9 +183,17 @@ struct Tracker::State {
     });
   }
 
-  // ByteTrack: low-score detections may only continue the tracks the rounds before left coasting.
+  // ByteTrack: low-score detections may only continue the tracks the rounds before left coasting
+  // (with second_round_recent_only, those of them that were confirmed and matched last update).
   void second_round() {
     collect_coasting_tracks();
+    if (config.second_round_recent_only) {
+      const auto lost = [&](int position) {
+        const Track& track = slots[order[position]];
+        return !track.ever_confirmed || track.steps_since_update > 1;
+      };
+      positions.erase(std::remove_if(positions.begin(), positions.end(), lost), positions.end());
+    }
     const double threshold = config.second_round_threshold > 0.0 ? config.second_round_threshold
                                                                  : config.affinity_threshold;
     associate(
@@ -207,7 +220,9 @@ struct Tracker::State {
     candidates.clear();
     for (const int position : positions) {
       const Track& track = slots[order[position]];
-      candidates.push_back(AssociationCandidate{track.predicted, track.frames_since_update});
+      const double gate_time =
+          config.gate_clock == GateClock::frame_gap ? step_frames : track.frames_since_update;
+      candidates.push_back(AssociationCandidate{track.predicted, gate_time});
     }
     round_matches.clear();
     associator.associate(config, threshold, detections, candidates, round_matches);
@@ -254,8 +269,10 @@ struct Tracker::State {
   // Every high-score detection that no round took starts a tentative track (with a birth cut,
   // only the confident ones: a continuation needs less evidence than a new object).
   void start_tracks() {
-    const float birth = config.birth_range_cut > 0.0 ? score_cut.range_point(config.birth_range_cut)
-                                                     : std::numeric_limits<float>::lowest();
+    const float relative_birth = config.birth_range_cut > 0.0
+                                     ? score_cut.range_point(config.birth_range_cut)
+                                     : std::numeric_limits<float>::lowest();
+    const float birth = std::max(config.birth_threshold, relative_birth);
     for (std::size_t d = 0; d < high.size(); ++d) {
       if (!high_taken[d] && high[d].score >= birth) start_track(high[d]);
     }
@@ -273,6 +290,9 @@ struct Tracker::State {
         if (config.observation_centric_reupdate) {
           track.at_last_observation = std::get<KalmanPredictor>(track.predictor);
         }
+        break;
+      case PredictorKind::kalman_xyah:
+        track.predictor.emplace<XyahKalmanPredictor>(detection.box);
         break;
       case PredictorKind::stationary:
         track.predictor.emplace<StationaryPredictor>(detection.box);
@@ -297,6 +317,7 @@ struct Tracker::State {
     track.score_sum = detection.score;
     track.matches = 1;
     track.class_id = detection.class_id;
+    track.ever_confirmed = false;
     // sort.py reports a newborn track in the first min_hits frames: it counts as matched now.
     track.state = TrackState::tentative;
     order.push_back(slot);
@@ -311,13 +332,17 @@ struct Tracker::State {
       Track& track = slots[slot];
       if (track.matched_now()) {
         track.state = confirmed(track) ? TrackState::confirmed : TrackState::tentative;
+        track.ever_confirmed = track.ever_confirmed || track.state == TrackState::confirmed;
       }
       if (track.state == TrackState::confirmed) {
         reports.push_back(TrackReport{track.id, current_box(track.predictor), track.score,
                                       track.class_id, track.hit_streak, track.age});
       }
-      if (track.frames_since_update > config.max_age + kFrameTolerance &&
-          track.steps_since_update > config.min_coast_updates) {
+      const bool unproven_and_missed = config.tentative_dies_on_miss &&
+                                       track.state == TrackState::coasting &&
+                                       !track.ever_confirmed;
+      if (unproven_and_missed || (track.frames_since_update > config.max_age + kFrameTolerance &&
+                                  track.steps_since_update > config.min_coast_updates)) {
         release(slot);
       } else {
         order[kept++] = slot;
@@ -328,6 +353,7 @@ struct Tracker::State {
 
   bool confirmed(const Track& track) const {
     if (!confident(track)) return false;
+    if (config.keep_confirmation && track.ever_confirmed) return true;
     if (track.hit_streak >= config.min_hits || frame_count <= config.min_hits) return true;
     if (!config.confirm_by_duration) return false;
     // The streak's first frame is the birth (or re-match) itself, hence the one frame less than
@@ -371,6 +397,7 @@ struct Tracker::State {
   std::int32_t next_id{1};
   int frame_count{0};
   double elapsed_frames{0.0};  // nominal frames since the first update
+  double step_frames{1.0};     // nominal frames since the previous update
   double previous_time{0.0};
   bool has_previous_time{false};
 };

@@ -15,12 +15,18 @@ TrackerConfig with_every_option(TrackerConfig base) {
   base.score_range_cut = 0.5;
   base.observation_centric_reupdate = true;
   base.time_widened_gate = true;
+  base.gate_clock = GateClock::frame_gap;
   base.recent_tracks_first = true;
+  base.confirmed_tracks_first = true;
   base.confirm_by_duration = true;
   base.min_coast_updates = 1;
   base.max_age = 3;
   base.duration_min_hits = 2;
+  base.keep_confirmation = true;
+  base.tentative_dies_on_miss = true;
+  base.second_round_recent_only = true;
   base.birth_range_cut = 0.6;
+  base.birth_threshold = 0.65F;
   base.confirm_score_cut = 0.3;
   base.second_round_threshold = 0.5;
   base.max_gate_margin = 0.4;
@@ -77,8 +83,9 @@ std::optional<std::string> config_problem(const TrackerConfig& config) {
   if (config.time_step == TimeStep::elapsed && !(config.frame_rate > 0.0))
     return "frame_rate must be > 0 with elapsed time steps";
   if (!std::isfinite(config.affinity_threshold)) return "affinity_threshold must be finite";
-  if (std::isnan(config.detection_threshold) || std::isnan(config.low_score))
-    return "detection_threshold and low_score must be numbers";
+  if (std::isnan(config.detection_threshold) || std::isnan(config.low_score) ||
+      std::isnan(config.birth_threshold))
+    return "detection_threshold, low_score and birth_threshold must be numbers";
   if (!(config.score_quantile >= 0.0 && config.score_quantile <= limits::kMaxScoreQuantile))
     return "score_quantile must be in [0, " + std::to_string(limits::kMaxScoreQuantile) + "]";
   if (!(config.score_range_cut >= 0.0 && config.score_range_cut <= limits::kMaxScoreQuantile))

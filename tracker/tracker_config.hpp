@@ -9,11 +9,14 @@
 
 namespace rtmot::tracker {
 
-enum class PredictorKind { kalman, stationary, particle };
+/// kalman: SORT's (x, y, area, ratio) filter; kalman_xyah: DeepSORT's and ByteTrack's (x, y,
+/// aspect, height) filter with noise proportional to the height.
+enum class PredictorKind { kalman, kalman_xyah, stationary, particle };
 enum class AffinityKind { iou, linear, exponential };
 
 inline constexpr auto kPredictorNames = make_enum_names<PredictorKind>(
-    std::pair{PredictorKind::kalman, "kalman"}, std::pair{PredictorKind::stationary, "stationary"},
+    std::pair{PredictorKind::kalman, "kalman"}, std::pair{PredictorKind::kalman_xyah, "kalman_xyah"},
+    std::pair{PredictorKind::stationary, "stationary"},
     std::pair{PredictorKind::particle, "particle"});
 inline constexpr auto kAffinityNames = make_enum_names<AffinityKind>(
     std::pair{AffinityKind::iou, "iou"}, std::pair{AffinityKind::linear, "linear"},
@@ -24,6 +27,16 @@ enum class TimeStep {
   per_update,  // one fixed step per processed frame, whatever time passed (SORT, C++SORT)
   elapsed,     // by the real time between updates, in units of the nominal frame period
 };
+
+/// What widens the time-widened gate: the time since the track's own last match, or the time
+/// between the processed frames (the same for every track).
+enum class GateClock {
+  since_match,  // a track lost for a while at full rate gets a wide gate too
+  frame_gap,    // only skipped frames widen it: at full rate the gate stays SORT's
+};
+
+inline constexpr auto kGateClockNames = make_enum_names<GateClock>(
+    std::pair{GateClock::since_match, "since_match"}, std::pair{GateClock::frame_gap, "frame_gap"});
 
 inline constexpr auto kTimeStepNames = make_enum_names<TimeStep>(
     std::pair{TimeStep::per_update, "per_update"}, std::pair{TimeStep::elapsed, "elapsed"});
@@ -66,9 +79,13 @@ struct TrackerConfig {
   bool observation_centric_reupdate{false};
   /// Widen the association gate with the time since the track's last match.
   bool time_widened_gate{false};
+  GateClock gate_clock{GateClock::since_match};
   /// DeepSORT's matching cascade (two levels): tracks matched in the previous processed frame
   /// are associated first; the tracks lost longer only get the detections left over.
   bool recent_tracks_first{false};
+  /// ByteTrack's order: confirmed tracks are associated first; the tracks not yet confirmed only
+  /// get the detections left over, so a newborn false positive cannot take a person's detection.
+  bool confirmed_tracks_first{false};
 
   // --- the same meaning at every frame rate (processed frames may be nominal frames apart) ---
   /// A track is also reported once its current run of matches has lasted `min_hits` nominal frames
@@ -81,11 +98,25 @@ struct TrackerConfig {
   /// false positive would otherwise confirm it.
   int duration_min_hits{1};
 
+  // --- track life as ByteTrack (and DeepSORT) has it; SORT's rules when off ---
+  /// A track once confirmed is reported again at its first match after missed updates, instead of
+  /// proving itself with min_hits new matches (SORT).
+  bool keep_confirmation{false};
+  /// A track never confirmed is deleted at its first update without a match, instead of coasting
+  /// for max_age like a confirmed one.
+  bool tentative_dies_on_miss{false};
+  /// The second round offers its detections only to confirmed tracks matched in the previous
+  /// update (ByteTrack's "tracked" ones), not to tracks lost for longer or never confirmed.
+  bool second_round_recent_only{false};
+
   // --- ByteTrack's and our own guards against tracks made of clutter (fractions of the recent
   // 1st..99th percentile score range, tracker/score_cut.hpp; 0 = off) ---
   /// A detection no round took starts a track only at or above this fraction (ByteTrack starts
   /// tracks above track_thresh + 0.1 only).
   double birth_range_cut{0.0};
+  /// A detection no round took starts a track only at or above this absolute score (ByteTrack's
+  /// track_thresh + 0.1 = 0.6). The lowest float by default: it assumes a score scale.
+  float birth_threshold{std::numeric_limits<float>::lowest()};
   /// A track is confirmed only once the mean score of its matches reaches this fraction.
   double confirm_score_cut{0.0};
   /// Minimum affinity in the second round; 0 = affinity_threshold (ByteTrack: IoU 0.5).

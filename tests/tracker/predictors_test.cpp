@@ -1,4 +1,4 @@
-// The stationary and particle predictors.
+// The stationary, particle and (x, y, aspect, height) Kalman predictors.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -7,6 +7,7 @@
 #include "tracker/box_geometry.hpp"
 #include "tracker/particle_predictor.hpp"
 #include "tracker/stationary_predictor.hpp"
+#include "tracker/xyah_kalman_predictor.hpp"
 
 namespace rtmot::tracker {
 namespace {
@@ -98,6 +99,75 @@ TEST(ParticlePredictor, RecoversWhenNoParticleOverlapsTheObservation) {
   model.predict(1.0);
   model.update(far);
   EXPECT_GT(iou(model.box(), far), 0.7F);
+}
+
+// --- DeepSORT's and ByteTrack's (x, y, aspect, height) Kalman filter ---------------------------
+
+TEST(XyahKalmanPredictor, StartsAtTheBoxWithUncertaintyProportionalToItsHeight) {
+  const XyahKalmanPredictor model(Box{100.F, 50.F, 40.F, 80.F});
+  EXPECT_DOUBLE_EQ(model.state()(0), 120.0);
+  EXPECT_DOUBLE_EQ(model.state()(2), 0.5);
+  EXPECT_DOUBLE_EQ(model.state()(3), 80.0);
+  // ByteTrack's initiate(): 2 x h / 20 for positions, 10 x h / 160 for their velocities.
+  EXPECT_DOUBLE_EQ(model.covariance()(0, 0), 8.0 * 8.0);
+  EXPECT_DOUBLE_EQ(model.covariance()(7, 7), 5.0 * 5.0);
+  EXPECT_DOUBLE_EQ(model.covariance()(2, 2), 1e-4);
+}
+
+TEST(XyahKalmanPredictor, FollowsAMovingBoxAndLearnsItsVelocity) {
+  XyahKalmanPredictor model(walker(0));
+  for (int frame = 1; frame <= 30; ++frame) {
+    model.predict(1.0);
+    model.update(walker(frame));
+  }
+  EXPECT_NEAR(model.state()(4), 4.0, 0.2);
+  const Box ahead = model.predict(5.0);
+  EXPECT_NEAR(ahead.x, walker(35).x, 2.0);
+  EXPECT_NEAR(ahead.w, 40.F, 0.5F);
+}
+
+TEST(XyahKalmanPredictor, AScaledSceneGivesTheScaledPrediction) {
+  // Its noise is proportional to the height, so a scene ten times larger is tracked exactly ten
+  // times larger: the far and the near pedestrian are treated alike.
+  const auto scaled = [](const Box& box, float k) {
+    return Box{k * box.x, k * box.y, k * box.w, k * box.h};
+  };
+  XyahKalmanPredictor small(walker(0));
+  XyahKalmanPredictor large(scaled(walker(0), 10.F));
+  for (int frame = 1; frame <= 6; ++frame) {
+    small.predict(1.0);
+    large.predict(1.0);
+    const Box jittered{walker(frame).x + (frame % 2 ? 1.5F : -1.F), 50.F, 40.F + frame, 80.F};
+    small.update(jittered);
+    large.update(scaled(jittered, 10.F));
+  }
+  const Box a = small.predict(3.0);
+  const Box b = large.predict(3.0);
+  EXPECT_NEAR(b.x, 10.F * a.x, 1e-2F);
+  EXPECT_NEAR(b.w, 10.F * a.w, 1e-2F);
+  EXPECT_NEAR(b.h, 10.F * a.h, 1e-2F);
+}
+
+TEST(XyahKalmanPredictor, OneStepOfTwoFramesMovesTheMeanAsTwoSteps) {
+  XyahKalmanPredictor once(walker(0));
+  once.predict(1.0);
+  once.update(walker(1));
+  XyahKalmanPredictor twice = once;
+  const Box a = once.predict(2.0);
+  twice.predict(1.0);
+  const Box b = twice.predict(1.0);
+  EXPECT_FLOAT_EQ(a.x, b.x);
+  EXPECT_FLOAT_EQ(a.h, b.h);
+  EXPECT_GT(once.covariance()(0, 0), 0.0);
+}
+
+TEST(XyahKalmanPredictor, AHeightDrivenThroughZeroIsNotAFiniteBox) {
+  XyahKalmanPredictor model(Box{0.F, 0.F, 10.F, 20.F});
+  for (int frame = 1; frame <= 4; ++frame) {
+    model.predict(1.0);
+    model.update(Box{0.F, 0.F, 10.F - frame, 20.F - 4.F * frame});  // shrinking fast, to 4 px
+  }
+  EXPECT_FALSE(is_finite(model.predict(20.0)));
 }
 
 }  // namespace

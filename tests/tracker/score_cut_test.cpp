@@ -128,7 +128,14 @@ TEST(ScoreScale, WarnsWhenAnAbsoluteCutMeetsAnotherScale) {
   EXPECT_NE(warning->find("[-0.6, 4.8]"), std::string::npos) << *warning;
   EXPECT_FALSE(score_scale_warning(absolute, frcnn).has_value());
   ASSERT_TRUE(score_scale_warning(absolute, low).has_value());
-  EXPECT_NE(score_scale_warning(absolute, low)->find("drops every detection"), std::string::npos);
+  EXPECT_NE(score_scale_warning(absolute, low)->find("no detection reaches"), std::string::npos);
+
+  // ByteTrack's absolute birth score is one of the cuts a warning names.
+  TrackerConfig birth = TrackerConfig::sort_preset();
+  birth.birth_threshold = 0.6F;
+  ASSERT_TRUE(score_scale_warning(birth, dpm).has_value());
+  EXPECT_NE(score_scale_warning(birth, dpm)->find("birth_threshold 0.6"), std::string::npos);
+  EXPECT_FALSE(score_scale_warning(birth, frcnn).has_value());
 
   // Relative cuts and no cut fit every scale.
   TrackerConfig relative = TrackerConfig::sort_preset();

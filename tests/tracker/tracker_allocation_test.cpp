@@ -74,10 +74,8 @@ TEST(AllocationCounter, CountsAllocations) {
 
 INSTANTIATE_TEST_SUITE_P(
     AllModels, SteadyState,
-    ::testing::Combine(::testing::Values(PredictorKind::kalman, PredictorKind::stationary,
-                                         PredictorKind::particle),
-                       ::testing::Values(AffinityKind::iou, AffinityKind::linear,
-                                         AffinityKind::exponential)),
+    ::testing::Combine(::testing::ValuesIn(every_value(kPredictorNames)),
+                       ::testing::ValuesIn(every_value(kAffinityNames))),
     [](const auto& info) {
       return std::string(kPredictorNames.name(std::get<0>(info.param))) + "_" +
              std::string(kAffinityNames.name(std::get<1>(info.param)));

@@ -76,17 +76,15 @@ class Mot15 : public ::testing::Test {
 
 TEST_F(Mot15, EveryPredictorAndAffinityGivesPlausibleTracks) {
   ASSERT_EQ(truth_.ids.size(), 19U);  // PETS09-S2L1's ground truth
-  for (auto predictor :
-       {PredictorKind::kalman, PredictorKind::stationary, PredictorKind::particle}) {
-    for (auto affinity : {AffinityKind::iou, AffinityKind::linear, AffinityKind::exponential}) {
+  for (const auto& [predictor, predictor_name] : kPredictorNames.entries()) {
+    for (const auto& [affinity, affinity_name] : kAffinityNames.entries()) {
       TrackerConfig config = TrackerConfig::sort_preset();
       config.predictor = predictor;
       config.affinity = affinity;
       config.affinity_threshold = default_threshold(affinity);
       config.particle_count = 50;
       const RunSummary summary = run(sequence_, config);
-      const std::string what = std::string(kPredictorNames.name(predictor)) + "/" +
-                               std::string(kAffinityNames.name(affinity));
+      const std::string what = std::string(predictor_name) + "/" + std::string(affinity_name);
       // With max_age 1 every model fragments tracks (SORT itself makes about six tracks per
       // person on this scene), but each must report roughly as many boxes as people are in view.
       EXPECT_GE(summary.ids.size(), truth_.ids.size()) << what;

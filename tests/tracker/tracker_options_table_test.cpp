@@ -40,7 +40,13 @@ TEST(TrackerOptions, EveryKnobOfTheConfigCanBeSet) {
                                      {"low_score", "0.05"},
                                      {"observation_centric_reupdate", "true"},
                                      {"time_widened_gate", "true"},
+                                     {"gate_clock", "frame_gap"},
                                      {"recent_tracks_first", "true"},
+                                     {"confirmed_tracks_first", "true"},
+                                     {"keep_confirmation", "true"},
+                                     {"tentative_dies_on_miss", "true"},
+                                     {"second_round_recent_only", "true"},
+                                     {"birth_threshold", "0.6"},
                                      {"confirm_by_duration", "true"},
                                      {"min_coast_updates", "2"},
                                      {"duration_min_hits", "3"},
@@ -68,7 +74,13 @@ TEST(TrackerOptions, EveryKnobOfTheConfigCanBeSet) {
   EXPECT_FLOAT_EQ(config.low_score, 0.05F);
   EXPECT_TRUE(config.observation_centric_reupdate);
   EXPECT_TRUE(config.time_widened_gate);
+  EXPECT_EQ(config.gate_clock, GateClock::frame_gap);
   EXPECT_TRUE(config.recent_tracks_first);
+  EXPECT_TRUE(config.confirmed_tracks_first);
+  EXPECT_TRUE(config.keep_confirmation);
+  EXPECT_TRUE(config.tentative_dies_on_miss);
+  EXPECT_TRUE(config.second_round_recent_only);
+  EXPECT_FLOAT_EQ(config.birth_threshold, 0.6F);
   EXPECT_TRUE(config.confirm_by_duration);
   EXPECT_EQ(config.min_coast_updates, 2);
   EXPECT_EQ(config.duration_min_hits, 3);
@@ -80,7 +92,7 @@ TEST(TrackerOptions, EveryKnobOfTheConfigCanBeSet) {
   EXPECT_EQ(config.seed, 18446744073709551615ULL);
   EXPECT_EQ(config.max_tracks, 20);
   EXPECT_EQ(config.max_detections, 30);
-  EXPECT_EQ(tracker_options().size(), 28U) << "a new TrackerConfig field needs a line here too";
+  EXPECT_EQ(tracker_options().size(), 34U) << "a new TrackerConfig field needs a line here too";
 }
 
 TEST(TrackerOptions, AnAffinityBringsItsUsualThresholdUnlessOneFollows) {
