@@ -104,9 +104,15 @@ ProcessResult run_process(const std::vector<std::string>& argv, const std::files
     if (next_signal < conditions.signals.size()) {
       const TimedSignal& next = conditions.signals[next_signal];
       const bool fallback = next.fallback.count() > 0 && now - start >= next.fallback;
-      if (!armed && (next.after_output.empty() || fallback ||
-                     slurp(out_path).find(next.after_output) != std::string::npos ||
-                     slurp(err_path).find(next.after_output) != std::string::npos)) {
+      // file_size() answers -1 with an error code when the file is not there yet.
+      std::error_code no_file;
+      const auto written =
+          next.after_file.empty() ? 0 : std::filesystem::file_size(next.after_file, no_file);
+      const bool file_written = next.after_file.empty() || (!no_file && written > 0);
+      if (!armed && file_written &&
+          (next.after_output.empty() || fallback ||
+           slurp(out_path).find(next.after_output) != std::string::npos ||
+           slurp(err_path).find(next.after_output) != std::string::npos)) {
         armed = true;
         armed_at = now;
       }

@@ -30,6 +30,9 @@ struct TimedSignal {
   /// If `after_output` has not appeared this long after the start, send anyway (0: never). Only
   /// an older build that does not print it needs this.
   std::chrono::milliseconds fallback{0};
+  /// And only once this file exists and is not empty (empty path: no condition): a stop that must
+  /// find output already written waits for it, however slowly a loaded machine starts the run.
+  std::filesystem::path after_file{};
 };
 
 struct ProcessConditions {
