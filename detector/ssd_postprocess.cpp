@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "tracker/box_geometry.hpp"
+
 namespace rtmot::detector {
 namespace {
 
@@ -27,14 +29,11 @@ float logit_of(float probability) {
                         -std::numeric_limits<float>::infinity());
 }
 
-template <typename Box>
-float iou(const Box& a, const Box& b) {
-  const float iw = std::min(a.x2, b.x2) - std::max(a.x1, b.x1);
-  const float ih = std::min(a.y2, b.y2) - std::max(a.y1, b.y1);
-  if (iw <= 0.F || ih <= 0.F) return 0.F;
-  const float inter = iw * ih;
-  const float uni = (a.x2 - a.x1) * (a.y2 - a.y1) + (b.x2 - b.x1) * (b.y2 - b.y1) - inter;
-  return uni > 0.F ? inter / uni : 0.F;
+// The product's one IoU (tracker/box_geometry.hpp) on the candidates' corner boxes.
+template <typename Corners>
+float iou(const Corners& a, const Corners& b) {
+  return tracker::iou(tracker::Box{a.x1, a.y1, a.x2 - a.x1, a.y2 - a.y1},
+                      tracker::Box{b.x1, b.y1, b.x2 - b.x1, b.y2 - b.y1});
 }
 
 }  // namespace
