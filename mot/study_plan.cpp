@@ -174,15 +174,16 @@ std::vector<StudyConfiguration> cv_candidates(bool quick) {
   };
   std::vector<StudyConfiguration> candidates = {
       {"", "cv",
-       tracker::with_options(TrackerConfig::sort_preset(), {{"time_step", "elapsed"},
-                                                            {"min_coast_updates", "1"},
-                                                            {"confirm_by_duration", "true"},
-                                                            {"time_widened_gate", "true"},
-                                                            {"max_age", "30"},
-                                                            {"keep_confirmation", "true"},
-                                                            {"tentative_dies_on_miss", "true"},
-                                                            {"second_round_threshold", "0.5"},
-                                                            {"second_round_recent_only", "true"}})}};
+       tracker::with_options(TrackerConfig::sort_preset(),
+                             {{"time_step", "elapsed"},
+                              {"min_coast_updates", "1"},
+                              {"confirm_by_duration", "true"},
+                              {"time_widened_gate", "true"},
+                              {"max_age", "30"},
+                              {"keep_confirmation", "true"},
+                              {"tentative_dies_on_miss", "true"},
+                              {"second_round_threshold", "0.5"},
+                              {"second_round_recent_only", "true"}})}};
   for (const auto& dimension : dimensions) {
     std::vector<StudyConfiguration> grown;
     for (const auto& partial : candidates) {

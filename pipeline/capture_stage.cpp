@@ -2,6 +2,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <chrono>
 #include <optional>
 #include <thread>
@@ -122,6 +123,20 @@ void CaptureStage::run_simulated(const std::atomic<bool>& stop, const std::atomi
   }
 }
 
+// Sleeps until the wall time `due_ns`, in slices short enough that a stop or an abort is seen at
+// once: a recording whose timestamps jump by an hour (a gap, or a hostile file) must not hold the
+// run for that hour. False when stopped or aborted first.
+bool CaptureStage::wait_for_pts(std::int64_t due_ns, const std::atomic<bool>& stop,
+                                const std::atomic<bool>& abort) {
+  constexpr std::int64_t kSliceNs = 20'000'000;
+  for (std::int64_t wait_ns = due_ns - steady_now_ns(); wait_ns > 0;
+       wait_ns = due_ns - steady_now_ns()) {
+    if (stop.load(std::memory_order_relaxed) || abort.load(std::memory_order_relaxed)) return false;
+    std::this_thread::sleep_for(std::chrono::nanoseconds(std::min(wait_ns, kSliceNs)));
+  }
+  return true;
+}
+
 void CaptureStage::run(const std::atomic<bool>& stop, const std::atomic<bool>& abort) {
   if (playback_ == PlaybackMode::simulated) {
     run_simulated(stop, abort);
@@ -133,8 +148,7 @@ void CaptureStage::run(const std::atomic<bool>& stop, const std::atomic<bool>& a
        next = read_frame(current, stop, abort)) {
     if (playback_ == PlaybackMode::realtime && !live_) {
       if (wall_origin_ns == 0) wall_origin_ns = steady_now_ns() - current.info.pts_ns;
-      const std::int64_t wait_ns = wall_origin_ns + current.info.pts_ns - steady_now_ns();
-      if (wait_ns > 0) std::this_thread::sleep_for(std::chrono::nanoseconds(wait_ns));
+      if (!wait_for_pts(wall_origin_ns + current.info.pts_ns, stop, abort)) return;
     }
     if (!publish(current, abort)) return;
   }

@@ -59,6 +59,8 @@ class CaptureStage {
   Next outage_tick(FrameSlotItem& item);
   bool publish(FrameSlotItem& item, const std::atomic<bool>& abort);
   void run_simulated(const std::atomic<bool>& stop, const std::atomic<bool>& abort);
+  static bool wait_for_pts(std::int64_t due_ns, const std::atomic<bool>& stop,
+                           const std::atomic<bool>& abort);
 
   std::unique_ptr<platform::VideoSource> source_;
   const CaptureOptions options_;

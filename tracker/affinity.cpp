@@ -40,15 +40,13 @@ double exponential_affinity(const Box& track, const Box& detection) {
 }
 
 float widened_gate_margin(double gate_frames, double max_margin) {
-  return static_cast<float>(
-      std::clamp((gate_frames - 1.0) * kMarginPerLostFrame, 0.0, max_margin));
+  return static_cast<float>(std::clamp((gate_frames - 1.0) * kMarginPerLostFrame, 0.0, max_margin));
 }
 
 double affinity(const TrackerConfig& config, const Box& track, const Box& detection,
                 double gate_frames) {
-  const float margin = config.time_widened_gate
-                           ? widened_gate_margin(gate_frames, config.max_gate_margin)
-                           : 0.F;
+  const float margin =
+      config.time_widened_gate ? widened_gate_margin(gate_frames, config.max_gate_margin) : 0.F;
   switch (config.affinity) {
     case AffinityKind::iou:
       if (margin > 0.F) return iou(enlarged(track, margin), enlarged(detection, margin));

@@ -10,9 +10,8 @@
 
 namespace rtmot::tracker {
 
-using Predictor =
-    std::variant<std::monostate, KalmanPredictor, XyahKalmanPredictor, StationaryPredictor,
-                 ParticlePredictor>;
+using Predictor = std::variant<std::monostate, KalmanPredictor, XyahKalmanPredictor,
+                               StationaryPredictor, ParticlePredictor>;
 
 inline Box advance(Predictor& predictor, double dt) {
   return std::visit(

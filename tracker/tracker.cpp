@@ -339,8 +339,7 @@ struct Tracker::State {
                                       track.class_id, track.hit_streak, track.age});
       }
       const bool unproven_and_missed = config.tentative_dies_on_miss &&
-                                       track.state == TrackState::coasting &&
-                                       !track.ever_confirmed;
+                                       track.state == TrackState::coasting && !track.ever_confirmed;
       if (unproven_and_missed || (track.frames_since_update > config.max_age + kFrameTolerance &&
                                   track.steps_since_update > config.min_coast_updates)) {
         release(slot);

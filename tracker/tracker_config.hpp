@@ -14,10 +14,11 @@ namespace rtmot::tracker {
 enum class PredictorKind { kalman, kalman_xyah, stationary, particle };
 enum class AffinityKind { iou, linear, exponential };
 
-inline constexpr auto kPredictorNames = make_enum_names<PredictorKind>(
-    std::pair{PredictorKind::kalman, "kalman"}, std::pair{PredictorKind::kalman_xyah, "kalman_xyah"},
-    std::pair{PredictorKind::stationary, "stationary"},
-    std::pair{PredictorKind::particle, "particle"});
+inline constexpr auto kPredictorNames =
+    make_enum_names<PredictorKind>(std::pair{PredictorKind::kalman, "kalman"},
+                                   std::pair{PredictorKind::kalman_xyah, "kalman_xyah"},
+                                   std::pair{PredictorKind::stationary, "stationary"},
+                                   std::pair{PredictorKind::particle, "particle"});
 inline constexpr auto kAffinityNames = make_enum_names<AffinityKind>(
     std::pair{AffinityKind::iou, "iou"}, std::pair{AffinityKind::linear, "linear"},
     std::pair{AffinityKind::exponential, "exponential"});

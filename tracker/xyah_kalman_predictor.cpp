@@ -40,9 +40,8 @@ XyahKalmanPredictor::XyahKalmanPredictor(const Box& box) {
   const double h = box.h;
   const double position = 2.0 * kPositionWeight * h;
   const double velocity = 10.0 * kVelocityWeight * h;
-  const double variances[8] = {square(position), square(position),  square(1e-2),
-                               square(position), square(velocity),  square(velocity),
-                               square(1e-5),     square(velocity)};
+  const double variances[8] = {square(position), square(position), square(1e-2), square(position),
+                               square(velocity), square(velocity), square(1e-5), square(velocity)};
   p_.setZero();
   for (int i = 0; i < 8; ++i) p_(i, i) = variances[i];
 }

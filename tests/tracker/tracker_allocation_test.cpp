@@ -72,14 +72,13 @@ TEST(AllocationCounter, CountsAllocations) {
   EXPECT_EQ(counting.allocations(), 1);
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    AllModels, SteadyState,
-    ::testing::Combine(::testing::ValuesIn(every_value(kPredictorNames)),
-                       ::testing::ValuesIn(every_value(kAffinityNames))),
-    [](const auto& info) {
-      return std::string(kPredictorNames.name(std::get<0>(info.param))) + "_" +
-             std::string(kAffinityNames.name(std::get<1>(info.param)));
-    });
+INSTANTIATE_TEST_SUITE_P(AllModels, SteadyState,
+                         ::testing::Combine(::testing::ValuesIn(every_value(kPredictorNames)),
+                                            ::testing::ValuesIn(every_value(kAffinityNames))),
+                         [](const auto& info) {
+                           return std::string(kPredictorNames.name(std::get<0>(info.param))) + "_" +
+                                  std::string(kAffinityNames.name(std::get<1>(info.param)));
+                         });
 
 }  // namespace
 }  // namespace rtmot::tracker

@@ -24,8 +24,7 @@ std::vector<std::vector<TrackReport>> run_walker(const TrackerConfig& config, in
   std::vector<std::vector<TrackReport>> history;
   for (int f = 1; f <= frames; ++f) {
     std::vector<Detection> detections;
-    const bool absent =
-        f <= 3 || std::find(missing.begin(), missing.end(), f) != missing.end();
+    const bool absent = f <= 3 || std::find(missing.begin(), missing.end(), f) != missing.end();
     if (!absent) detections.push_back(detection(100.F + 2.F * f, 200.F));
     history.push_back(tracker.update(detections, f / kRate));
   }
