@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "tracker/constant_velocity.hpp"
+
 namespace rtmot::tracker {
 namespace {
 // ByteTrack's kalman_filter.py (after DeepSORT): standard deviations as fractions of the height.
@@ -54,11 +56,7 @@ Box XyahKalmanPredictor::predict(double dt) {
   const double velocity = square(kVelocityWeight * h);
   const double noise[8] = {position, position, square(kAspectProcess),         position,
                            velocity, velocity, square(kAspectVelocityProcess), velocity};
-  // F = I + dt * (position <- velocity), applied as row then column operations.
-  for (int i = 0; i < 4; ++i) x_(i) += dt * x_(i + 4);
-  for (int i = 0; i < 4; ++i) p_.row(i) += dt * p_.row(i + 4);
-  for (int i = 0; i < 4; ++i) p_.col(i) += dt * p_.col(i + 4);
-  for (int i = 0; i < 8; ++i) p_(i, i) += dt * noise[i];
+  constant_velocity_step(x_, p_, 4, 4, noise, dt);
   return to_box(x_);
 }
 
