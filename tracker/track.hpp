@@ -9,8 +9,10 @@
 
 namespace rtmot::tracker {
 
-/// Where a track is in its life, decided afresh every update (SORT's rules: a missed update sends a
-/// confirmed track back to proving itself once it is found again).
+/// Where a track is in its life, decided afresh every update. SORT's rules: a missed update sends a
+/// confirmed track back to proving itself once it is found again, and a track never confirmed
+/// coasts like any other. ByteTrack's (keep_confirmation, tentative_dies_on_miss): confirmation is
+/// for life, and a track never confirmed dies at its first miss.
 enum class TrackState : std::uint8_t {
   tentative,  // matched in this update, not (or no longer) confirmed: not reported
   confirmed,  // matched in this update and confirmed: reported
@@ -41,7 +43,7 @@ struct Track {
   std::int32_t matches{0};
   std::int32_t class_id{0};
   TrackState state{TrackState::deleted};
-  bool ever_confirmed{false};  // for keep_confirmation and tentative_dies_on_miss
+  bool ever_confirmed{false};  // confirmed in some update since its birth (ByteTrack's rules)
 
   bool matched_now() const {
     return state == TrackState::tentative || state == TrackState::confirmed;
