@@ -85,14 +85,23 @@ void MqttPublisher::publish_loop() {
                                      static_cast<int>(item->size), item->bytes.data(),
                                      options_.uri.qos, false);
     if (rc != MOSQ_ERR_SUCCESS) {
-      in_flight_.fetch_sub(1, std::memory_order_acq_rel);
-      if (rc == MOSQ_ERR_NO_CONN || rc == MOSQ_ERR_CONN_LOST) {
-        // The connection dropped between the check and the call: keep the item, wait for the
-        // reconnect (on_disconnect cleared connected_).
+      const bool connection_gone = rc == MOSQ_ERR_NO_CONN || rc == MOSQ_ERR_CONN_LOST;
+      if (connection_gone) {
+        // The connection dropped between the check and the call.
         const std::lock_guard<std::mutex> lock(state_mutex_);
         connected_.store(false, std::memory_order_release);
+      }
+      if (connection_gone && options_.uri.qos > 0) {
+        // libmosquitto queued a QoS 1 message before it found the connection gone
+        // (lib/messages_mosq.c: message__queue, then send): it sends it again after the
+        // reconnect and its acknowledgement comes through on_publish, so the message stays in
+        // flight. Publishing it again would deliver it twice (seen: 5001 acknowledgements for
+        // 5000 messages and a duplicate at the listener when the broker restarted mid-run).
+        queue_.pop();
         continue;
       }
+      in_flight_.fetch_sub(1, std::memory_order_acq_rel);
+      if (connection_gone) continue;  // QoS 0 is not queued: keep the item for the reconnect
       spdlog::warn("mqtt {}: publish failed: {}", options_.uri.topic, mosquitto_error_text(rc));
       counters_.failed.fetch_add(1, std::memory_order_release);
     }
