@@ -78,7 +78,7 @@ struct TrackerConfig {
   /// OC-SORT: when a lost track is found again, re-update it from a virtual trajectory between its
   /// last observation and the new one, instead of from its drifted coasted state.
   bool observation_centric_reupdate{false};
-  /// Widen the association gate with the time since the track's last match.
+  /// Widen the association gate with time: `gate_clock` says which time.
   bool time_widened_gate{false};
   GateClock gate_clock{GateClock::since_match};
   /// DeepSORT's matching cascade (two levels): tracks matched in the previous processed frame
