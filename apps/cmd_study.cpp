@@ -23,6 +23,7 @@
 #include "mot/study_report.hpp"
 #include "mot/study_runner.hpp"
 #include "motio/mot_files.hpp"
+#include "platform/signals.hpp"
 
 namespace rtmot::app {
 namespace {
@@ -39,9 +40,17 @@ struct StudyCommandOptions {
   std::string link_prefix;
 };
 
+// A study's tables, plots and folds are only meaningful complete: a stop (SIGINT, SIGTERM) ends
+// the runs in progress and writes nothing, as a clean stop (exit 0).
+int stopped(const char* phase) {
+  spdlog::warn("study: stopped during {}: nothing written (its tables need every run)", phase);
+  return to_int(ExitCode::ok);
+}
+
 int run_study_command(const StudyCommandOptions& options) {
   using Clock = std::chrono::steady_clock;
   const auto start = Clock::now();
+  const platform::StopSignals signals;
   // Ascending and unique: rows and plot axes follow the interval.
   std::vector<int> intervals = options.intervals;
   std::sort(intervals.begin(), intervals.end());
@@ -74,7 +83,9 @@ int run_study_command(const StudyCommandOptions& options) {
       }
     }
   };
-  auto tables = mot::run_study(dataset, configurations, inputs, intervals, options.jobs, progress);
+  auto tables = mot::run_study(dataset, configurations, inputs, intervals, options.jobs, progress,
+                               &signals.stop_flag());
+  if (signals.stop_requested()) return stopped("the runs");
   if (!options.no_synthetic) {
     // The presets on detectors they were never tuned on (mot/synthetic_detector.hpp).
     std::vector<mot::StudyConfiguration> presets;
@@ -84,8 +95,9 @@ int run_study_command(const StudyCommandOptions& options) {
     spdlog::info("study: {} presets x {} synthetic detectors", presets.size(),
                  mot::synthetic_inputs().size());
     for (auto& table : mot::run_study(dataset, presets, mot::synthetic_inputs(), intervals,
-                                      options.jobs, progress))
+                                      options.jobs, progress, &signals.stop_flag()))
       tables.push_back(std::move(table));
+    if (signals.stop_requested()) return stopped("the synthetic detectors");
   }
   std::string folds;
   if (!options.no_cv && dataset.size() >= 2) {
@@ -96,7 +108,9 @@ int run_study_command(const StudyCommandOptions& options) {
     // The public detections and every synthetic detector: each is left out in turn.
     std::vector<mot::StudyInput> detectors = {mot::StudyInput::detections};
     for (const auto& input : mot::synthetic_inputs()) detectors.push_back(input);
-    const auto cv = mot::cross_validate(dataset, candidates, detectors, intervals, options.jobs);
+    const auto cv = mot::cross_validate(dataset, candidates, detectors, intervals, options.jobs,
+                                        &signals.stop_flag());
+    if (signals.stop_requested()) return stopped("the cross-validation");
     for (const auto& table : cv.tables) tables.push_back(table);
     folds = mot::format_folds_markdown(cv);
     spdlog::info("study: cross-validation chose {} on all sequences", cv.in_sample_choice);

@@ -22,7 +22,7 @@ using Mask = std::vector<std::vector<bool>>;
 Counts count_everything(const std::vector<LoadedSequence>& dataset,
                         const std::vector<StudyConfiguration>& candidates,
                         const std::vector<StudyInput>& inputs, const std::vector<int>& intervals,
-                        int jobs) {
+                        int jobs, const std::atomic<bool>* stop) {
   const std::size_t n_s = dataset.size();
   const std::size_t n_i = intervals.size();
   const std::size_t n_d = inputs.size();
@@ -36,6 +36,7 @@ Counts count_everything(const std::vector<LoadedSequence>& dataset,
   std::mutex failure_mutex;
   const auto work = [&] {
     for (std::size_t run = next++; run < total; run = next++) {
+      if (stop != nullptr && stop->load(std::memory_order_relaxed)) return;
       const std::size_t s = run % n_s;
       const std::size_t i = (run / n_s) % n_i;
       const std::size_t d = (run / (n_s * n_i)) % n_d;
@@ -109,12 +110,14 @@ double selection_score(const std::vector<Metrics>& by_interval) {
 CrossValidation cross_validate(const std::vector<LoadedSequence>& dataset,
                                const std::vector<StudyConfiguration>& candidates,
                                const std::vector<StudyInput>& inputs,
-                               const std::vector<int>& intervals, int jobs) {
+                               const std::vector<int>& intervals, int jobs,
+                               const std::atomic<bool>* stop) {
   if (dataset.size() < 2 || candidates.empty() || inputs.empty() || intervals.empty())
     throw std::invalid_argument(
         "cross-validation needs two sequences, a candidate, a detector "
         "and an interval");
-  const Counts counts = count_everything(dataset, candidates, inputs, intervals, jobs);
+  const Counts counts = count_everything(dataset, candidates, inputs, intervals, jobs, stop);
+  if (stop != nullptr && stop->load(std::memory_order_relaxed)) return {};
   const std::size_t n_s = dataset.size();
   const std::size_t n_d = inputs.size();
 

@@ -35,11 +35,13 @@ struct CrossValidation {
 double selection_score(const std::vector<Metrics>& by_interval);
 
 /// Over `dataset` (at least two sequences) and `inputs` (the detectors). Runs every candidate on
-/// every sequence, detector and interval once, on `jobs` threads.
+/// every sequence, detector and interval once, on `jobs` threads. Once `stop` (may be null) is true
+/// no further run starts and an empty result comes back.
 CrossValidation cross_validate(const std::vector<LoadedSequence>& dataset,
                                const std::vector<StudyConfiguration>& candidates,
                                const std::vector<StudyInput>& inputs,
-                               const std::vector<int>& intervals, int jobs);
+                               const std::vector<int>& intervals, int jobs,
+                               const std::atomic<bool>* stop = nullptr);
 
 /// The folds as a Markdown table.
 std::string format_folds_markdown(const CrossValidation& cv);

@@ -12,7 +12,7 @@ std::vector<StudyTable> run_study(const std::vector<LoadedSequence>& dataset,
                                   const std::vector<StudyConfiguration>& configurations,
                                   const std::vector<StudyInput>& inputs,
                                   const std::vector<int>& intervals, int jobs,
-                                  const StudyProgress& progress) {
+                                  const StudyProgress& progress, const std::atomic<bool>* stop) {
   std::vector<StudyTable> tables;
   for (const auto& configuration : configurations) {
     for (const StudyInput input : inputs) {
@@ -32,6 +32,7 @@ std::vector<StudyTable> run_study(const std::vector<LoadedSequence>& dataset,
   std::mutex failure_mutex;
   const auto work = [&] {
     for (int run = next++; run < total; run = next++) {
+      if (stop != nullptr && stop->load(std::memory_order_relaxed)) return;
       StudyTable& table = tables[static_cast<std::size_t>(run / runs_per_table)];
       StudyRow& row = table.rows[static_cast<std::size_t>(run % runs_per_table)];
       try {

@@ -1,6 +1,7 @@
 #pragma once
 // Runs a study: every configuration x input x interval, tracked and scored, over a small thread
 // pool (the Tracker itself stays single-threaded; each run owns its own).
+#include <atomic>
 #include <functional>
 #include <vector>
 
@@ -22,6 +23,8 @@ struct StudyTable {
   std::vector<StudyRow> rows;
 };
 
+/// `stop` (may be null): once it is true no further run starts; the tables come back with the rows
+/// not run left empty (the caller discards them).
 /// Called after each finished run with (runs done, runs in all, its table, its interval), from
 /// the worker threads: it must be thread-safe (spdlog is).
 using StudyProgress =
@@ -31,6 +34,7 @@ std::vector<StudyTable> run_study(const std::vector<LoadedSequence>& dataset,
                                   const std::vector<StudyConfiguration>& configurations,
                                   const std::vector<StudyInput>& inputs,
                                   const std::vector<int>& intervals, int jobs,
-                                  const StudyProgress& progress = {});
+                                  const StudyProgress& progress = {},
+                                  const std::atomic<bool>* stop = nullptr);
 
 }  // namespace rtmot::mot

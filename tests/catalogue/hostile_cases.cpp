@@ -495,6 +495,18 @@ std::vector<CatalogueCase> hostile_cases() {
        // idle, 9 s loaded, on these results); ours gets it as it reports its second sequence.
        with_signals({{SIGTERM, milliseconds(0), "ADL-Rundle-8: scored", milliseconds(2000)}})},
 
+      {"study_sigterm_stops_cleanly",
+       "SIGTERM to study over MOT15 during its runs (killed it: exit 143)",
+       [](Workspace& ws, Vars& vars) {
+         vars["mot15"] = shared_path("data/mot15-train").string();
+         (void)ws;
+       },
+       {"study", "--dataset", "{mot15}", "--out", "{dir}/out", "--quick", "--jobs", "2"},
+       ExitCode::ok,
+       {},
+       nothing_at("out"),  // the tables need every run: nothing, not a part
+       with_signals({{SIGTERM, milliseconds(0), "[20/"}})},
+
       // ---- 8. Failures of outputs and odd sources ---------------------------------------------
       {"track_results_disk_full",
        "track with 5 KB of disk left (was exit 3, a malformed input; results cut)",

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <filesystem>
 
 #include "mot/metrics.hpp"
@@ -85,6 +86,17 @@ TEST(CrossValidation, FoldsChooseOnWhatTheyMaySeeAndScoreWhatTheyLeftOut) {
     EXPECT_DOUBLE_EQ(held_out.rows[i].metrics.idf1, expected.idf1);
   }
   EXPECT_FALSE(format_folds_markdown(cv).empty());
+}
+
+TEST(CrossValidation, AStopBeforeItStartsGivesAnEmptyResultAtOnce) {
+  RTMOT_REQUIRE_FILE(test::shared_path("data/mot15-train/TUD-Stadtmitte"));
+  const auto dataset = two_sequences();
+  const std::atomic<bool> stop{true};
+  const CrossValidation cv =
+      cross_validate(dataset, cv_candidates(true), {StudyInput::detections}, {1, 5}, 2, &stop);
+  EXPECT_TRUE(cv.folds.empty());
+  EXPECT_TRUE(cv.tables.empty());
+  EXPECT_TRUE(cv.in_sample_choice.empty());
 }
 
 }  // namespace

@@ -40,5 +40,26 @@ TEST(StudyRunner, ParallelRunsEqualSerialScoresOnARealSequence) {
   EXPECT_GT(tables[1].rows[0].metrics.mota, tables[0].rows[0].metrics.mota);
 }
 
+// A stop (SIGINT/SIGTERM in `rtmot study`) is seen by every worker before its next run: runs in
+// progress finish, none starts after it.
+TEST(StudyRunner, AStopEndsTheRunsEarly) {
+  const auto sequence = test::shared_path("data/mot15-train/TUD-Campus");
+  RTMOT_REQUIRE_FILE(sequence);
+  const auto dataset = load_study_dataset(sequence);
+  const auto configurations = study_configurations(true);
+  std::atomic<bool> stop{false};
+  std::atomic<int> calls{0};
+  const int total = static_cast<int>(configurations.size()) * 2 * 3;
+  run_study(
+      dataset, configurations, {StudyInput::detections, StudyInput::ground_truth}, {1, 5, 10}, 2,
+      [&](int, int, const StudyTable&, int) {
+        if (++calls == 3) stop = true;
+      },
+      &stop);
+  EXPECT_GE(calls.load(), 3);
+  EXPECT_LE(calls.load(), 4) << "at most the other worker's run in progress finishes";
+  EXPECT_GT(total, 20);
+}
+
 }  // namespace
 }  // namespace rtmot::mot
