@@ -23,13 +23,13 @@ struct StudyTable {
   std::vector<StudyRow> rows;
 };
 
-/// `stop` (may be null): once it is true no further run starts; the tables come back with the rows
-/// not run left empty (the caller discards them).
 /// Called after each finished run with (runs done, runs in all, its table, its interval), from
 /// the worker threads: it must be thread-safe (spdlog is).
 using StudyProgress =
     std::function<void(int done, int total, const StudyTable& table, int interval)>;
 
+/// `stop` (may be null): once it is true no further run starts; the tables come back with the rows
+/// not run left empty (the caller discards them).
 std::vector<StudyTable> run_study(const std::vector<LoadedSequence>& dataset,
                                   const std::vector<StudyConfiguration>& configurations,
                                   const std::vector<StudyInput>& inputs,
