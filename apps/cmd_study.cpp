@@ -24,6 +24,7 @@
 #include "mot/study_runner.hpp"
 #include "motio/mot_files.hpp"
 #include "platform/signals.hpp"
+#include "tracker/presets.hpp"
 
 namespace rtmot::app {
 namespace {
@@ -108,8 +109,12 @@ int run_study_command(const StudyCommandOptions& options) {
     // The public detections and every synthetic detector: each is left out in turn.
     std::vector<mot::StudyInput> detectors = {mot::StudyInput::detections};
     for (const auto& input : mot::synthetic_inputs()) detectors.push_back(input);
+    // What the default must hold against on every detector and interval: SORT and ByteTrack.
+    std::vector<mot::StudyConfiguration> references;
+    for (const char* name : {"sort", "bytetrack"})
+      references.push_back({std::string("preset-") + name, "cv", *tracker::find_preset(name)});
     const auto cv = mot::cross_validate(dataset, candidates, detectors, intervals, options.jobs,
-                                        &signals.stop_flag());
+                                        &signals.stop_flag(), references);
     if (signals.stop_requested()) return stopped("the cross-validation");
     for (const auto& table : cv.tables) tables.push_back(table);
     folds = mot::format_folds_markdown(cv);

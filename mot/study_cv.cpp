@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <atomic>
 #include <exception>
 #include <mutex>
@@ -76,14 +77,50 @@ std::vector<Metrics> pooled(const Counts& counts, std::size_t candidate, const M
   return by_interval;
 }
 
-// The best candidate on the runs `use` marks; the first of equals.
-std::size_t choose(const Counts& counts, const Mask& use) {
+// Counts pooled over the sequences `use` marks for one input and interval.
+Metrics pooled_cell(const Counts& counts, std::size_t candidate, std::size_t input,
+                    std::size_t interval, const Mask& use) {
+  SequenceCounts total;
+  const auto& runs = counts[candidate][input][interval];
+  for (std::size_t s = 0; s < runs.size(); ++s) {
+    if (use[input][s]) total += runs[s];
+  }
+  return summarize(total);
+}
+
+// How many (input, interval) cells of the runs `use` marks the candidate holds against every
+// reference: MOTA and IDF1 each at least the reference's.
+int cells_held(const Counts& counts, std::size_t candidate, std::size_t first_reference,
+               const Mask& use) {
+  int held = 0;
+  for (std::size_t d = 0; d < use.size(); ++d) {
+    if (std::none_of(use[d].begin(), use[d].end(), [](bool u) { return u; })) continue;
+    for (std::size_t i = 0; i < counts[candidate][d].size(); ++i) {
+      const Metrics mine = pooled_cell(counts, candidate, d, i, use);
+      bool holds = true;
+      for (std::size_t r = first_reference; r < counts.size() && holds; ++r) {
+        const Metrics theirs = pooled_cell(counts, r, d, i, use);
+        holds = mine.mota >= theirs.mota && mine.idf1 >= theirs.idf1;
+      }
+      held += holds ? 1 : 0;
+    }
+  }
+  return held;
+}
+
+// The best of the first `candidates` entries of `counts` on the runs `use` marks (the rest are
+// references): the most cells held against the references, then the best selection score; the
+// first of equals.
+std::size_t choose(const Counts& counts, std::size_t candidates, const Mask& use) {
   std::size_t best = 0;
+  int best_held = -1;
   double best_score = -1e300;
-  for (std::size_t c = 0; c < counts.size(); ++c) {
+  for (std::size_t c = 0; c < candidates; ++c) {
+    const int held = candidates < counts.size() ? cells_held(counts, c, candidates, use) : 0;
     const double score = selection_score(pooled(counts, c, use));
-    if (score > best_score) {
+    if (held > best_held || (held == best_held && score > best_score)) {
       best = c;
+      best_held = held;
       best_score = score;
     }
   }
@@ -111,23 +148,28 @@ CrossValidation cross_validate(const std::vector<LoadedSequence>& dataset,
                                const std::vector<StudyConfiguration>& candidates,
                                const std::vector<StudyInput>& inputs,
                                const std::vector<int>& intervals, int jobs,
-                               const std::atomic<bool>* stop) {
+                               const std::atomic<bool>* stop,
+                               const std::vector<StudyConfiguration>& references) {
   if (dataset.size() < 2 || candidates.empty() || inputs.empty() || intervals.empty())
     throw std::invalid_argument(
         "cross-validation needs two sequences, a candidate, a detector "
         "and an interval");
-  const Counts counts = count_everything(dataset, candidates, inputs, intervals, jobs, stop);
+  std::vector<StudyConfiguration> runs = candidates;
+  runs.insert(runs.end(), references.begin(), references.end());
+  const Counts counts = count_everything(dataset, runs, inputs, intervals, jobs, stop);
+  const std::size_t n_c = candidates.size();
   if (stop != nullptr && stop->load(std::memory_order_relaxed)) return {};
   const std::size_t n_s = dataset.size();
   const std::size_t n_d = inputs.size();
 
   CrossValidation cv;
   const Mask everything(n_d, std::vector<bool>(n_s, true));
-  const std::size_t in_sample = choose(counts, everything);
+  const std::size_t in_sample = choose(counts, n_c, everything);
   cv.in_sample_choice = candidates[in_sample].name;
-  for (std::size_t c = 0; c < candidates.size(); ++c)
-    cv.in_sample_scores.emplace_back(candidates[c].name,
-                                     selection_score(pooled(counts, c, everything)));
+  for (std::size_t c = 0; c < n_c; ++c)
+    cv.in_sample_scores.push_back(CandidateScore{
+        candidates[c].name, n_c < counts.size() ? cells_held(counts, c, n_c, everything) : 0,
+        selection_score(pooled(counts, c, everything))});
 
   for (std::size_t d = 0; d < n_d; ++d) {
     std::vector<SequenceCounts> held_out(intervals.size());
@@ -138,7 +180,7 @@ CrossValidation cross_validate(const std::vector<LoadedSequence>& dataset,
         if (e == d && n_d > 1) train[e].assign(n_s, false);
         train[e][k] = false;
       }
-      const std::size_t chosen = choose(counts, train);
+      const std::size_t chosen = choose(counts, n_c, train);
       for (std::size_t i = 0; i < intervals.size(); ++i) held_out[i] += counts[chosen][d][i][k];
       cv.folds.push_back(FoldChoice{dataset[k].info.name, std::string(to_string(inputs[d])),
                                     candidates[chosen].name});
@@ -167,9 +209,11 @@ std::string format_folds_markdown(const CrossValidation& cv) {
     out += fmt::format("| {} | {} | `{}` | {} |\n", fold.detector, fold.held_out, fold.chosen,
                        fold.chosen == cv.in_sample_choice ? "yes" : "no");
   }
-  out += "\n| candidate | selection score on everything |\n|---|---:|\n";
-  for (const auto& [name, score] : cv.in_sample_scores)
-    out += fmt::format("| `{}` | {:.2f} |\n", name, score);
+  out +=
+      "\n| candidate | cells held on everything | selection score on everything |\n"
+      "|---|---:|---:|\n";
+  for (const auto& score : cv.in_sample_scores)
+    out += fmt::format("| `{}` | {} | {:.2f} |\n", score.name, score.cells_held, score.mean);
   return out;
 }
 

@@ -98,6 +98,13 @@ std::vector<StudyConfiguration> ablation_configurations() {
       ablation("+cascade", [](TrackerConfig& c) { c.recent_tracks_first = true; }),
       ablation("+confirmed-first", [](TrackerConfig& c) { c.confirmed_tracks_first = true; }),
       ablation("+track-score", [](TrackerConfig& c) { c.confirm_score_cut = 0.5; }),
+      // The runner-up of the cross-validation: a weak birth proves itself one detection longer.
+      ablation("+weak-birth-proof",
+               [](TrackerConfig& c) {
+                 c.min_hits = 2;
+                 c.strong_birth_range_cut = 0.5;
+                 c.weak_births_by_count = true;
+               }),
   };
 }
 
@@ -157,6 +164,19 @@ std::vector<StudyConfiguration> cv_candidates(bool quick) {
     }
     return choices;
   };
+  // When a track is reported: from its second detection (ByteTrack's count), its third, or its
+  // second only if born of a detection in the upper half of the recent score range (ByteTrack's
+  // higher bar for a birth, made a longer proof instead of a refusal); weak births proven by
+  // matches counted, or also by duration.
+  std::vector<Choice> confirmations = {{"hits-1", {{"min_hits", "1"}}}};
+  if (!quick) {
+    confirmations.push_back({"hits-2", {{"min_hits", "2"}}});
+    confirmations.push_back(
+        {"hits-2-strong-0.5", {{"min_hits", "2"}, {"strong_birth_range_cut", "0.5"}}});
+    confirmations.push_back(
+        {"hits-2-strong-0.5-count",
+         {{"min_hits", "2"}, {"strong_birth_range_cut", "0.5"}, {"weak_births_by_count", "true"}}});
+  }
   // Every combination of one choice per dimension, on top of SORT with elapsed time steps, one
   // update of coasting, confirmation as long in time, the widened gate, 30 frames kept and
   // ByteTrack's track life and second round (what the earlier grids chose on every fold, or
@@ -170,7 +190,7 @@ std::vector<StudyConfiguration> cv_candidates(bool quick) {
       // true and false detections separate; on a weak one (synthetic DPM) it removed true tracks
       // wholesale (docs/study/reading.md).
       values("iou", "affinity_threshold", {"0.3", "0.2"}),
-      values("hits", "min_hits", {"1", "2"}),
+      confirmations,
   };
   std::vector<StudyConfiguration> candidates = {
       {"", "cv",

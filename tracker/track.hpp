@@ -43,7 +43,9 @@ struct Track {
   std::int32_t matches{0};
   std::int32_t class_id{0};
   TrackState state{TrackState::deleted};
-  bool ever_confirmed{false};  // confirmed in some update since its birth (ByteTrack's rules)
+  bool ever_confirmed{false};
+  bool strong_birth{false};  // born at or above strong_birth_range_cut: confirmed sooner  //
+                             // confirmed in some update since its birth (ByteTrack's rules)
 
   bool matched_now() const {
     return state == TrackState::tentative || state == TrackState::confirmed;

@@ -45,7 +45,8 @@ struct Tracker::State {
         associator(std::min(c.max_detections, kTypicalSceneSize),
                    std::min(c.max_tracks, kTypicalSceneSize)),
         score_cut(c.score_quantile, c.score_range_cut, kScoreWindow,
-                  c.birth_range_cut > 0.0 || c.confirm_score_cut > 0.0) {
+                  c.birth_range_cut > 0.0 || c.strong_birth_range_cut > 0.0 ||
+                      c.confirm_score_cut > 0.0) {
     const auto tracks = static_cast<std::size_t>(config.max_tracks);
     const auto detections = static_cast<std::size_t>(config.max_detections);
     slots.resize(tracks);
@@ -318,6 +319,8 @@ struct Tracker::State {
     track.matches = 1;
     track.class_id = detection.class_id;
     track.ever_confirmed = false;
+    track.strong_birth = config.strong_birth_range_cut > 0.0 &&
+                         detection.score >= score_cut.range_point(config.strong_birth_range_cut);
     // sort.py reports a newborn track in the first min_hits frames: it counts as matched now.
     track.state = TrackState::tentative;
     order.push_back(slot);
@@ -354,7 +357,13 @@ struct Tracker::State {
     if (!confident(track)) return false;
     if (config.keep_confirmation && track.ever_confirmed) return true;
     if (track.hit_streak >= config.min_hits || frame_count <= config.min_hits) return true;
+    // A strong birth needs one match, in the run that starts at its birth (matches counts the
+    // birth).
+    if (track.strong_birth && track.hit_streak >= 1 && track.matches == track.hit_streak + 1)
+      return true;
     if (!config.confirm_by_duration) return false;
+    if (config.weak_births_by_count && config.strong_birth_range_cut > 0.0 && !track.strong_birth)
+      return false;
     // The streak's first frame is the birth (or re-match) itself, hence the one frame less than
     // hits; at full rate this is exactly the hit count.
     return track.hit_streak >= config.duration_min_hits &&

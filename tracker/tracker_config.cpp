@@ -26,6 +26,8 @@ TrackerConfig with_every_option(TrackerConfig base) {
   base.tentative_dies_on_miss = true;
   base.second_round_recent_only = true;
   base.birth_range_cut = 0.6;
+  base.strong_birth_range_cut = 0.7;
+  base.weak_births_by_count = true;
   base.birth_threshold = 0.65F;
   base.confirm_score_cut = 0.3;
   base.second_round_threshold = 0.5;

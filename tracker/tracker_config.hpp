@@ -118,6 +118,13 @@ struct TrackerConfig {
   /// A detection no round took starts a track only at or above this absolute score (ByteTrack's
   /// track_thresh + 0.1 = 0.6). The lowest float by default: it assumes a score scale.
   float birth_threshold{std::numeric_limits<float>::lowest()};
+  /// A track born of a detection at or above this fraction is reported from its second detection
+  /// in a row (ByteTrack's count); one born weaker needs min_hits matches. Unlike birth_range_cut,
+  /// no birth is refused: a weak one only has to prove itself longer.
+  double strong_birth_range_cut{0.0};
+  /// With strong_birth_range_cut, a track born below it is confirmed by min_hits matches only,
+  /// never by duration: at reduced rates one more processed frame of proof.
+  bool weak_births_by_count{false};
   /// A track is confirmed only once the mean score of its matches reaches this fraction.
   double confirm_score_cut{0.0};
   /// Minimum affinity in the second round; 0 = affinity_threshold (ByteTrack: IoU 0.5).

@@ -188,6 +188,14 @@ std::vector<TrackerOption> make_table() {
       real("birth_threshold",
            "only detections scoring at least this (absolute) start tracks (any scale)",
            &C::birth_threshold, -kHuge, kHuge),
+      real("strong_birth_range_cut",
+           "a track born above this fraction of the recent score range is reported from its "
+           "second detection; weaker births need min_hits (0: off)",
+           &C::strong_birth_range_cut, 0.0, limits::kMaxScoreQuantile),
+      flag("weak_births_by_count",
+           "with strong_birth_range_cut, weaker births are confirmed by min_hits matches, never "
+           "by duration",
+           &C::weak_births_by_count),
       real("confirm_score_cut",
            "a track is confirmed only once its mean match score reaches this fraction of the "
            "recent score range (0: off)",

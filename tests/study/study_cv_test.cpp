@@ -10,6 +10,7 @@
 
 #include "mot/metrics.hpp"
 #include "shared_data.hpp"
+#include "tracker/presets.hpp"
 
 namespace rtmot::mot {
 namespace {
@@ -86,6 +87,67 @@ TEST(CrossValidation, FoldsChooseOnWhatTheyMaySeeAndScoreWhatTheyLeftOut) {
     EXPECT_DOUBLE_EQ(held_out.rows[i].metrics.idf1, expected.idf1);
   }
   EXPECT_FALSE(format_folds_markdown(cv).empty());
+}
+
+// With references, a fold chooses the candidate that holds the most (detector, interval) cells
+// against every reference in MOTA and IDF1, and only then the best mean; the in-sample table of
+// cells held is recounted here from separate runs.
+TEST(CrossValidation, WithReferencesTheMostCellsHeldComeBeforeTheMean) {
+  RTMOT_REQUIRE_FILE(test::shared_path("data/mot15-train/TUD-Stadtmitte"));
+  const auto dataset = two_sequences();
+  ASSERT_EQ(dataset.size(), 2U);
+  // ByteTrack itself is a candidate: it holds every cell against itself, and SORT is below it on
+  // these two sequences at both intervals (checked below), whatever its mean.
+  std::vector<StudyConfiguration> candidates = cv_candidates(true);
+  candidates.push_back({"bytetrack-again", "cv", *tracker::find_preset("bytetrack")});
+  const std::vector<StudyConfiguration> references = {
+      {"preset-bytetrack", "cv", *tracker::find_preset("bytetrack")},
+      {"preset-sort", "cv", *tracker::find_preset("sort")}};
+  const std::vector<StudyInput> inputs = {StudyInput::detections,
+                                          StudyInput::synthetic_detector(0)};
+  const std::vector<int> intervals = {1, 5};
+  const CrossValidation cv =
+      cross_validate(dataset, candidates, inputs, intervals, 2, nullptr, references);
+
+  const auto held_and_mean = [&](const std::vector<const LoadedSequence*>& sequences,
+                                 const std::vector<StudyInput>& seen,
+                                 const tracker::TrackerConfig& config) {
+    int held = 0;
+    std::vector<Metrics> pooled_by_interval;
+    for (const int i : intervals) {
+      SequenceCounts pooled;
+      for (const StudyInput input : seen) {
+        const Metrics mine = score(sequences, input, config, i);
+        bool holds = true;
+        for (const auto& r : references) {
+          const Metrics theirs = score(sequences, input, r.config, i);
+          holds = holds && mine.mota >= theirs.mota && mine.idf1 >= theirs.idf1;
+        }
+        held += holds ? 1 : 0;
+        for (const auto* s : sequences) pooled += track_and_count(*s, input, config, i);
+      }
+      pooled_by_interval.push_back(summarize(pooled));
+    }
+    return std::pair{held, selection_score(pooled_by_interval)};
+  };
+
+  // Fold 0 sees TUD-Stadtmitte through the synthetic detector only.
+  std::pair<int, double> best{-1, -1e300};
+  std::string best_name;
+  for (const auto& c : candidates) {
+    const auto mine = held_and_mean({&dataset[1]}, {inputs[1]}, c.config);
+    if (mine > best) best = mine, best_name = c.name;
+  }
+  EXPECT_EQ(cv.folds[0].chosen, best_name);
+  EXPECT_EQ(best.first, 2);  // bytetrack-again holds both cells, so the choice must too
+
+  ASSERT_EQ(cv.in_sample_scores.size(), candidates.size());
+  for (std::size_t c = 0; c < candidates.size(); ++c) {
+    const auto expected = held_and_mean({&dataset[0], &dataset[1]}, inputs, candidates[c].config);
+    EXPECT_EQ(cv.in_sample_scores[c].cells_held, expected.first) << candidates[c].name;
+    EXPECT_NEAR(cv.in_sample_scores[c].mean, expected.second, 1e-9) << candidates[c].name;
+  }
+  EXPECT_EQ(cv.in_sample_scores.back().cells_held, 4);
 }
 
 TEST(CrossValidation, AStopBeforeItStartsGivesAnEmptyResultAtOnce) {

@@ -49,6 +49,51 @@ TEST(BirthRangeCut, OnlyConfidentDetectionsStartTracks) {
   EXPECT_EQ(strict.front(), 1);  // the walker, born first
 }
 
+// The processed frame (1-based, every `step` frames) at which a newcomer scoring `score`, which
+// appears at the 4th processed frame, is first reported; 0 if never. A walker at 0.9 and a faint
+// detection at 0.1, present throughout, make the stream's score range 0.1..0.9.
+int newcomer_reported_at(const TrackerConfig& config, float score, int step = 1) {
+  Tracker tracker(config);
+  for (int k = 1; k <= 10; ++k) {
+    const int frame = k * step;
+    std::vector<Detection> detections = {detection(100.F + 3.F * frame, 200.F, 40.F, 80.F, 0.9F),
+                                         detection(1200.F, 600.F, 40.F, 80.F, 0.1F)};
+    if (k >= 4) detections.push_back(detection(600.F, 300.F, 40.F, 80.F, score));
+    for (const TrackReport& report : tracker.update(detections, frame / 30.0)) {
+      if (k >= 4 && report.box.x > 550.F && report.box.x < 650.F) return k;
+    }
+  }
+  return 0;
+}
+
+TEST(StrongBirthRangeCut, AStrongBirthIsReportedAtItsSecondDetectionAWeakOneAtItsThird) {
+  TrackerConfig config = TrackerConfig::sort_preset();
+  config.min_hits = 2;
+  config.max_age = 5;
+  EXPECT_EQ(newcomer_reported_at(config, 0.8F), 6);  // SORT's count: born at 4, two more matches
+  EXPECT_EQ(newcomer_reported_at(config, 0.4F), 6);
+  config.strong_birth_range_cut = 0.5;               // 0.5 of 0.1..0.9: 0.5
+  EXPECT_EQ(newcomer_reported_at(config, 0.8F), 5);  // ByteTrack's count
+  EXPECT_EQ(newcomer_reported_at(config, 0.4F), 6);  // a weak birth is not refused, only slower
+}
+
+TEST(WeakBirthsByCount, AtReducedRatesAWeakBirthIsNotConfirmedByDurationAlone) {
+  // Every 5th frame with elapsed steps: confirmation by duration reports any newcomer at its
+  // second detection (5 frames >= min_hits 2).
+  TrackerConfig config = TrackerConfig::sort_preset();
+  config.time_step = TimeStep::elapsed;
+  config.frame_rate = 30.0;
+  config.min_hits = 2;
+  config.max_age = 30;
+  config.confirm_by_duration = true;
+  config.strong_birth_range_cut = 0.5;
+  EXPECT_EQ(newcomer_reported_at(config, 0.8F, 5), 5);
+  EXPECT_EQ(newcomer_reported_at(config, 0.4F, 5), 5);
+  config.weak_births_by_count = true;
+  EXPECT_EQ(newcomer_reported_at(config, 0.8F, 5), 5);
+  EXPECT_EQ(newcomer_reported_at(config, 0.4F, 5), 6);  // min_hits matches, counted
+}
+
 TEST(ConfirmScoreCut, AFalsePositiveThatRecursScoresTooLowOnAverage) {
   // Every detection may start a track (SORT); the clutter at 0.4 is matched every frame.
   TrackerConfig config = TrackerConfig::sort_preset();

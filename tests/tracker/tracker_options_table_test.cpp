@@ -51,6 +51,8 @@ TEST(TrackerOptions, EveryKnobOfTheConfigCanBeSet) {
                                      {"min_coast_updates", "2"},
                                      {"duration_min_hits", "3"},
                                      {"birth_range_cut", "0.65"},
+                                     {"strong_birth_range_cut", "0.55"},
+                                     {"weak_births_by_count", "true"},
                                      {"confirm_score_cut", "0.35"},
                                      {"second_round_threshold", "0.45"},
                                      {"max_gate_margin", "0.25"},
@@ -85,6 +87,8 @@ TEST(TrackerOptions, EveryKnobOfTheConfigCanBeSet) {
   EXPECT_EQ(config.min_coast_updates, 2);
   EXPECT_EQ(config.duration_min_hits, 3);
   EXPECT_DOUBLE_EQ(config.birth_range_cut, 0.65);
+  EXPECT_DOUBLE_EQ(config.strong_birth_range_cut, 0.55);
+  EXPECT_TRUE(config.weak_births_by_count);
   EXPECT_DOUBLE_EQ(config.confirm_score_cut, 0.35);
   EXPECT_DOUBLE_EQ(config.second_round_threshold, 0.45);
   EXPECT_DOUBLE_EQ(config.max_gate_margin, 0.25);
@@ -92,7 +96,7 @@ TEST(TrackerOptions, EveryKnobOfTheConfigCanBeSet) {
   EXPECT_EQ(config.seed, 18446744073709551615ULL);
   EXPECT_EQ(config.max_tracks, 20);
   EXPECT_EQ(config.max_detections, 30);
-  EXPECT_EQ(tracker_options().size(), 34U) << "a new TrackerConfig field needs a line here too";
+  EXPECT_EQ(tracker_options().size(), 36U) << "a new TrackerConfig field needs a line here too";
 }
 
 TEST(TrackerOptions, AnAffinityBringsItsUsualThresholdUnlessOneFollows) {
