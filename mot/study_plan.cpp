@@ -98,13 +98,15 @@ std::vector<StudyConfiguration> ablation_configurations() {
       ablation("+cascade", [](TrackerConfig& c) { c.recent_tracks_first = true; }),
       ablation("+confirmed-first", [](TrackerConfig& c) { c.confirmed_tracks_first = true; }),
       ablation("+track-score", [](TrackerConfig& c) { c.confirm_score_cut = 0.5; }),
-      // The runner-up of the cross-validation: a weak birth proves itself one detection longer.
-      ablation("+weak-birth-proof",
+      // The runners-up of the cross-validation: every birth reported from its second detection,
+      // or a weak one from its third at every rate; and every birth from its third.
+      ablation("-weak-birth-proof",
                [](TrackerConfig& c) {
-                 c.min_hits = 2;
-                 c.strong_birth_range_cut = 0.5;
-                 c.weak_births_by_count = true;
+                 c.min_hits = 1;
+                 c.strong_birth_range_cut = 0.0;
                }),
+      ablation("+weak-births-by-count", [](TrackerConfig& c) { c.weak_births_by_count = true; }),
+      ablation("-strong-birth", [](TrackerConfig& c) { c.strong_birth_range_cut = 0.0; }),
   };
 }
 

@@ -356,7 +356,7 @@ struct Tracker::State {
   bool confirmed(const Track& track) const {
     if (!confident(track)) return false;
     if (config.keep_confirmation && track.ever_confirmed) return true;
-    if (track.hit_streak >= config.min_hits || frame_count <= config.min_hits) return true;
+    if (track.hit_streak >= config.min_hits || in_warm_up()) return true;
     // A strong birth needs one match, in the run that starts at its birth (matches counts the
     // birth).
     if (track.strong_birth && track.hit_streak >= 1 && track.matches == track.hit_streak + 1)
@@ -369,6 +369,13 @@ struct Tracker::State {
     return track.hit_streak >= config.duration_min_hits &&
            (track.streak_frames + kFrameTolerance >= config.min_hits ||
             elapsed_frames + kFrameTolerance < config.min_hits);
+  }
+
+  // sort.py reports every track in its first min_hits frames; with confirm_by_duration, as
+  // everything else about confirmation, in nominal frames (the same at full rate).
+  bool in_warm_up() const {
+    if (!config.confirm_by_duration) return frame_count <= config.min_hits;
+    return elapsed_frames + kFrameTolerance < config.min_hits;
   }
 
   // The track-level confidence: a false positive that recurs at one place is matched often but

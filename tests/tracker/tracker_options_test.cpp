@@ -235,6 +235,21 @@ TEST(ConfirmByDuration, DurationMinHitsAsksForASecondMatchAtLowRate) {
   EXPECT_TRUE(reports_id(two[6], 1));
 }
 
+TEST(ConfirmByDuration, SortsStartUpReportsLastMinHitsNominalFramesNotProcessedOnes) {
+  // SORT's start-up rule reports every track in its first min_hits (3) frames. A walker born at
+  // the second processed frame: at full rate that is frame 2, inside the start-up, reported at
+  // once by either rule; at every 10th frame it is frame 11, inside the start-up by count (the
+  // second processed frame) but not by time (10 nominal frames have passed).
+  TrackerConfig by_hits = TrackerConfig::sort_preset();
+  by_hits.max_age = 10;
+  TrackerConfig by_time = by_hits;
+  by_time.confirm_by_duration = true;
+  EXPECT_TRUE(reports_id(run_walker(by_hits, 1, 2, 1, 1)[1], 1));
+  EXPECT_TRUE(reports_id(run_walker(by_time, 1, 2, 1, 1)[1], 1));
+  EXPECT_TRUE(reports_id(run_walker(by_hits, 10, 11, 1, 1)[1], 1));
+  EXPECT_TRUE(run_walker(by_time, 10, 11, 1, 1)[1].empty());
+}
+
 TEST(MinCoastUpdates, LetsATrackSurviveOneMissedProcessedFrameAtLowRate) {
   TrackerConfig config = TrackerConfig::sort_preset();
   config.confirm_by_duration = true;
