@@ -77,6 +77,27 @@ TEST(StrongBirthRangeCut, AStrongBirthIsReportedAtItsSecondDetectionAWeakOneAtIt
   EXPECT_EQ(newcomer_reported_at(config, 0.4F), 6);  // a weak birth is not refused, only slower
 }
 
+TEST(StrongBirthRangeCut, OnlyTheRunThatStartsAtTheBirthIsShortened) {
+  // SORT's track life (no keep_confirmation): a strong newcomer (0.8) born at frame 4, reported at
+  // 5, missing at 6 and found again at 7 proves itself again with min_hits matches (reported at 8,
+  // not 7): its strength shortened only its first proof.
+  TrackerConfig config = TrackerConfig::sort_preset();
+  config.min_hits = 2;
+  config.max_age = 5;
+  config.strong_birth_range_cut = 0.5;
+  Tracker tracker(config);
+  std::vector<int> reported_frames;
+  for (int frame = 1; frame <= 9; ++frame) {
+    std::vector<Detection> detections = {detection(100.F + 3.F * frame, 200.F, 40.F, 80.F, 0.9F),
+                                         detection(1200.F, 600.F, 40.F, 80.F, 0.1F)};
+    if (frame >= 4 && frame != 6) detections.push_back(detection(600.F, 300.F, 40.F, 80.F, 0.8F));
+    for (const TrackReport& report : tracker.update(detections, frame / 30.0)) {
+      if (report.box.x > 550.F && report.box.x < 650.F) reported_frames.push_back(frame);
+    }
+  }
+  EXPECT_EQ(reported_frames, (std::vector<int>{5, 8, 9}));
+}
+
 TEST(WeakBirthsByCount, AtReducedRatesAWeakBirthIsNotConfirmedByDurationAlone) {
   // Every 5th frame with elapsed steps: confirmation by duration reports any newcomer at its
   // second detection (5 frames >= min_hits 2).
