@@ -93,10 +93,13 @@ int run_study_command(const StudyCommandOptions& options) {
     for (const auto& configuration : configurations) {
       if (configuration.group == "presets") presets.push_back(configuration);
     }
-    spdlog::info("study: {} presets x {} synthetic detectors", presets.size(),
-                 mot::synthetic_inputs().size());
-    for (auto& table : mot::run_study(dataset, presets, mot::synthetic_inputs(), intervals,
-                                      options.jobs, progress, &signals.stop_flag()))
+    // Those the cross-validation chooses on, and those held back from every choice.
+    std::vector<mot::StudyInput> detectors = mot::synthetic_inputs();
+    for (const auto& input : mot::held_back_inputs()) detectors.push_back(input);
+    spdlog::info("study: {} presets x {} synthetic detectors ({} held back)", presets.size(),
+                 detectors.size(), mot::held_back_inputs().size());
+    for (auto& table : mot::run_study(dataset, presets, detectors, intervals, options.jobs,
+                                      progress, &signals.stop_flag()))
       tables.push_back(std::move(table));
     if (signals.stop_requested()) return stopped("the synthetic detectors");
   }

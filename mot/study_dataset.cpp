@@ -33,20 +33,36 @@ std::string input_title(StudyInput input) {
     case StudyInput::Kind::synthetic: {
       const auto& spec = synthetic_detectors().at(static_cast<std::size_t>(input.synthetic));
       return fmt::format(
-          "{} (synthetic: {} scores, misses {:g} in runs of {:g}, {:g} random FP "
-          "per frame + {} clutter sites at {:g}, jitter {:g})",
-          spec.name, kScoreScaleNames.name(spec.scale), spec.miss_rate, spec.miss_run_frames,
-          spec.false_per_frame, spec.clutter_sites, spec.clutter_rate, spec.jitter);
+          "{} ({}synthetic: {} scores, misses {:g} in runs of {:g}, {:g} random FP "
+          "per frame + {} clutter sites at {:g}, jitter {:g}, separation {:g})",
+          spec.name, spec.held_back ? "held back from every choice; " : "",
+          kScoreScaleNames.name(spec.scale), spec.miss_rate, spec.miss_run_frames,
+          spec.false_per_frame, spec.clutter_sites, spec.clutter_rate, spec.jitter,
+          spec.separation);
     }
   }
   return "?";
 }
 
-std::vector<StudyInput> synthetic_inputs() {
+namespace {
+
+std::vector<StudyInput> synthetic_inputs_held_back(bool held_back) {
   std::vector<StudyInput> inputs;
-  for (std::size_t i = 0; i < synthetic_detectors().size(); ++i)
-    inputs.push_back(StudyInput::synthetic_detector(static_cast<int>(i)));
+  for (std::size_t i = 0; i < synthetic_detectors().size(); ++i) {
+    if (synthetic_detectors()[i].held_back == held_back)
+      inputs.push_back(StudyInput::synthetic_detector(static_cast<int>(i)));
+  }
   return inputs;
+}
+
+}  // namespace
+
+std::vector<StudyInput> synthetic_inputs() {
+  return synthetic_inputs_held_back(false);
+}
+
+std::vector<StudyInput> held_back_inputs() {
+  return synthetic_inputs_held_back(true);
 }
 
 std::vector<LoadedSequence> load_study_dataset(const fs::path& dataset) {

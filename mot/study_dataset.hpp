@@ -40,8 +40,10 @@ inline const StudyInput StudyInput::ground_truth{StudyInput::Kind::ground_truth,
 std::string_view to_string(StudyInput input);
 /// "det/det.txt", "gt/gt.txt (perfect detector)", or the synthetic detector's recipe.
 std::string input_title(StudyInput input);
-/// Every synthetic detector, in synthetic_detectors() order.
+/// The synthetic detectors choices are made on (not held back), in synthetic_detectors() order.
 std::vector<StudyInput> synthetic_inputs();
+/// The held-back synthetic detectors, in synthetic_detectors() order.
+std::vector<StudyInput> held_back_inputs();
 
 struct LoadedSequence {
   motio::SequenceInfo info;

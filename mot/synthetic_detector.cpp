@@ -91,6 +91,13 @@ const std::vector<SyntheticDetectorSpec>& synthetic_detectors() {
       {"synth-ssd", 0.45, 8.0, 0.8, 2, 0.2, 0.06, 2.0, -1.0, ScoreScale::sigmoid, 103},
       {"synth-clean", 0.10, 2.0, 0.3, 1, 0.1, 0.02, 2.5, -1.0, ScoreScale::percent, 104},
       {"synth-noisy", 0.30, 3.0, 5.0, 6, 0.5, 0.12, 0.8, -1.0, ScoreScale::logit, 105},
+      // Held back: other mixtures of the same ingredients and other seeds, written down before
+      // the first run on them (commit message of their introduction).
+      {"holdout-a", 0.20, 3.0, 1.0, 2, 0.3, 0.04, 1.8, -1.0, ScoreScale::sigmoid, 201, true},
+      {"holdout-b", 0.40, 5.0, 2.0, 3, 0.3, 0.07, 1.4, -1.0, ScoreScale::dpm, 202, true},
+      {"holdout-c", 0.15, 2.0, 4.0, 5, 0.4, 0.05, 1.0, -1.0, ScoreScale::frcnn, 203, true},
+      {"holdout-d", 0.30, 10.0, 0.5, 1, 0.2, 0.10, 2.2, -1.0, ScoreScale::logit, 204, true},
+      {"holdout-e", 0.05, 1.0, 0.5, 2, 0.5, 0.03, 3.0, -1.0, ScoreScale::percent, 205, true},
   };
   return specs;
 }
