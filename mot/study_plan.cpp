@@ -107,6 +107,7 @@ std::vector<StudyConfiguration> ablation_configurations() {
                }),
       ablation("+weak-births-by-count", [](TrackerConfig& c) { c.weak_births_by_count = true; }),
       ablation("-strong-birth", [](TrackerConfig& c) { c.strong_birth_range_cut = 0.0; }),
+      ablation("-noise-gate", [](TrackerConfig& c) { c.noise_gate_factor = 0.0; }),
   };
 }
 
@@ -193,6 +194,8 @@ std::vector<StudyConfiguration> cv_candidates(bool quick) {
       // wholesale (docs/study/reading.md).
       values("iou", "affinity_threshold", {"0.3", "0.2"}),
       confirmations,
+      // The gate widened by the stream's own box noise (tracker/box_noise.hpp), or not.
+      values("noise", "noise_gate_factor", {"0", "2", "3"}),
   };
   std::vector<StudyConfiguration> candidates = {
       {"", "cv",

@@ -44,9 +44,11 @@ float widened_gate_margin(double gate_frames, double max_margin) {
 }
 
 double affinity(const TrackerConfig& config, const Box& track, const Box& detection,
-                double gate_frames) {
-  const float margin =
+                double gate_frames, float noise_margin) {
+  const float time_margin =
       config.time_widened_gate ? widened_gate_margin(gate_frames, config.max_gate_margin) : 0.F;
+  const float margin =
+      std::min(std::max(time_margin, noise_margin), static_cast<float>(config.max_gate_margin));
   switch (config.affinity) {
     case AffinityKind::iou:
       if (margin > 0.F) return iou(enlarged(track, margin), enlarged(detection, margin));

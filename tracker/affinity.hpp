@@ -22,9 +22,10 @@ double exponential_affinity(const Box& track, const Box& detection);
 /// The affinity the config selects. With `time_widened_gate`, `gate_frames` (nominal frames since
 /// the track's last match or since the previous processed frame, per `gate_clock`; >= 1 after a
 /// prediction) loosens the comparison: IoU is taken on boxes enlarged with that time (as C-BIoU),
-/// the other kinds are scaled up by it.
+/// the other kinds are scaled up by it. `noise_margin` (the stream's box noise) is a floor under
+/// that margin; both stay within max_gate_margin.
 double affinity(const TrackerConfig& config, const Box& track, const Box& detection,
-                double gate_frames);
+                double gate_frames, float noise_margin = 0.F);
 
 /// The enlargement margin (fraction of the size per side) after `gate_frames` frames, at most
 /// `max_margin`.

@@ -29,8 +29,8 @@ void Associator::associate(const TrackerConfig& config, double threshold,
   int above = 0;
   for (int r = 0; r < rows; ++r) {
     for (int c = 0; c < cols; ++c) {
-      const double value =
-          affinity(config, candidates[c].predicted, detections[r].box, candidates[c].gate_frames);
+      const double value = affinity(config, candidates[c].predicted, detections[r].box,
+                                    candidates[c].gate_frames, candidates[c].noise_margin);
       affinities_[at(r, c)] = value;
       if (value > threshold) {
         ++row_hits_[r];

@@ -13,6 +13,7 @@ namespace rtmot::tracker {
 struct AssociationCandidate {
   Box predicted;
   double gate_frames{1.0};  // nominal frames that widen its gate (TrackerConfig::gate_clock)
+  float noise_margin{0.F};  // the gate margin the stream's box noise asks for (noise_gate_factor)
 };
 
 struct AssociationMatch {

@@ -12,7 +12,9 @@ namespace {
 // detections below 0.3 of the recent score range only continue the confirmed tracks matched in the
 // previous update, in a second round at IoU 0.5; a track is reported from its second detection
 // (ByteTrack's count) if it was born in the upper half of the recent score range, and from its
-// third or a run as long in time otherwise (at reduced rates the same); a track never confirmed
+// third or a run as long in time otherwise (at reduced rates the same); the gate is widened by
+// three times the stream's median box offset from the prediction (the detector's jitter, measured:
+// tracker/box_noise.hpp) as well as by the frames skipped; a track never confirmed
 // dies at its first miss; a confirmed one is reported again at its first match after a miss.
 // No score decides alone that a track is not reported: a track-level confidence cut
 // (confirm_score_cut) removed the true tracks of a weak detector whose true and false detections
@@ -40,6 +42,7 @@ tracker::TrackerConfig rtmot_preset() {
   config.tentative_dies_on_miss = true;
   config.time_widened_gate = true;
   config.gate_clock = tracker::GateClock::frame_gap;
+  config.noise_gate_factor = 3.0;
   return config;
 }
 
@@ -84,7 +87,8 @@ const std::vector<TrackerPreset>& tracker_presets() {
        "and IoU >= 0.3, elapsed time steps, ByteTrack's track life, detections below 0.3 of the "
        "recent score range only continue recent tracks (second round, IoU >= 0.5), max_age 30, "
        "reported from the second detection if born in the upper half of the score range (else "
-       "the third or as long in time), gate widened by skipped frames",
+       "the third or as long in time), gate widened by skipped frames and by the measured box "
+       "noise",
        &rtmot_preset},
       {"bytetrack",
        "ByteTrack's published defaults: detections >= 0.5 (>= 0.6 to start a track), second "

@@ -8,6 +8,7 @@
 
 #include "tracker/association.hpp"
 #include "tracker/box_geometry.hpp"
+#include "tracker/box_noise.hpp"
 #include "tracker/predictor.hpp"
 #include "tracker/score_cut.hpp"
 #include "tracker/track.hpp"
@@ -22,6 +23,11 @@ constexpr int kScoreWindow = 1024;
 // Timestamps of nominal frames (f / rate) do not subtract to exactly one period in floating
 // point; a track one frame late must not die of a rounding error in the last bit.
 constexpr double kFrameTolerance = 1e-6;
+// The box noise is measured on matches about one nominal frame ahead: a live camera's timestamps
+// jitter, and two frames ahead the offset is mostly motion (the time-widened gate's business).
+constexpr double kOneFrameSlack = 0.5;
+// About 50 frames of a MOT15 scene's matches.
+constexpr int kBoxNoiseWindow = 512;
 
 const TrackerConfig& validated(const TrackerConfig& config) {
   if (const auto problem = config_problem(config))
@@ -44,6 +50,7 @@ struct Tracker::State {
         // MOT15 peaks at 16 detections a frame: a 64 x 64 workspace rarely has to grow.
         associator(std::min(c.max_detections, kTypicalSceneSize),
                    std::min(c.max_tracks, kTypicalSceneSize)),
+        box_noise(c.noise_gate_factor > 0.0 ? kBoxNoiseWindow : 0),
         score_cut(c.score_quantile, c.score_range_cut, kScoreWindow,
                   c.birth_range_cut > 0.0 || c.strong_birth_range_cut > 0.0 ||
                       c.confirm_score_cut > 0.0) {
@@ -77,6 +84,7 @@ struct Tracker::State {
     elapsed_frames = 0.0;
     has_previous_time = false;
     score_cut.reset();
+    box_noise.reset();
     reports.clear();
   }
 
@@ -219,11 +227,13 @@ struct Tracker::State {
   template <typename Take>
   void associate(const std::vector<Detection>& detections, Take take, double threshold) {
     candidates.clear();
+    const auto noise_margin =
+        static_cast<float>(config.noise_gate_factor * box_noise.median_offset());
     for (const int position : positions) {
       const Track& track = slots[order[position]];
       const double gate_time =
           config.gate_clock == GateClock::frame_gap ? step_frames : track.frames_since_update;
-      candidates.push_back(AssociationCandidate{track.predicted, gate_time});
+      candidates.push_back(AssociationCandidate{track.predicted, gate_time, noise_margin});
     }
     round_matches.clear();
     associator.associate(config, threshold, detections, candidates, round_matches);
@@ -234,6 +244,10 @@ struct Tracker::State {
   }
 
   void correct_track(Track& track, const Detection& detection) {
+    // The box noise is measured on matches one nominal frame ahead only: further ahead the
+    // offset is mostly the motion the time-widened gate answers for.
+    if (track.steps_since_update == 1 && std::abs(step_frames - 1.0) <= kOneFrameSlack)
+      box_noise.observe(track.predicted, detection.box);
     auto* kalman = std::get_if<KalmanPredictor>(&track.predictor);
     if (config.observation_centric_reupdate && kalman != nullptr && track.steps_since_update > 1) {
       reupdate_from_observations(track, *kalman, detection.box);
@@ -408,6 +422,7 @@ struct Tracker::State {
   std::vector<AssociationMatch> round_matches;
   std::vector<TrackReport> reports;
   Associator associator;
+  BoxNoise box_noise;
   ScoreCut score_cut;
   std::int32_t next_id{1};
   int frame_count{0};

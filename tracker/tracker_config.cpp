@@ -32,6 +32,7 @@ TrackerConfig with_every_option(TrackerConfig base) {
   base.confirm_score_cut = 0.3;
   base.second_round_threshold = 0.5;
   base.max_gate_margin = 0.4;
+  base.noise_gate_factor = 3.0;
   return base;
 }
 
@@ -92,6 +93,12 @@ std::optional<std::string> config_problem(const TrackerConfig& config) {
     return "score_quantile must be in [0, " + std::to_string(limits::kMaxScoreQuantile) + "]";
   if (!(config.score_range_cut >= 0.0 && config.score_range_cut <= limits::kMaxScoreQuantile))
     return "score_range_cut must be in [0, " + std::to_string(limits::kMaxScoreQuantile) + "]";
+  if (!(config.strong_birth_range_cut >= 0.0 &&
+        config.strong_birth_range_cut <= limits::kMaxScoreQuantile))
+    return "strong_birth_range_cut must be in [0, " + std::to_string(limits::kMaxScoreQuantile) +
+           "]";
+  if (!(config.noise_gate_factor >= 0.0 && config.noise_gate_factor <= limits::kMaxNoiseGateFactor))
+    return "noise_gate_factor must be in [0, " + std::to_string(limits::kMaxNoiseGateFactor) + "]";
   return std::nullopt;
 }
 

@@ -131,6 +131,10 @@ struct TrackerConfig {
   double second_round_threshold{0.0};
   /// The widened gate's largest margin, as a fraction of the box's size on each side.
   double max_gate_margin{0.6};
+  /// The gate is also widened by this many times the stream's median box offset (how far matched
+  /// detections land from their tracks' one-frame predictions, tracker/box_noise.hpp), up to
+  /// max_gate_margin: the detector's jitter as the stream shows it. 0 = off.
+  double noise_gate_factor{0.0};
 
   // --- particle filter ---
   int particle_count{100};

@@ -10,8 +10,11 @@ inline constexpr long long kMaxParticleStorage = 4000000;  // max_tracks x parti
 inline constexpr int kMaxFrames = 1000000;                 // max_age, min_hits, min_coast_updates
 inline constexpr double kMaxFrameRate = 10000.0;
 inline constexpr double kMaxImageSide = 100000.0;
+// A cut that keeps 1% still tracks something.
 inline constexpr double kMaxScoreQuantile = 0.99;
-inline constexpr double kMaxGateMargin = 5.0;  // a box eleven times its size matches anything  // a
-                                               // cut that keeps 1% still tracks something
+// A box eleven times its size matches anything.
+inline constexpr double kMaxGateMargin = 5.0;
+// Past it any jitter asks for the whole max_gate_margin.
+inline constexpr double kMaxNoiseGateFactor = 100.0;
 
 }  // namespace rtmot::tracker::limits

@@ -204,6 +204,10 @@ std::vector<TrackerOption> make_table() {
            &C::second_round_threshold, 0.0, kHuge),
       real("max_gate_margin", "largest margin (of the box size per side) of the widened gate",
            &C::max_gate_margin, 0.0, limits::kMaxGateMargin),
+      real("noise_gate_factor",
+           "widen the gate by this many times the stream's median box offset from the "
+           "prediction (0: off)",
+           &C::noise_gate_factor, 0.0, limits::kMaxNoiseGateFactor),
       integer("particle_count", "particles per track (particle predictor)", &C::particle_count, 1,
               limits::kMaxParticles),
       integer<std::uint64_t>("seed", "random seed of the particle predictor", &C::seed, 0,

@@ -1,0 +1,40 @@
+#pragma once
+// The detector's box noise as the stream shows it: how far matched detections land from their
+// tracks' predictions one nominal frame ahead, as a share of the box size. Measured, like the
+// relative score cut, because no default may assume a detector's jitter: a gate tight enough for
+// a steady detector loses the people a jittery one reports (docs/study.md, "held back").
+// Causal and allocation-free: a fixed ring of recent offsets, its median recomputed now and then.
+#include <cstdint>
+#include <vector>
+
+#include "tracker/box.hpp"
+
+namespace rtmot::tracker {
+
+class BoxNoise {
+ public:
+  /// Remembers the last `window` offsets; a window of 0 measures nothing.
+  explicit BoxNoise(int window);
+
+  /// One match of `detection` to a track predicted at `predicted` one nominal frame ahead.
+  void observe(const Box& predicted, const Box& detection);
+
+  /// The median offset, (|dx| / w + |dy| / h) / 2 with the prediction's w and h, of the offsets
+  /// seen up to the last recompute; 0 before any.
+  double median_offset() const { return median_; }
+
+  void reset();
+
+ private:
+  void recompute();
+
+  std::vector<float> window_;   // ring buffer of the last offsets
+  std::vector<float> scratch_;  // nth_element works on a copy
+  std::size_t filled_{0};
+  std::size_t next_{0};
+  std::int64_t seen_{0};
+  std::int64_t next_recompute_{1};
+  double median_{0.0};
+};
+
+}  // namespace rtmot::tracker
