@@ -3,11 +3,9 @@
 // tracks' predictions one nominal frame ahead, as a share of the box size. Measured, like the
 // relative score cut, because no default may assume a detector's jitter: a gate tight enough for
 // a steady detector loses the people a jittery one reports (docs/study.md, "held back").
-// Causal and allocation-free: a fixed ring of recent offsets, its median recomputed now and then.
-#include <cstdint>
-#include <vector>
-
+// Causal and allocation-free: a RecentWindow of offsets, its median recomputed now and then.
 #include "tracker/box.hpp"
+#include "tracker/recent_window.hpp"
 
 namespace rtmot::tracker {
 
@@ -26,14 +24,7 @@ class BoxNoise {
   void reset();
 
  private:
-  void recompute();
-
-  std::vector<float> window_;   // ring buffer of the last offsets
-  std::vector<float> scratch_;  // nth_element works on a copy
-  std::size_t filled_{0};
-  std::size_t next_{0};
-  std::int64_t seen_{0};
-  std::int64_t next_recompute_{1};
+  RecentWindow window_;
   double median_{0.0};
 };
 

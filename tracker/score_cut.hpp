@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "tracker/box.hpp"
+#include "tracker/recent_window.hpp"
 
 namespace rtmot::tracker {
 
@@ -35,16 +36,9 @@ class ScoreCut {
  private:
   void recompute();
 
-  float order_statistic(double quantile);
-
   double quantile_;
   double range_fraction_;
-  std::vector<float> window_;   // ring buffer of the last scores
-  std::vector<float> scratch_;  // nth_element works on a copy
-  std::size_t filled_{0};
-  std::size_t next_{0};
-  std::int64_t seen_{0};
-  std::int64_t next_recompute_{1};
+  RecentWindow window_;
   float cut_;
   float low_;   // 1st percentile of the window at the last recompute
   float high_;  // 99th

@@ -1,0 +1,46 @@
+#pragma once
+// The last values of a stream (scores, box offsets) and their order statistics, for the cuts and
+// gates that are relative to the stream itself. Allocation-free after construction: a fixed ring
+// and a scratch copy that nth_element reorders. The statistics are recomputed now and then, not
+// per value: after as many new values as the window holds (so the early frames, where they move
+// most, get them often), but at least every 8 and at most every 256 values, because an
+// nth_element over the whole window per frame would cost more than the rest of the update.
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace rtmot::tracker {
+
+class RecentWindow {
+ public:
+  /// Remembers the last `capacity` values; a capacity of 0 remembers nothing.
+  explicit RecentWindow(std::size_t capacity);
+
+  bool enabled() const { return !values_.empty(); }
+  std::int64_t seen() const { return seen_; }
+
+  void push(float value);
+
+  /// True when enough values came since the last snapshot() for the statistics to be redone.
+  bool due() const { return seen_ >= next_snapshot_; }
+
+  /// Copies the window for order_statistic() and schedules the next one.
+  void snapshot();
+
+  /// The k-th smallest value of the last snapshot, k = floor(quantile x its size); partially
+  /// reorders the copy. Needs a snapshot of at least one value.
+  float order_statistic(double quantile);
+
+  void reset();
+
+ private:
+  std::vector<float> values_;   // ring buffer
+  std::vector<float> scratch_;  // the snapshot
+  std::size_t filled_{0};
+  std::size_t next_{0};
+  std::size_t snapshot_size_{0};
+  std::int64_t seen_{0};
+  std::int64_t next_snapshot_{1};
+};
+
+}  // namespace rtmot::tracker
