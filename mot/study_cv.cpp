@@ -77,7 +77,8 @@ std::vector<Metrics> pooled(const Counts& counts, std::size_t candidate, const M
   return by_interval;
 }
 
-// Counts pooled over the sequences `use` marks for one input and interval.
+// One cell's metrics: the candidate's counts for one input and interval, pooled over the
+// sequences `use` marks.
 Metrics pooled_cell(const Counts& counts, std::size_t candidate, std::size_t input,
                     std::size_t interval, const Mask& use) {
   SequenceCounts total;
