@@ -23,6 +23,7 @@
 #include "outputs/mqtt_subscriber.hpp"
 #include "outputs/mqtt_uri.hpp"
 #include "platform/clock.hpp"
+#include "platform/host_port.hpp"
 #include "platform/signals.hpp"
 #include "platform/udp_socket.hpp"
 
@@ -33,6 +34,10 @@ using messages::Arrival;
 using messages::DecodedMessage;
 using messages::DecodeError;
 using messages::ListenerStats;
+
+// A count a listener can reach (one datagram a nanosecond for 11 days): anything larger means
+// "no limit", which is spelled 0.
+constexpr std::int64_t kMaxCount = 1'000'000'000'000'000;
 
 struct ListenOptions {
   std::uint16_t port{0};
@@ -314,12 +319,14 @@ Subcommand add_listen_command(CLI::App& parent) {
       "lost, reordered, duplicated and corrupt messages per stream");
   auto* port = cli->add_option("--port,-p", options->port,
                                "UDP port to listen on (0: any free port, logged at start)")
-                   ->check(CLI::Range(0, 65535));
+                   ->check(integer_in(0, 65535));
   auto* bind =
       cli->add_option("--bind", options->bind_address, "local address to bind (IPv4 or IPv6)")
+          ->check(bind_address())
           ->capture_default_str();
   cli->add_option("--count,-n", options->count,
-                  "stop after this many datagrams/records (0 = no limit)");
+                  "stop after this many datagrams/records (0 = no limit)")
+      ->check(integer_in(0, kMaxCount));
   auto* duration = cli->add_option("--duration", options->duration_s,
                                    "stop after this many seconds (0 = no limit)")
                        ->check(finite_in(0.0, 1e9));
