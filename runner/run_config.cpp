@@ -92,7 +92,7 @@ void read_detector(Section section, DetectorConfig& detector) {
   read_checked(
       section, "backend", detector.backend,
       [](const std::string& v) { return detector::parse_backend_request(v).has_value(); },
-      "auto, cpu or cuda");
+      detector::backend_request_names());
   read_checked(
       section, "fp16", detector.fp16,
       [](const std::string& v) { return detector::parse_fp16_request(v).has_value(); },
