@@ -2,11 +2,13 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <filesystem>
 #include <optional>
 #include <set>
 
 #include "common/input_error.hpp"
 #include "common/input_file.hpp"
+#include "common/input_path.hpp"
 #include "runner/run_settings.hpp"
 #include "runner/sequence_clock_source.hpp"
 #include "runner/yaml_section.hpp"
@@ -175,15 +177,49 @@ RunConfig parse_run_config(const std::string& yaml_text, const std::string& file
   return config;
 }
 
+namespace {
+
+// The folder a configuration's relative input paths start from (common/input_path.hpp); none for
+// the command line's defaults.
+std::filesystem::path base_dir_of(const RunConfig& config) {
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(config.file, error)) return {};
+  return std::filesystem::absolute(config.file, error).parent_path();
+}
+
+// Inputs only (the model, det.txt, video files); outputs stay relative to the working directory.
+void resolve_input_paths(RunConfig& config) {
+  const auto base = base_dir_of(config);
+  std::string tried;
+  if (!config.detector.model.empty())
+    config.detector.model = resolve_input_path(config.detector.model, base, "models", tried);
+  if (!config.detector.det_file.empty())
+    config.detector.det_file = resolve_input_path(config.detector.det_file, base, "", tried);
+  const auto resolve_source = [&](SourceConfig& source) {
+    if (!source.uri.empty() && source.uri.find("://") == std::string::npos)
+      source.uri = resolve_input_path(source.uri, base, "", tried);
+  };
+  resolve_source(config.source);
+  for (SourceConfig& source : config.sources) resolve_source(source);
+}
+
+}  // namespace
+
 RunConfig default_run_config() {
   RunConfig config = parse_run_config("tracker: {}\n", "(defaults)");
   config.file = "(command line)";
   config.detector.model = "models/ssdlite_mobilenet_v2_coco.onnx";
+  resolve_input_paths(config);  // the working directory's models/, else the installed one
   return config;
 }
 
 RunConfig load_run_config(const std::string& path) {
-  return parse_run_config(read_text_file(path, kMaxConfigBytes), path);
+  // A bare name not here (`--config jetson-csi.yaml`) may be one of the installed configs.
+  std::string tried;
+  const std::string found = resolve_input_path(path, {}, "configs", tried);
+  RunConfig config = parse_run_config(read_text_file(found, kMaxConfigBytes), found);
+  resolve_input_paths(config);
+  return config;
 }
 
 std::vector<SourceConfig> source_list(const RunConfig& config) {
@@ -227,6 +263,18 @@ void validate(const RunConfig& config) {
     }
     if (config.output.video) {
       missing("output.video_file", "a mot-seq:// source has no images to annotate");
+    }
+  }
+  if (config.detector.kind == DetectorKind::ssd) {
+    // Say where it was looked for: "not found" alone sent users to fetch a model they had.
+    std::string tried;
+    resolve_input_path(config.detector.model, base_dir_of(config), "models", tried);
+    if (!tried.empty()) {
+      throw InputError(config.file, 0, "detector.model",
+                       "model file '" + config.detector.model + "' not found; tried " + tried +
+                           " (relative paths in a config file start at its folder; run "
+                           "scripts/fetch_model.sh to fetch the model)",
+                       ExitCode::bad_model);
     }
   }
 }
