@@ -36,6 +36,7 @@ int run(const RunCommand& command) {
   // Every output is checked before the source opens and the model loads: a bad target is one
   // clear error line at once.
   runner::prepare_video_output(config);
+  runner::check_model_found(config);
 
   spdlog::info("board: {}", platform::describe(platform::detect_board()));
   // Every source opens before any output: a bad URI in a list fails the run with nothing written.

@@ -265,6 +265,9 @@ void validate(const RunConfig& config) {
       missing("output.video_file", "a mot-seq:// source has no images to annotate");
     }
   }
+}
+
+void check_model_found(const RunConfig& config) {
   if (config.detector.kind == DetectorKind::ssd) {
     // Say where it was looked for: "not found" alone sent users to fetch a model they had.
     std::string tried;

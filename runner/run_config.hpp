@@ -109,4 +109,9 @@ bool apply_preset(std::string_view name, tracker::TrackerConfig& config);
 /// InputError.
 void validate(const RunConfig& config);
 
+/// The ssd detector's model file exists (where it was looked for otherwise: exit 4). Separate from
+/// validate(): the outputs are checked first (prepare_video_output), and a configuration can be
+/// checked without the model at hand.
+void check_model_found(const RunConfig& config);
+
 }  // namespace rtmot::runner

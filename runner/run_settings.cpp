@@ -158,7 +158,8 @@ std::vector<RunSetting> detector_settings() {
       text("detector.anchors", "", "ssd: the anchors CSV; empty = beside the model",
            [](RunConfig& c) -> std::string& { return c.detector.anchors; }),
       parsed<detector::BackendRequest>(
-          "detector.backend", "--backend", "the engine that runs the model", detector::backend_request_names(),
+          "detector.backend", "--backend", "the engine that runs the model",
+          detector::backend_request_names(),
           [](const std::string& t, std::string&) { return detector::parse_backend_request(t); },
           [](RunConfig& c) -> detector::BackendRequest& { return c.detector.backend; }),
       parsed<detector::Fp16Request>(
