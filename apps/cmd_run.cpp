@@ -198,7 +198,7 @@ Subcommand add_run_command(CLI::App& parent) {
                   "docs/config.md and the options below");
   cli->add_option("--model", overrides->model, "the SSD's ONNX model (sets detector.kind ssd)");
   cli->add_option("--threshold", overrides->threshold, "detector score threshold in [0, 1]")
-      ->check(CLI::Range(0.0, 1.0));
+      ->check(finite_in(0.0, 1.0));
   cli->add_option(
       "--classes", overrides->classes,
       "classes to keep: COCO names or ids, comma-separated (person,car or 1,3), or all");
@@ -211,7 +211,7 @@ Subcommand add_run_command(CLI::App& parent) {
                       "or none");
   cli->add_option("--metrics-port", overrides->metrics_port,
                   "serve Prometheus metrics on http://127.0.0.1:PORT/metrics (0 = off)")
-      ->check(CLI::Range(0, 65535));
+      ->check(integer_in(0, 65535));
   cli->add_option("--source", overrides->sources,
                   "source URI: file path, v4l2:///dev/videoN, csi://N, rtsp://..., test://..., "
                   "mot-seq://SEQUENCE_DIR; repeat for several sources (one batched detector)")
@@ -237,7 +237,7 @@ Subcommand add_run_command(CLI::App& parent) {
                   "seconds between progress lines (0 = none)")
       ->check(finite_in(0.0, 86'400.0));
   cli->add_option("--stream-id", overrides->stream_id, "stream id in every message")
-      ->check(CLI::Range(std::int64_t{0}, std::int64_t{4294967295}));
+      ->check(integer_in(0, 4294967295));
   overrides->tracker_flags.add_to(*cli);
   return {cli, [overrides] { return run(*overrides); }, /*stops_on_signals=*/true};
 }

@@ -164,7 +164,12 @@ void read_output(Section section, OutputConfig& output) {
   read_checked(
       section, "metrics_port", output.metrics_port, [](int v) { return v >= 0 && v <= 65535; },
       "a TCP port 0..65535 (0 = off)");
-  section.read("metrics_bind", output.metrics_bind);
+  if (section.read("metrics_bind", output.metrics_bind)) {
+    std::string problem;
+    const auto address = platform::parse_bind_address(output.metrics_bind, problem);
+    if (!address) section.fail(*section.find("metrics_bind"), "metrics_bind", problem);
+    output.metrics_bind = *address;
+  }
   section.reject_unknown();
 }
 

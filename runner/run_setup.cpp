@@ -181,7 +181,9 @@ RunOutputs make_outputs(const RunConfig& config, std::vector<pipeline::PipelineI
     sinks.push_back(std::make_unique<ProgressSink>(config.stats_interval_s, first.frame_count));
   }
   if (output.metrics_port > 0) {
-    outputs.metrics = std::make_unique<outputs::PipelineMetrics>(std::move(probes));
+    std::vector<std::uint32_t> streams;
+    for (const auto& input : inputs) streams.push_back(input.stream_id);
+    outputs.metrics = std::make_unique<outputs::PipelineMetrics>(std::move(probes), streams);
     outputs.metrics_server = std::make_unique<outputs::MetricsServer>(
         *outputs.metrics, output.metrics_bind, static_cast<std::uint16_t>(output.metrics_port));
     sinks.push_back(std::make_unique<outputs::MetricsSink>(*outputs.metrics));

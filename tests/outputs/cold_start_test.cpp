@@ -130,7 +130,7 @@ namespace {
 // The systemd unit matches the cold start: it never stops restarting (no start limit), and it
 // does not treat exit 5 (source failed) as final.
 TEST(ColdStartUnit, ServiceNeverGivesUp) {
-  const std::string unit = test::read_text(test::source_path("scripts/deploy/rtmot.service"));
+  const std::string unit = test::read_text(test::source_path("scripts/deploy/rtmot.service.in"));
   ASSERT_FALSE(unit.empty());
   EXPECT_NE(unit.find("\nStartLimitIntervalSec=0\n"), std::string::npos);
   EXPECT_NE(unit.find("\nRestart=on-failure\n"), std::string::npos);
