@@ -24,6 +24,7 @@ EventCounter::EventCounter(EventsConfig config)
   line_counts_.resize(config_.lines.size());
   zone_counts_.resize(config_.zones.size());
   live_.reserve(tracks);
+  births_.reserve(tracks);
   free_.reserve(tracks);
   for (std::size_t i = tracks; i > 0; --i) free_.push_back(static_cast<std::uint32_t>(i - 1));
 }
@@ -50,7 +51,10 @@ std::uint32_t EventCounter::find_live(std::int32_t track_id) const {
 const std::vector<Event>& EventCounter::update(const std::vector<tracker::TrackReport>& reports,
                                                double time_seconds) {
   events_.clear();
-  for (const auto& report : reports) {
+  births_.clear();
+  // Known tracks first, so that a track born now can only take over one that was not reported.
+  for (std::size_t r = 0; r < reports.size(); ++r) {
+    const tracker::TrackReport& report = reports[r];
     if (!counts_class(report.class_id)) continue;
     std::uint32_t index = find_live(report.id);
     if (index != kNone && time_seconds - slots_[index].last_seen > config_.lost_after_seconds) {
@@ -58,6 +62,21 @@ const std::vector<Event>& EventCounter::update(const std::vector<tracker::TrackR
       index = kNone;
     }
     if (index == kNone) {
+      if (births_.size() == births_.capacity()) {
+        ++tracks_not_followed_;  // more births at once than tracks followed: never allocate
+      } else {
+        births_.push_back(static_cast<std::uint32_t>(r));
+      }
+      continue;
+    }
+    follow(index, report, time_seconds);
+  }
+  for (const std::uint32_t r : births_) {
+    const tracker::TrackReport& report = reports[r];
+    std::uint32_t index = find_broken_off(report, time_seconds);
+    if (index != kNone) {
+      slots_[index].track_id = report.id;  // the same person under a new id: its state goes on
+    } else {
       if (free_.empty()) {
         ++tracks_not_followed_;
         continue;
@@ -82,6 +101,30 @@ const std::vector<Event>& EventCounter::update(const std::vector<tracker::TrackR
   return events_;
 }
 
+std::uint32_t EventCounter::find_broken_off(const tracker::TrackReport& report, double time) const {
+  // A tracker that loses a person for a while often finds them again under a new id: the first
+  // track dies before the line, the second is born after it with no known side, and the crossing
+  // is lost. A birth close to where a track not reported now was last seen, with a similar size,
+  // continues that track's state. Nearest first; each such track continues one birth only.
+  if (!(config_.link_radius > 0.0)) return kNone;
+  const Point anchor = anchor_of(report.box);
+  const double h = report.box.h;
+  std::uint32_t best = kNone;
+  double best_distance = config_.link_radius * h;
+  for (const std::uint32_t index : live_) {
+    const Slot& slot = slots_[index];
+    if (slot.last_update == updates_ || time - slot.last_seen > config_.lost_after_seconds)
+      continue;
+    if (!(slot.size.h > 0.0) || h > 1.5 * slot.size.h || slot.size.h > 1.5 * h) continue;
+    const double distance = std::hypot(anchor.x - slot.anchor.x, anchor.y - slot.anchor.y);
+    if (distance <= best_distance) {
+      best_distance = distance;
+      best = index;
+    }
+  }
+  return best;
+}
+
 const std::vector<Event>& EventCounter::finish(double time_seconds) {
   events_.clear();
   dwell(time_seconds);
@@ -89,18 +132,20 @@ const std::vector<Event>& EventCounter::finish(double time_seconds) {
   return events_;
 }
 
-void EventCounter::measure_noise(const Slot& slot, const Point& anchor, double height) {
-  // Only three positions from consecutive updates: a gap would measure the motion, not the jitter.
+void EventCounter::measure_noise(const Slot& slot, const tracker::Box& box) {
+  // The box's size, not its position: between processed frames a person (or the camera) moves
+  // far, but the size changes smoothly, so what its second difference shows is the detector's
+  // jitter, the same that moves the anchor. Three sizes from consecutive updates only.
   if (slot.last_update != updates_ - 1 || slot.previous_update != updates_ - 2) return;
-  if (!(height > 0.0)) return;
-  const double residual = std::hypot(anchor.x - (2.0 * slot.anchor.x - slot.previous_anchor.x),
-                                     anchor.y - (2.0 * slot.anchor.y - slot.previous_anchor.y)) /
-                          height;
+  if (!(box.w > 0.F) || !(box.h > 0.F)) return;
+  const double residual =
+      0.5 * (std::abs(double{box.w} - 2.0 * slot.size.w + slot.previous_size.w) / box.w +
+             std::abs(double{box.h} - 2.0 * slot.size.h + slot.previous_size.h) / box.h);
   if (!std::isfinite(residual)) return;
   noise_window_.push(static_cast<float>(residual));
   if (noise_window_.due()) {
     noise_window_.snapshot();
-    anchor_noise_ = noise_window_.order_statistic(0.5);
+    box_noise_ = noise_window_.order_statistic(0.5);
   }
 }
 
@@ -108,14 +153,15 @@ void EventCounter::follow(std::uint32_t index, const tracker::TrackReport& repor
   Slot& slot = slots_[index];
   const Point to = anchor_of(report.box);
   const bool first = slot.last_update < 0;
-  measure_noise(slot, to, report.box.h);
+  measure_noise(slot, report.box);
   const double band = std::max(config_.dead_band.min_px,
-                               config_.dead_band.noise_factor * anchor_noise_ * report.box.h);
+                               config_.dead_band.noise_factor * box_noise_ * report.box.h);
   slot.class_id = report.class_id;
   const Point from = first ? to : slot.anchor;
   cross_lines(index, from, to, band, first, time);
   visit_zones(index, from, to, band, first, time);
-  slot.previous_anchor = first ? to : slot.anchor;
+  slot.previous_size = first ? Size{report.box.w, report.box.h} : slot.size;
+  slot.size = {report.box.w, report.box.h};
   slot.previous_update = slot.last_update;
   slot.anchor = to;
   slot.last_update = updates_;
@@ -134,16 +180,19 @@ void EventCounter::cross_lines(std::uint32_t index, const Point& from, const Poi
     const double distance = signed_distance(line.segment, to);
     const std::int8_t side = distance > band ? 1 : distance < -band ? -1 : 0;
     if (side == 0) continue;  // in the dead band: keeps the side it had
-    if (state.side != 0 && side != state.side && state.met_within_ends) {
-      const bool onto_left = side < 0;
-      const bool in = onto_left == line.in_is_left;
-      emit(in ? EventKind::line_in : EventKind::line_out, l, slots_[index], to, time);
-      auto& counts = line_counts_[l];
-      ++(in ? counts.in : counts.out);
-    }
+    if (state.side != 0 && side != state.side && state.met_within_ends)
+      count_crossing(l, slots_[index], side, to, time);
     state.side = side;
     state.met_within_ends = false;
   }
+}
+
+void EventCounter::count_crossing(std::size_t line, const Slot& slot, int side, const Point& where,
+                                  double time) {
+  const bool in = (side < 0) == config_.lines[line].in_is_left;
+  emit(in ? EventKind::line_in : EventKind::line_out, line, slot, where, time);
+  auto& counts = line_counts_[line];
+  ++(in ? counts.in : counts.out);
 }
 
 void EventCounter::visit_zones(std::uint32_t index, const Point& from, const Point& to, double band,
@@ -204,6 +253,16 @@ void EventCounter::dwell(double time) {
 }
 
 void EventCounter::forget(std::uint32_t index, double time) {
+  // A track that ends inside the dead band of a line, on the other side from the one it had, after
+  // meeting the line: it crossed, and no jitter can take it back now. Its last position decides.
+  const Point& last = slots_[index].anchor;
+  for (std::size_t l = 0; l < config_.lines.size(); ++l) {
+    const LineState& state = line_state(index, l);
+    const double distance = signed_distance(config_.lines[l].segment, last);
+    const int side = (distance > 0.0) - (distance < 0.0);
+    if (state.side != 0 && side != 0 && side != state.side && state.met_within_ends)
+      count_crossing(l, slots_[index], side, last, time);
+  }
   // A track that dies inside a zone leaves it now, marked lost: occupancy must not keep the dead.
   for (std::size_t z = 0; z < config_.zones.size(); ++z)
     if (zone_state(index, z).inside) leave(index, z, slots_[index].anchor, time, /*lost=*/true);

@@ -31,9 +31,10 @@ class EventCounter {
   const EventsConfig& config() const { return config_; }
   const std::vector<LineCounts>& line_counts() const { return line_counts_; }
   const std::vector<ZoneCounts>& zone_counts() const { return zone_counts_; }
-  /// The anchor jitter the dead band scales with: the median distance of a reported anchor from
-  /// the straight continuation of its two previous ones, as a share of the box height.
-  double anchor_noise() const { return anchor_noise_; }
+  /// The box jitter the dead band scales with: the median second difference of a track's box
+  /// size over three consecutive updates, (|ddw| / w + |ddh| / h) / 2 (the tracker's BoxNoise
+  /// units: a share of the box size).
+  double box_noise() const { return box_noise_; }
   /// Reports skipped because max_tracks tracks were already followed.
   std::int64_t tracks_not_followed() const { return tracks_not_followed_; }
 
@@ -47,6 +48,10 @@ class EventCounter {
     bool dwell_sent{false};
     double entered_at{0.0};
   };
+  struct Size {
+    double w{0.0};
+    double h{0.0};
+  };
   struct Slot {
     std::int32_t track_id{0};
     std::int32_t class_id{0};
@@ -54,15 +59,19 @@ class EventCounter {
     std::int64_t last_update{-1};
     std::int64_t previous_update{-1};
     Point anchor;
-    Point previous_anchor;
+    Size size;
+    Size previous_size;
   };
 
   static constexpr std::uint32_t kNone = ~std::uint32_t{0};
 
   bool counts_class(std::int32_t class_id) const;
   std::uint32_t find_live(std::int32_t track_id) const;
+  std::uint32_t find_broken_off(const tracker::TrackReport& report, double time) const;
   Point anchor_of(const tracker::Box& box) const;
-  void measure_noise(const Slot& slot, const Point& anchor, double height);
+  void measure_noise(const Slot& slot, const tracker::Box& box);
+  void count_crossing(std::size_t line, const Slot& slot, int side, const Point& where,
+                      double time);
   void follow(std::uint32_t index, const tracker::TrackReport& report, double time);
   void cross_lines(std::uint32_t index, const Point& from, const Point& to, double band, bool first,
                    double time);
@@ -85,13 +94,14 @@ class EventCounter {
   std::vector<Slot> slots_;
   std::vector<std::uint32_t> live_;  // slots in use, in no order
   std::vector<std::uint32_t> free_;
+  std::vector<std::uint32_t> births_;  // this update's reports of ids not followed yet
   std::vector<LineState> line_states_;
   std::vector<ZoneState> zone_states_;
   std::vector<Event> events_;
   std::vector<LineCounts> line_counts_;
   std::vector<ZoneCounts> zone_counts_;
   tracker::RecentWindow noise_window_;
-  double anchor_noise_{0.0};
+  double box_noise_{0.0};
   std::int64_t updates_{0};
   std::int64_t tracks_not_followed_{0};
 };

@@ -90,26 +90,45 @@ TEST(LineCrossing, JitterInsideTheDeadBandCountsOnceWithoutBandManyTimes) {
   EXPECT_EQ(bare.counter.line_counts()[0].out, 9);
 }
 
-TEST(LineCrossing, TheBandFollowsTheMeasuredJitter) {
-  // The tracks jitter by +-4 px around their straight paths: the measured anchor noise, times the
-  // factor, must cover it without a hand-set band.
-  EventsConfig config = one_line(0.0);
-  config.dead_band.noise_factor = 1.0;
+// A box whose top stays at `top` while its bottom edge (the feet) jitters: the detector's box
+// noise, seen in the box's height.
+tracker::TrackReport standing(int id, double x, double top, double height) {
+  tracker::TrackReport report;
+  report.id = id;
+  report.box = {static_cast<float>(x) - kW / 2, static_cast<float>(top), kW,
+                static_cast<float>(height)};
+  report.class_id = 1;
+  return report;
+}
+
+TEST(LineCrossing, TheBandFollowsTheMeasuredBoxNoise) {
+  // Feet jittering by +-4 px (the height 60 +- 4) at a horizontal line y = 100: the measured box
+  // noise, times the factor, must cover it without a hand-set band.
+  EventsConfig config;
+  config.lines.push_back({"floor", {{0.0, 100.0}, {400.0, 100.0}}, true});
+  config.dead_band.min_px = 0.0;
+  config.dead_band.noise_factor = 3.0;
   Walk w(config);
-  // Warm-up: 40 tracks walking far from the line with the same jitter.
+  // Warm-up: 40 tracks far from the line with the same jitter.
   for (int id = 100; id < 140; ++id) {
-    std::vector<double> xs;
-    for (int i = 0; i < 20; ++i) xs.push_back(300.0 + i + (i % 2 == 0 ? 4.0 : -4.0));
-    w.walk(id, xs);
+    for (int i = 0; i < 20; ++i) w.step({standing(id, 300.0, 300.0, i % 2 == 0 ? 64.0 : 56.0)});
   }
-  ASSERT_GT(w.counter.anchor_noise() * kH, 8.0);  // the second difference of +-4 jitter
-  w.time += 10.0;                                 // the warm-up tracks are long gone
-  std::vector<double> path{60, 70, 80, 90};
-  for (int i = 0; i < 20; ++i) path.push_back(i % 2 == 0 ? 96.0 : 104.0);
-  path.insert(path.end(), {120, 130, 140});
-  w.walk(1, path);
-  EXPECT_EQ(w.counter.line_counts()[0].in, 1);
-  EXPECT_EQ(w.counter.line_counts()[0].out, 0);
+  // The alternating height's second difference is 16 px: (0 + 16 / 60) / 2.
+  EXPECT_NEAR(w.counter.box_noise(), 8.0 / 60.0, 0.01);
+  w.time += 10.0;  // the warm-up tracks are long gone
+  const auto walk_down = [&](Walk& walk) {
+    for (double top : {0.0, 10.0, 20.0, 30.0}) walk.step({standing(1, 100.0, top, 60.0)});
+    for (int i = 0; i < 20; ++i) walk.step({standing(1, 100.0, 40.0, i % 2 == 0 ? 64.0 : 56.0)});
+    for (double top : {70.0, 80.0, 90.0}) walk.step({standing(1, 100.0, top, 60.0)});
+  };
+  walk_down(w);
+  EXPECT_EQ(w.counter.line_counts()[0].out, 1);  // onto the right of from -> to: down the image
+  EXPECT_EQ(w.counter.line_counts()[0].in, 0);
+  // The same walk with no band: the jitter counts again and again.
+  config.dead_band.noise_factor = 0.0;
+  Walk bare(config);
+  walk_down(bare);
+  EXPECT_GT(bare.counter.line_counts()[0].in, 5);
 }
 
 TEST(LineCrossing, AJumpOverTheLineBetweenFarApartFramesCountsOnce) {
@@ -160,6 +179,40 @@ TEST(LineCrossing, FoundAfterTheTimeoutIsANewLifeWithoutAKnownSide) {
   for (int i = 0; i < 30; ++i) w.step({});  // 3 s unseen
   w.walk(1, {140, 150});
   EXPECT_EQ(w.counter.line_counts()[0].in, 0);
+}
+
+TEST(LineCrossing, ATrackEndingInsideTheBandPastTheLineCrossedItAtItsEnd) {
+  EventsConfig config = one_line(10.0);
+  config.lost_after_seconds = 0.5;
+  Walk w(config);
+  w.walk(1, {60, 80, 95, 104});  // last seen 4 px past the line, inside the 10 px band
+  w.walk(2, {140, 120, 104});    // came back into the band on its own side: no crossing
+  EXPECT_EQ(w.counter.line_counts()[0].in, 0);
+  for (int i = 0; i < 10; ++i) w.step({});
+  EXPECT_EQ(w.counter.line_counts()[0].in, 1);
+  EXPECT_EQ(w.counter.line_counts()[0].out, 0);
+  ASSERT_EQ(w.events.size(), 1U);
+  EXPECT_EQ(w.events[0].track_id, 1);
+}
+
+TEST(LineCrossing, ABrokenTrackContinuedUnderANewIdCountsItsCrossingWhenLinked) {
+  // Track 1 walks to the line and is lost; track 2 is born past it: the same person, a new id.
+  EventsConfig config = one_line();
+  const auto walk = [](Walk& w) {
+    w.walk(1, {60, 70, 80, 90});
+    w.step({});
+    w.walk(2, {115, 125});
+    w.walk(3, {60});  // born far from anyone lost: its own track
+  };
+  Walk unlinked(config);
+  walk(unlinked);
+  EXPECT_EQ(unlinked.counter.line_counts()[0].in, 0);
+  config.link_radius = 1.0;  // box heights (60 px here)
+  Walk linked(config);
+  walk(linked);
+  EXPECT_EQ(linked.counter.line_counts()[0].in, 1);
+  ASSERT_EQ(linked.events.size(), 1U);
+  EXPECT_EQ(linked.events[0].track_id, 2);
 }
 
 TEST(LineCrossing, ClassFilter) {

@@ -37,11 +37,32 @@ grep -q "run" "$work/help.txt" || fail "--help lists no run command"
 model=$stage/usr/share/rtmot/models/ssdlite_mobilenet_v2_coco.onnx
 [[ -f $model ]] || fail "the model was not installed at $model (scripts/fetch_model.sh before the install)"
 frames=12
-env -i PATH=/usr/bin:/bin "$bin" run --model "$model" --source "test://ball?width=320&height=240" \
+# No --model: the installed rtmot finds its installed model.
+env -i PATH=/usr/bin:/bin "$bin" run --source "test://ball?width=320&height=240" \
   --playback every-frame --max-frames $frames --jsonl "$work/tracks.jsonl" --report "$work/report.json" 2>"$work/run.err" ||
   { cat "$work/run.err"; fail "the installed rtmot run failed"; }
 lines=$(wc -l <"$work/tracks.jsonl")
 [[ $lines == "$frames" ]] || { cat "$work/run.err"; fail "$lines messages, expected $frames"; }
+
+# A config file's relative paths start at its folder (run from /, elsewhere); `--config NAME`
+# finds an installed config; a missing model says every place it was looked for.
+mkdir -p "$work/board/configs" "$work/board/models"
+cp "$(dirname "$model")"/* "$work/board/models/"  # the model, its anchors and checksums
+printf 'detector:\n  kind: ssd\n  model: ../models/%s\nsource:\n  uri: "test://ball?width=320&height=240"\n' \
+  "$(basename "$model")" >"$work/board/configs/board.yaml"
+(cd / && env -i PATH=/usr/bin:/bin "$bin" run --config "$work/board/configs/board.yaml" \
+  --playback every-frame --max-frames 3 2>"$work/board.err") ||
+  { cat "$work/board.err"; fail "a config's relative model path did not resolve from its folder"; }
+grep -q "($work/board/models/" "$work/board.err" || { cat "$work/board.err"; fail "not the config's model"; }
+env -i PATH=/usr/bin:/bin "$bin" run --config desktop.yaml --source "test://ball?width=320&height=240" \
+  --playback every-frame --max-frames 3 2>"$work/named.err" ||
+  { cat "$work/named.err"; fail "--config desktop.yaml did not find the installed config"; }
+status=0
+env -i PATH=/usr/bin:/bin "$bin" run --model nothere.onnx --source "test://ball" --max-frames 1 \
+  2>"$work/missing.err" || status=$?
+[[ $status == 4 ]] || { cat "$work/missing.err"; fail "a missing model exited $status, expected 4"; }
+grep -q "tried .*$stage/usr/share/rtmot/models/nothere.onnx" "$work/missing.err" ||
+  { cat "$work/missing.err"; fail "the missing model's error does not say where it looked"; }
 
 unit=$stage/usr/lib/systemd/system/rtmot.service
 [[ -f $unit ]] || fail "no unit at $unit"
@@ -55,4 +76,4 @@ studied=$(find "$stage" -path '*study*' | head -n 3)
 
 echo "PASS: installed under DESTDIR with prefix /usr ($(du -sh "$stage" | cut -f1)); $opencv_libs OpenCV" \
   "libraries resolved ($shipped shipped in the tree); --help and a $frames-frame test:// run with the" \
-  "installed model from $work; unit ExecStart=/usr/bin/rtmot ... /usr/share/rtmot/configs/jetson-csi.yaml"
+  "installed model from $work; config-relative and installed paths found; unit ExecStart=/usr/bin/rtmot ... /usr/share/rtmot/configs/jetson-csi.yaml"
