@@ -24,6 +24,7 @@ EventCounter::EventCounter(EventsConfig config)
   line_counts_.resize(config_.lines.size());
   zone_counts_.resize(config_.zones.size());
   live_.reserve(tracks);
+  births_.reserve(tracks);
   free_.reserve(tracks);
   for (std::size_t i = tracks; i > 0; --i) free_.push_back(static_cast<std::uint32_t>(i - 1));
 }
@@ -50,7 +51,10 @@ std::uint32_t EventCounter::find_live(std::int32_t track_id) const {
 const std::vector<Event>& EventCounter::update(const std::vector<tracker::TrackReport>& reports,
                                                double time_seconds) {
   events_.clear();
-  for (const auto& report : reports) {
+  births_.clear();
+  // Known tracks first, so that a track born now can only take over one that was not reported.
+  for (std::size_t r = 0; r < reports.size(); ++r) {
+    const tracker::TrackReport& report = reports[r];
     if (!counts_class(report.class_id)) continue;
     std::uint32_t index = find_live(report.id);
     if (index != kNone && time_seconds - slots_[index].last_seen > config_.lost_after_seconds) {
@@ -58,6 +62,21 @@ const std::vector<Event>& EventCounter::update(const std::vector<tracker::TrackR
       index = kNone;
     }
     if (index == kNone) {
+      if (births_.size() == births_.capacity()) {
+        ++tracks_not_followed_;  // more births at once than tracks followed: never allocate
+      } else {
+        births_.push_back(static_cast<std::uint32_t>(r));
+      }
+      continue;
+    }
+    follow(index, report, time_seconds);
+  }
+  for (const std::uint32_t r : births_) {
+    const tracker::TrackReport& report = reports[r];
+    std::uint32_t index = find_broken_off(report, time_seconds);
+    if (index != kNone) {
+      slots_[index].track_id = report.id;  // the same person under a new id: its state goes on
+    } else {
       if (free_.empty()) {
         ++tracks_not_followed_;
         continue;
@@ -80,6 +99,30 @@ const std::vector<Event>& EventCounter::update(const std::vector<tracker::TrackR
   dwell(time_seconds);
   ++updates_;
   return events_;
+}
+
+std::uint32_t EventCounter::find_broken_off(const tracker::TrackReport& report, double time) const {
+  // A tracker that loses a person for a while often finds them again under a new id: the first
+  // track dies before the line, the second is born after it with no known side, and the crossing
+  // is lost. A birth close to where a track not reported now was last seen, with a similar size,
+  // continues that track's state. Nearest first; each such track continues one birth only.
+  if (!(config_.link_radius > 0.0)) return kNone;
+  const Point anchor = anchor_of(report.box);
+  const double h = report.box.h;
+  std::uint32_t best = kNone;
+  double best_distance = config_.link_radius * h;
+  for (const std::uint32_t index : live_) {
+    const Slot& slot = slots_[index];
+    if (slot.last_update == updates_ || time - slot.last_seen > config_.lost_after_seconds)
+      continue;
+    if (!(slot.size.h > 0.0) || h > 1.5 * slot.size.h || slot.size.h > 1.5 * h) continue;
+    const double distance = std::hypot(anchor.x - slot.anchor.x, anchor.y - slot.anchor.y);
+    if (distance <= best_distance) {
+      best_distance = distance;
+      best = index;
+    }
+  }
+  return best;
 }
 
 const std::vector<Event>& EventCounter::finish(double time_seconds) {

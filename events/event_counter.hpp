@@ -67,6 +67,7 @@ class EventCounter {
 
   bool counts_class(std::int32_t class_id) const;
   std::uint32_t find_live(std::int32_t track_id) const;
+  std::uint32_t find_broken_off(const tracker::TrackReport& report, double time) const;
   Point anchor_of(const tracker::Box& box) const;
   void measure_noise(const Slot& slot, const tracker::Box& box);
   void count_crossing(std::size_t line, const Slot& slot, int side, const Point& where,
@@ -93,6 +94,7 @@ class EventCounter {
   std::vector<Slot> slots_;
   std::vector<std::uint32_t> live_;  // slots in use, in no order
   std::vector<std::uint32_t> free_;
+  std::vector<std::uint32_t> births_;  // this update's reports of ids not followed yet
   std::vector<LineState> line_states_;
   std::vector<ZoneState> zone_states_;
   std::vector<Event> events_;

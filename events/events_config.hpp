@@ -53,6 +53,10 @@ struct EventsConfig {
   /// lost set) and its state is forgotten. Shorter gaps are a track lost and found again: its path
   /// runs straight from the last position to the new one, and a crossing on it counts once.
   double lost_after_seconds{2.0};
+  /// A track born within this many of its box heights of where a track not reported now was
+  /// last seen (within lost_after_seconds, with a height within 1.5x) continues that track: a
+  /// tracker that loses a person and finds them again under a new id loses no crossing. 0: off.
+  double link_radius{0.0};
   /// Tracks followed at once; more are not counted (EventCounter::tracks_not_followed()).
   int max_tracks{512};
 };

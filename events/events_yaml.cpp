@@ -124,6 +124,8 @@ EventsSpec read_events_spec(const YAML::Node& node, const std::string& file,
   runner::read_checked(
       section, "lost_after_s", config.lost_after_seconds,
       [](double v) { return v > 0.0 && v <= kMaxSeconds; }, "seconds above 0, at most 1e7");
+  runner::read_checked(section, "link_radius", config.link_radius, runner::within(0.0, 100.0),
+                       "box heights from 0 (off) to 100");
   section.read("classes", config.classes);
   double default_dwell = 0.0;
   runner::read_checked(section, "dwell_s", default_dwell, runner::within(0.0, kMaxSeconds),

@@ -195,6 +195,26 @@ TEST(LineCrossing, ATrackEndingInsideTheBandPastTheLineCrossedItAtItsEnd) {
   EXPECT_EQ(w.events[0].track_id, 1);
 }
 
+TEST(LineCrossing, ABrokenTrackContinuedUnderANewIdCountsItsCrossingWhenLinked) {
+  // Track 1 walks to the line and is lost; track 2 is born past it: the same person, a new id.
+  EventsConfig config = one_line();
+  const auto walk = [](Walk& w) {
+    w.walk(1, {60, 70, 80, 90});
+    w.step({});
+    w.walk(2, {115, 125});
+    w.walk(3, {60});  // born far from anyone lost: its own track
+  };
+  Walk unlinked(config);
+  walk(unlinked);
+  EXPECT_EQ(unlinked.counter.line_counts()[0].in, 0);
+  config.link_radius = 1.0;  // box heights (60 px here)
+  Walk linked(config);
+  walk(linked);
+  EXPECT_EQ(linked.counter.line_counts()[0].in, 1);
+  ASSERT_EQ(linked.events.size(), 1U);
+  EXPECT_EQ(linked.events[0].track_id, 2);
+}
+
 TEST(LineCrossing, ClassFilter) {
   EventsConfig config = one_line();
   config.classes = {1};

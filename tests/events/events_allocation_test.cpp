@@ -21,6 +21,7 @@ TEST(EventsSteadyState, AllocatesNothingPerUpdate) {
                             0.2});
   }
   config.lost_after_seconds = 0.5;
+  config.link_radius = 1.0;  // births look for broken-off tracks too
   EventCounter counter(config);
   std::vector<tracker::TrackReport> reports(50);
   long events = 0;

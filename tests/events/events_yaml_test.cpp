@@ -25,6 +25,7 @@ TEST(EventsYaml, ReadsLinesAndZonesInPixelsAndFractions) {
   const EventsConfig config = read(R"(
 anchor: centre
 lost_after_s: 3
+link_radius: 0.5
 classes: [1]
 dwell_s: 30
 dead_band: {min_px: 4, noise_factor: 2}
@@ -38,6 +39,7 @@ zones:
 )");
   EXPECT_EQ(config.anchor, Anchor::centre);
   EXPECT_DOUBLE_EQ(config.lost_after_seconds, 3.0);
+  EXPECT_DOUBLE_EQ(config.link_radius, 0.5);
   EXPECT_EQ(config.classes, std::vector<int>{1});
   EXPECT_DOUBLE_EQ(config.dead_band.min_px, 4.0);
   EXPECT_DOUBLE_EQ(config.dead_band.noise_factor, 2.0);
