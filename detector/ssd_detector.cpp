@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <fstream>
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 #include <sstream>
@@ -14,6 +13,7 @@
 #include "common/input_error.hpp"
 #include "detector/coco_labels.hpp"
 #include "detector/model_checksum.hpp"
+#include "detector/model_files.hpp"
 
 namespace rtmot::detector {
 namespace {
@@ -38,12 +38,12 @@ void require_readable_file(const std::filesystem::path& path, const char* what) 
   if (std::filesystem::is_directory(status)) {
     throw model_error(path, std::string("the ") + what + " path is a folder, not a file");
   }
-  if (!std::filesystem::is_regular_file(status)) {
+  if (!std::filesystem::exists(status)) {
     throw model_error(path, std::string(what) + " file not found (run scripts/fetch_model.sh)");
   }
-  if (!std::ifstream(path, std::ios::binary)) {
-    throw model_error(path, std::string("cannot read the ") + what + " file (permissions?)");
-  }
+  // Opened (and closed) as every input is: a FIFO or device named here never reaches OpenCV's
+  // own reader, which would block on it or read it without end.
+  open_model_file(path, kMaxModelBytes, what);
 }
 
 cv::dnn::Net load_network(const std::filesystem::path& path, const BackendChoice& backend) {
@@ -107,6 +107,9 @@ std::filesystem::path default_anchors_path(const std::filesystem::path& model_pa
 SsdDetector::SsdDetector(SsdConfig config)
     : config_(std::move(config)),
       backend_(checked_backend(config_)),
+      xnn_(backend_.engine == Engine::xnnpack ? build_xnnpack() : nullptr),
+      net_(backend_.engine == Engine::opencv ? load_network(config_.model_path, backend_)
+                                             : cv::dnn::Net()),
       postprocess_(read_anchors(anchors_path_of(config_)), kNumClasses,
                    postprocess_config(config_)),
       resized_(kInputSize, kInputSize, CV_8UC3),
@@ -118,14 +121,25 @@ SsdDetector::SsdDetector(SsdConfig config)
   // The choice and its reason are logged by whoever builds the pipeline (describe()), once.
 }
 
-bool SsdDetector::start_xnnpack() {
+std::unique_ptr<XnnpackNetwork> SsdDetector::build_xnnpack() {
   try {
     XnnpackNetworkConfig xnn;
     xnn.model_path = config_.model_path;
     xnn.input_size = kInputSize;
     xnn.max_batch = config_.max_batch;
     xnn.threads = config_.threads;
-    xnn_ = std::make_unique<XnnpackNetwork>(xnn);
+    return std::make_unique<XnnpackNetwork>(xnn);
+  } catch (const InputError& e) {
+    if (config_.backend != BackendRequest::automatic || e.exit_code() != ExitCode::bad_model) {
+      throw;
+    }
+    fall_back_to_opencv(e.what());
+    return nullptr;
+  }
+}
+
+bool SsdDetector::start_xnnpack() {
+  try {
     for (int image = 0; image < config_.max_batch; ++image) {
       xnn_inputs_.emplace_back(kInputSize, kInputSize, CV_32FC3, xnn_->input(image));
     }
@@ -136,21 +150,24 @@ bool SsdDetector::start_xnnpack() {
     if (config_.backend != BackendRequest::automatic || e.exit_code() != ExitCode::bad_model) {
       throw;
     }
-    // auto: the model may still run on OpenCV (an operator XNNPACK lacks); if not, OpenCV's own
-    // start-up below says why.
-    spdlog::warn(
-        "detector: xnnpack cannot run the model ({}); falling back to OpenCV's cpu backend",
-        e.what());
+    fall_back_to_opencv(e.what());
     xnn_.reset();
     xnn_inputs_.clear();
-    backend_ = {Engine::opencv, cv::dnn::DNN_BACKEND_OPENCV, cv::dnn::DNN_TARGET_CPU, "cpu",
-                std::string("xnnpack cannot run the model (") + e.what() + ")"};
     return false;
   }
 }
 
+// auto: the model may still run on OpenCV (an operator XNNPACK lacks); if not, OpenCV's own
+// start-up says why.
+void SsdDetector::fall_back_to_opencv(const std::string& why) {
+  spdlog::warn("detector: xnnpack cannot run the model ({}); falling back to OpenCV's cpu backend",
+               why);
+  backend_ = {Engine::opencv, cv::dnn::DNN_BACKEND_OPENCV, cv::dnn::DNN_TARGET_CPU, "cpu",
+              "xnnpack cannot run the model (" + why + ")"};
+}
+
 void SsdDetector::start_opencv() {
-  net_ = load_network(config_.model_path, backend_);
+  if (net_.empty()) net_ = load_network(config_.model_path, backend_);
   const int batch = config_.max_batch;
   const int blob_shape[] = {batch, 3, kInputSize, kInputSize};
   blob_.create(4, blob_shape, CV_32F);

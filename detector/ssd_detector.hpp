@@ -82,15 +82,20 @@ class SsdDetector : public Detector {
   /// batch_net_ on all max_batch slots otherwise.
   void forward(int count);
   void warm_up(int count);
-  /// Builds the XNNPACK network; false (backend_ switched to OpenCV's CPU path) when backend auto
-  /// chose it and the model cannot run there.
+  /// The XNNPACK network; null (backend_ switched to OpenCV's CPU path, with the reason) when
+  /// backend auto chose it and the model cannot be built there.
+  std::unique_ptr<XnnpackNetwork> build_xnnpack();
+  /// Its start-up passes; false (and the same switch) when auto chose it and they fail.
   bool start_xnnpack();
   void start_opencv();
+  void fall_back_to_opencv(const std::string& why);
 
   SsdConfig config_;
   BackendChoice backend_;
-  cv::dnn::Net net_;        // input 1 x 3 x 300 x 300, always
-  cv::dnn::Net batch_net_;  // input max_batch x 3 x 300 x 300, when max_batch > 1
+  // The model is loaded before the anchors are read (a damaged model is named first).
+  std::unique_ptr<XnnpackNetwork> xnn_;  // when backend_.engine is xnnpack
+  cv::dnn::Net net_;                     // input 1 x 3 x 300 x 300, always
+  cv::dnn::Net batch_net_;               // input max_batch x 3 x 300 x 300, when max_batch > 1
   SsdPostprocessor postprocess_;
   // Reused every frame (sizes fixed by the network), so steady state allocates no image buffers.
   cv::Mat resized_;     // 300x300 BGR, 8-bit
@@ -104,8 +109,7 @@ class SsdDetector : public Detector {
 
   std::vector<cv::Mat> outputs_;
   std::vector<cv::String> output_names_;
-  std::unique_ptr<XnnpackNetwork> xnn_;  // when backend_.engine is xnnpack
-  std::vector<cv::Mat> xnn_inputs_;      // 300x300 RGB float headers on xnn_'s input, per image
+  std::vector<cv::Mat> xnn_inputs_;  // 300x300 RGB float headers on xnn_'s input, per image
   // The last pass's outputs, [images, anchors, 4] and [images, anchors, 91], whichever engine.
   const float* boxes_{nullptr};
   const float* logits_{nullptr};

@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "common/input_error.hpp"
-#include "common/input_file.hpp"
+#include "detector/model_files.hpp"
 
 namespace rtmot::detector {
 
@@ -29,8 +29,6 @@ const char* xnnpack_supported_operators() {
 
 namespace {
 
-// A model is ~18 MB; a file far beyond any SSD's size is a mistake, refused before it fills memory.
-constexpr std::uint64_t kMaxModelBytes = 1ULL << 30;
 constexpr uint32_t kInputExternalId = 0;
 constexpr float kNoMin = -std::numeric_limits<float>::infinity();
 constexpr float kNoMax = std::numeric_limits<float>::infinity();
