@@ -66,8 +66,22 @@ rm -rf "$deps" && mkdir -p "$deps/pkgconfig"
 for f in "$carry"/debs/*.deb; do dpkg -x "$f" "$deps"; done
 triplet="$(gcc -dumpmachine)"
 lib="$deps/usr/lib/$triplet"
+# The carried .pc files name include folders as on Debian 12; one that no carried package ships
+# (e.g. the multiarch /usr/include/<triplet>) is dropped: CMake refuses imported targets with
+# non-existent include folders.
 for f in "$carry"/pkgconfig/*.pc; do
-  sed "s|^prefix=/usr\$|prefix=$deps/usr|" "$f" >"$deps/pkgconfig/$(basename "$f")"
+  sed "s|^prefix=/usr\$|prefix=$deps/usr|" "$f" | while IFS= read -r line; do
+    if [[ $line == Cflags:* ]]; then
+      kept=()
+      for flag in ${line#Cflags:}; do
+        flag="${flag//\$\{prefix\}/$deps/usr}"
+        [[ $flag == -I* && ! -d ${flag#-I} ]] && continue
+        kept+=("$flag")
+      done
+      line="Cflags: ${kept[*]}"
+    fi
+    printf '%s\n' "$line"
+  done >"$deps/pkgconfig/$(basename "$f")"
 done
 export PKG_CONFIG_LIBDIR="$deps/pkgconfig" PKG_CONFIG_PATH="$deps/pkgconfig"
 while IFS=$'\t' read -r kind name _; do
