@@ -130,6 +130,7 @@ if has rtmot; then
   fi
   # -Wno-dangling-reference: g++ 13 (this machine's) flags runner/run_config.cpp, which the
   # project's compilers (g++ 9-12) do not. rpath-link: Debian's libraries' own dependencies.
+  rm -f "$build/CMakeCache.txt" # pkg-config results are cached: a fresh configure each run
   cmake -S "$source_dir" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release \
     -DOpenCV_DIR="$ocv/install/lib/cmake/opencv4" -DCMAKE_PREFIX_PATH="$deps/usr" \
     -DRTMOT_SHARED_DIR="$carry/shared" -DCMAKE_CXX_FLAGS=-Wno-dangling-reference \
