@@ -18,7 +18,7 @@
 #                      as this machine's pkg-config gives them) with /usr as ${prefix}, so that the
 #                      other machine needs none of the modules' private requirements
 #   opencv-*.tar.xz    the OpenCV source subset (../shared/opencv) or the packed install
-#   model/             the SSD model (models/ssdlite_mobilenet_v2_coco.onnx)
+#   model/             the SSD model, its anchors and checksum (models/ssdlite_mobilenet_v2_coco.*)
 #   shared/            the test data the detector tests and benchmarks read (reference detections,
 #                      vtest.avi, one MOT15 det.txt); gpu_machine.sh extracts the reference frames from
 #                      vtest.avi there with FFmpeg, as the reference detections were decoded
@@ -89,7 +89,7 @@ else
 fi
 
 step "model and test data"
-cp "$(readlink -f "$model")" "$carry/model/"
+cp -L "$repo"/models/ssdlite_mobilenet_v2_coco.* "$carry/model/" # model, anchors, checksum
 for f in data/reference/ssdlite-coco-vtest-detections.csv data/video/vtest.avi \
   data/mot15-train/TUD-Campus/det/det.txt; do
   mkdir -p "$carry/shared/$(dirname "$f")"
