@@ -17,7 +17,8 @@
 #   pipeline  rtmot run every-frame on the reference frames, per backend, 1/2/4/8 sources, with
 #             nvidia-smi sampling the GPU's busy share
 # Environment: RTMOT_CARRY (the carried folder), RTMOT_SOURCE (the rtmot source tree to build and
-# run, default this checkout: e.g. an older commit to compare), RTMOT_PASSES (bench passes, 3).
+# run, default this checkout: e.g. an older commit to compare), RTMOT_PASSES (bench passes, 3),
+# RTMOT_OPENCV_DIR (where the OpenCV install is or goes, /tmp/rtmot-opencv; its install/ folder).
 set -euo pipefail
 out="${1:?usage: gpu_machine.sh OUT_DIR [stages]}"
 stages="${2:-opencv rtmot tests bench profile pipeline}"
@@ -26,7 +27,7 @@ carry="$(realpath "${RTMOT_CARRY:-$repo/.gpu-carry}")"
 source_dir="$(realpath "${RTMOT_SOURCE:-$repo}")"
 tag="$(basename "$source_dir")"
 deps=/tmp/rtmot-deps
-ocv=/tmp/rtmot-opencv
+ocv="${RTMOT_OPENCV_DIR:-/tmp/rtmot-opencv}"
 build="/tmp/rtmot-build-$tag"
 frames=/tmp/rtmot-vtest-ref
 mkdir -p "$out"
@@ -187,7 +188,13 @@ if has profile; then
     -I"$ocv/install/include/opencv4" -L"$ocv/install/lib" -lopencv_dnn -lopencv_core
   for backend in cuda cuda-fp16 cpu; do
     "${run_env[@]}" /tmp/forward_profile "$carry"/model/*.onnx "$backend" 300 2>&1 |
-      tee "$out/profile-$backend.log" | head -n 30
+      tee "$out/profile-$backend.log" | head -n 12
+  done
+  # scripts/opencv/cuda_graph.patch's switch: the same build layer by layer
+  for backend in cuda cuda-fp16; do
+    echo "--- $backend with OPENCV_DNN_CUDA_GRAPH=0 (layer by layer)"
+    "${run_env[@]}" OPENCV_DNN_CUDA_GRAPH=0 /tmp/forward_profile "$carry"/model/*.onnx "$backend" 300 2>&1 |
+      tee "$out/profile-$backend-nograph.log" | head -n 4
   done
   if command -v nsys >/dev/null; then
     "${run_env[@]}" nsys profile -o /tmp/forward-fp16 --force-overwrite true /tmp/forward_profile \
