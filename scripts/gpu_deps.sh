@@ -42,7 +42,9 @@ keywords = {'REQUIRED', 'QUIET', 'IMPORTED_TARGET', 'GLOBAL', 'NO_CMAKE_PATH', '
             'NO_MODULE', 'CONFIG', 'MODULE', 'EXACT', 'COMPONENTS', 'OPTIONAL_COMPONENTS', 'NAMES', 'HINTS',
             'PATHS', 'PATH_SUFFIXES', 'NO_DEFAULT_PATH', 'DOC'}
 for top, dirs, files in os.walk(root):
-    dirs[:] = sorted(d for d in dirs if not d.startswith(('.', 'build', 'third_party')) and d not in ('models', 'data', 'out'))
+    # not build trees (any folder with a CMakeCache.txt), hidden folders, fetched data
+    dirs[:] = sorted(d for d in dirs if not d.startswith('.') and d not in ('models', 'data')
+                     and not os.path.exists(os.path.join(top, d, 'CMakeCache.txt')))
     for name in sorted(files):
         if name != 'CMakeLists.txt' and not name.endswith('.cmake'):
             continue
