@@ -50,7 +50,8 @@ for top, dirs, files in os.walk(root):
             continue
         path = os.path.join(top, name)
         text = open(path, encoding='utf-8').read()
-        # comments out, line numbers kept
+        # comments and quoted strings out (a string may hold CMake code), line numbers kept
+        text = re.sub(r'"(?:[^"\\]|\\.)*"', lambda m: '\n' * m.group(0).count('\n'), text)
         text = re.sub(r'#[^\n]*', '', text)
         for m in call.finditer(text):
             kind = m.group(1).lower()
@@ -104,7 +105,7 @@ resolve() {
             [[ -n $file ]] && packages="$(owner "$(readlink -f "$file")")"
           else # module mode (e.g. FindZLIB): the library files it found
             local upper="${name^^}" key
-            for key in "${upper}_LIBRARY_RELEASE" "${upper}_LIBRARY" "${name}_LIBRARY" "${upper}_LIBRARIES"; do
+            for key in "${upper}_LIBRARY_RELEASE" "${name}_LIBRARY_RELEASE" "${upper}_LIBRARY" "${name}_LIBRARY" "${upper}_LIBRARIES"; do
               file="$(cache "$build_dir" "$key")"
               if [[ -n $file && -e ${file%%;*} ]]; then
                 packages="$(owner "${file%%;*}")"
