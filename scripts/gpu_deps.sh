@@ -147,7 +147,7 @@ packages() {
   local resolved
   resolved="$(resolve "$build_dir")" || die "requirements unresolved (above)"
   declare -A want=() seed=()
-  local p module dir lib kind name where packages
+  local p dir lib kind name where packages
   while IFS=$'\t' read -r kind name where packages; do
     [[ $packages == *provided* ]] && continue
     for p in ${packages//,/ }; do want[$p]=1; done

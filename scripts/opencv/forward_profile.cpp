@@ -4,13 +4,12 @@
 // asynchronously), summed per layer type. A tool of the GPU run, not of the product.
 //
 //   forward_profile MODEL.onnx cpu|cuda|cuda-fp16 [ITERATIONS]
-#include <opencv2/core.hpp>
-#include <opencv2/dnn.hpp>
-
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <map>
+#include <opencv2/core.hpp>
+#include <opencv2/dnn.hpp>
 #include <string>
 #include <vector>
 
@@ -36,7 +35,8 @@ int main(int argc, char** argv) {
     net.setPreferableTarget(cv::dnn::DNN_TARGET_CPU);
   } else if (backend == "cuda" || backend == "cuda-fp16") {
     net.setPreferableBackend(cv::dnn::DNN_BACKEND_CUDA);
-    net.setPreferableTarget(backend == "cuda" ? cv::dnn::DNN_TARGET_CUDA : cv::dnn::DNN_TARGET_CUDA_FP16);
+    net.setPreferableTarget(backend == "cuda" ? cv::dnn::DNN_TARGET_CUDA
+                                              : cv::dnn::DNN_TARGET_CUDA_FP16);
   } else {
     std::fprintf(stderr, "forward_profile: unknown backend '%s'\n", backend.c_str());
     return 2;
@@ -59,7 +59,9 @@ int main(int argc, char** argv) {
     const auto start = std::chrono::steady_clock::now();
     net.setInput(blob);
     net.forward(results, outputs);
-    wall_ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+    wall_ms.push_back(
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+            .count());
     std::vector<double> timings;
     layers_ms.push_back(static_cast<double>(net.getPerfProfile(timings)) * tick_ms);
     for (std::size_t l = 0; l < timings.size() && l < names.size(); ++l) {
@@ -75,7 +77,8 @@ int main(int argc, char** argv) {
               *std::min_element(wall_ms.begin(), wall_ms.end()), median(wall_ms));
   std::printf("sum of per-layer host time (getPerfProfile) median %.3f ms\n", median(layers_ms));
   std::vector<std::pair<std::string, std::pair<double, int>>> rows(by_type.begin(), by_type.end());
-  std::sort(rows.begin(), rows.end(), [](const auto& a, const auto& b) { return a.second.first > b.second.first; });
+  std::sort(rows.begin(), rows.end(),
+            [](const auto& a, const auto& b) { return a.second.first > b.second.first; });
   std::printf("%-22s %7s %12s %14s\n", "layer type", "layers", "ms/forward", "us/layer");
   for (const auto& [type, entry] : rows) {
     const double per_forward = entry.first / iterations;
