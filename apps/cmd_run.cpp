@@ -75,8 +75,7 @@ int run(const RunCommand& command) {
     }
   }
   const bool files_written = !config.output.jsonl_file.empty() ||
-                             !config.output.binary_file.empty() ||
-                             !config.output.video_file.empty();
+                             !config.output.binary_file.empty() || config.output.video.has_value();
   if (delivered.nothing_delivered && !files_written) {
     spdlog::error("no output delivered any message: the tracks of this run went nowhere (exit {})",
                   to_int(ExitCode::network));
