@@ -61,11 +61,11 @@ std::vector<LoadedSequence> load_study_dataset(const std::filesystem::path& data
 /// frame rate) and scores it on the kept frames with the `rtmot eval` scorer.
 SequenceCounts track_and_count(const LoadedSequence& sequence, StudyInput input,
                                const tracker::TrackerConfig& config, int interval,
-                               const StudyKnobs& knobs = {});
+                               const StudyKnobs& knobs);
 
 /// All sequences pooled, as the OVERALL line of `rtmot eval`.
 Metrics track_and_score(const std::vector<LoadedSequence>& dataset, StudyInput input,
                         const tracker::TrackerConfig& config, int interval,
-                        const StudyKnobs& knobs = {});
+                        const StudyKnobs& knobs);
 
 }  // namespace rtmot::mot
