@@ -133,7 +133,8 @@ Subcommand add_track_command(CLI::App& parent) {
   CLI::App* cli = parent.add_subcommand(
       "track",
       "Run the tracker on MOTChallenge sequences' detections; writes OUT/<sequence>.txt in the "
-      "MOTChallenge results format");
+      "MOTChallenge results format and OUT/<sequence>.frames, the frames processed (for `rtmot "
+      "eval --processed-frames`)");
   cli->add_option("--dataset", options->dataset,
                   "a sequence folder (with seqinfo.ini) or a folder of them")
       ->required();
