@@ -13,6 +13,7 @@
 #include "common/exit_codes.hpp"
 #include "common/input_error.hpp"
 #include "detector/coco_labels.hpp"
+#include "outputs/delivery_report.hpp"
 #include "outputs/overlay.hpp"
 #include "pipeline/pipeline.hpp"
 #include "platform/board.hpp"
@@ -174,6 +175,22 @@ int run(const RunOverrides& overrides) {
   if (!config.output.report_file.empty()) {
     pipeline::write_report(report, config.output.report_file);
     spdlog::info("report written to {}", config.output.report_file);
+  }
+  const outputs::DeliveryReport delivered = outputs::report_deliveries(outputs.deliveries);
+  for (const auto& line : delivered.lines) {
+    if (delivered.empty.empty()) {
+      spdlog::info("output {}", line);
+    } else {
+      spdlog::error("output {}", line);
+    }
+  }
+  const bool files_written = !config.output.jsonl_file.empty() ||
+                             !config.output.binary_file.empty() ||
+                             !config.output.video_file.empty();
+  if (delivered.nothing_delivered && !files_written) {
+    spdlog::error("no output delivered any message: the tracks of this run went nowhere (exit {})",
+                  to_int(ExitCode::network));
+    return to_int(ExitCode::network);
   }
   bool failed = false;
   for (const auto& stream : report.streams) {

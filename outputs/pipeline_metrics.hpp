@@ -39,11 +39,16 @@ class LatencyBuckets {
   std::atomic<std::uint64_t> count_{0};
 };
 
-/// How one output reports what it did (read on the sink stage's thread, after its write()).
+/// How one output reports what it did (read on the sink stage's thread, after its write(), and
+/// at the end of the run for the final report: outputs/delivery_report.hpp).
 struct OutputProbe {
-  std::string name;  // e.g. "udp", "mqtt", "jsonl"
-  std::function<std::uint64_t()> sent;
-  std::function<std::uint64_t()> dropped;
+  std::string name;                        // e.g. "udp", "mqtt", "jsonl"
+  std::function<std::uint64_t()> sent;     // delivered (MQTT QoS 1: acknowledged by the broker)
+  std::function<std::uint64_t()> dropped;  // given up on
+  /// For the final report (optional): messages handed to the output, and why nothing arrived
+  /// ("" when that is not known), e.g. "the broker was never reached".
+  std::function<std::uint64_t()> attempted;
+  std::function<std::string()> why_nothing;
 };
 
 class PipelineMetrics {

@@ -8,6 +8,7 @@
 
 #include <chrono>
 #include <csignal>
+#include <fstream>
 #include <regex>
 #include <thread>
 #include <vector>
@@ -15,6 +16,7 @@
 #include "message_test_data.hpp"
 #include "mosquitto_broker.hpp"
 #include "outputs/mqtt_publisher.hpp"
+#include "shared_data.hpp"
 
 namespace rtmot::outputs {
 namespace {
@@ -230,6 +232,40 @@ TEST_F(Fleet, MalformedJsonPayloadCountedAsCorruptWithItsReason) {
   EXPECT_NE(test::read_text(folder_ / "listen.out").find("invalid JSON 2 (first: no \"sequence\")"),
             std::string::npos)
       << test::read_text(folder_ / "listen.out");
+}
+
+// `rtmot run` whose only output is MQTT: the final report says per output what was delivered; a
+// broker never reached is named as such (not "connection lost") and the run exits 6 (it exited 0,
+// silent about 0 messages delivered).
+TEST_F(Fleet, RunReportsDeliveriesAndFailsWhenNothingWasDelivered) {
+  const auto sequence = test::shared_path("data/mot15-train/ADL-Rundle-6");
+  RTMOT_REQUIRE_FILE(sequence / "det/det.txt");
+  std::filesystem::create_directories(folder_);
+  { std::ofstream(folder_ / "replay.yaml") << "detector:\n  kind: replay\n"; }
+  const auto run = [&](const std::string& mqtt_uri) {
+    test::ChildProcess rtmot(
+        {RTMOT_BINARY, "run", "--config", (folder_ / "replay.yaml").string(), "--source",
+         "mot-seq://" + sequence.string(), "--det-file", (sequence / "det/det.txt").string(),
+         "--max-frames", "40", "--mqtt", mqtt_uri},
+        folder_ / "run.out", folder_ / "run.err");
+    const int status = rtmot.wait(60s);
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  };
+  {
+    test::MosquittoBroker broker(folder_);
+    EXPECT_EQ(run(broker.mqtt_uri("rtmot/board1")), 0) << test::read_text(folder_ / "run.err");
+    EXPECT_NE(test::read_text(folder_ / "run.err").find("output mqtt: delivered 40 of 40 messages"),
+              std::string::npos)
+        << test::read_text(folder_ / "run.err");
+  }
+  const std::string nowhere = "mqtt://127.0.0.1:" + std::to_string(test::free_tcp_port()) + "/t";
+  EXPECT_EQ(run(nowhere), 6);
+  const std::string err = test::read_text(folder_ / "run.err");
+  EXPECT_NE(err.find("cannot reach the broker"), std::string::npos) << err;
+  EXPECT_EQ(err.find("connection lost"), std::string::npos) << err;
+  EXPECT_NE(err.find("delivered 0 of 40 messages"), std::string::npos) << err;
+  EXPECT_NE(err.find("was never reached"), std::string::npos) << err;
+  EXPECT_NE(err.find("no output delivered any message"), std::string::npos) << err;
 }
 
 TEST_F(Fleet, BrokerRestartedMidRunLossCountedPublishingResumes) {

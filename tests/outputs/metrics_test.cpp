@@ -53,8 +53,9 @@ TEST(Metrics, EndpointServesPrometheusText) {
   ASSERT_EQ(frames.size(), 120U);
   std::uint64_t sent = 0;
   std::uint64_t dropped = 0;
-  PipelineMetrics metrics({OutputProbe{"udp", [&] { return sent; }, [&] { return dropped; }}},
-                          {frames.front().stream_id});
+  PipelineMetrics metrics(
+      {OutputProbe{"udp", [&] { return sent; }, [&] { return dropped; }, {}, {}}},
+      {frames.front().stream_id});
   const unsigned short port = test::free_tcp_port();
   MetricsServer server(metrics, "127.0.0.1", port);
   EXPECT_EQ(server.url(), "http://127.0.0.1:" + std::to_string(port) + "/metrics");
