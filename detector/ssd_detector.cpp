@@ -196,6 +196,8 @@ void SsdDetector::warm_up(int count) {
     forward(count);
   } catch (const cv::Exception& e) {
     throw model_error(config_.model_path, "the model does not run: " + e.msg);
+  } catch (const InputError&) {
+    throw;  // already says what and where (a CUDA failure at run time)
   } catch (const std::runtime_error& e) {  // XNNPACK's
     throw model_error(config_.model_path, std::string("the model does not run: ") + e.what());
   }
