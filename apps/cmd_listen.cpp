@@ -85,6 +85,12 @@ void print_message(const messages::DecodedMessage& message, messages::Arrival ar
       frame.sequence, frame.frame_number, frame.tracks.size(),
       message.truncated() ? fmt::format(" of {} (truncated)", message.total_track_count) : "",
       to_ms(static_cast<double>(message.latency_ns())), frame.frames_dropped, describe(arrival));
+  for (const auto& event : frame.events) {  // docs/events.md
+    fmt::print("  event {} {} track {}{}{}\n", events::kEventKindNames.name(event.kind),
+               event.index, event.track_id,
+               event.dwell_seconds > 0.0 ? fmt::format(" after {:.1f} s", event.dwell_seconds) : "",
+               event.lost ? " (lost inside)" : "");
+  }
 }
 
 void print_corrupt(messages::DecodeError reason, std::size_t size) {
@@ -131,6 +137,11 @@ void print_summary(const messages::ListenerStats& stats, const InvalidJson& inva
         stream.truncated, to_ms(static_cast<double>(stream.latency_min_ns)),
         to_ms(stream.latency_mean_ns()), to_ms(static_cast<double>(stream.latency_max_ns)),
         stream.last_frames_dropped);
+    for (const auto& [kind_and_index, count] : stream.events) {
+      fmt::print("  stream {}: events {} {}: {}\n", id,
+                 events::kEventKindNames.name(static_cast<events::EventKind>(kind_and_index.first)),
+                 kind_and_index.second, count);
+    }
     if (seq.clashes() > 0) {
       fmt::print(
           "  stream {}: CLASH: {} messages no single sender could have sent (sequence and "

@@ -2,6 +2,7 @@
 
 #include <limits>
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "messages/jsonl_sink.hpp"
 
@@ -16,7 +17,10 @@ template <typename T>
 T required(const json& object, const char* field) {
   const auto found = object.find(field);
   if (found == object.end()) throw std::invalid_argument(std::string("no \"") + field + '"');
-  if constexpr (std::is_same_v<T, bool>) {
+  if constexpr (std::is_same_v<T, std::string>) {
+    if (!found->is_string())
+      throw std::invalid_argument(std::string("\"") + field + "\" is not a string");
+  } else if constexpr (std::is_same_v<T, bool>) {
     if (!found->is_boolean())
       throw std::invalid_argument(std::string("\"") + field + "\" is not true/false");
   } else if constexpr (std::is_floating_point_v<T>) {
@@ -108,6 +112,37 @@ bool decode_json_line(const std::uint8_t* data, std::size_t size, DecodedMessage
       report.hits = required<std::int32_t>(track, "hits");
       report.age = required<std::int32_t>(track, "age");
       frame.tracks.push_back(report);
+    }
+    frame.run_id = 0;
+    if (const auto run = line.find("run"); run != line.end()) {
+      const std::string text = run->is_string() ? run->get<std::string>() : "";
+      std::size_t used = 0;
+      try {
+        frame.run_id = text.size() == 16 ? std::stoull(text, &used, 16) : 0;
+      } catch (const std::exception&) {
+        used = 0;
+      }
+      if (used != 16) throw std::invalid_argument("\"run\" is not 16 hex digits");
+    }
+    frame.events.clear();
+    if (const auto events = line.find("events"); events != line.end()) {
+      if (!events->is_array()) throw std::invalid_argument("\"events\" is not an array");
+      for (const json& item : *events) {
+        if (!item.is_object()) throw std::invalid_argument("an event is not an object");
+        events::Event event;
+        const auto kind = events::kEventKindNames.parse(required<std::string>(item, "kind"));
+        if (!kind) throw std::invalid_argument("an event's \"kind\" is not one this reader knows");
+        event.kind = *kind;
+        event.index = required<std::uint16_t>(item, "index");
+        event.track_id = required<std::int32_t>(item, "track");
+        event.class_id = required<std::int32_t>(item, "class");
+        event.x = required<float>(item, "x");
+        event.y = required<float>(item, "y");
+        event.dwell_seconds = required<double>(item, "dwell_s");
+        event.lost = required<bool>(item, "lost");
+        event.time = static_cast<double>(frame.pts_ns) * 1e-9;
+        frame.events.push_back(event);
+      }
     }
   } catch (const std::exception& error) {  // ours (a field) or nlohmann's (a type)
     problem = error.what();
