@@ -253,7 +253,18 @@ void SsdDetector::forward(int count) {
   // about 1000 small heap allocations (per-layer bookkeeping: Mat vectors, scratch of at most
   // 64 KB) and returns headers on the network's own output blobs. No buffer the size of an image
   // or blob: those above are reused.
-  net.forward(outputs_, output_names_);
+  try {
+    net.forward(outputs_, output_names_);
+  } catch (const cv::Exception& e) {
+    if (backend_.backend != cv::dnn::DNN_BACKEND_CUDA) throw;
+    // A CUDA failure while running (a replayed graph, a stream, a lost device): name the backend
+    // and the way out; exit code bad_model ("does not run"), through the run's usual error path.
+    throw InputError("", 0, "",
+                     "detector: the forward pass failed on " + backend_.name + " at run time (" +
+                         e.msg +
+                         "): set 'backend: cpu' in the detector config to run without the GPU",
+                     ExitCode::bad_model);
+  }
   boxes_ = outputs_[0].ptr<float>();
   logits_ = outputs_[1].ptr<float>();
   last_forward_ns_ =
