@@ -70,6 +70,12 @@ rm -rf "$deps" && mkdir -p "$deps/pkgconfig"
 for f in "$carry"/debs/*.deb; do dpkg -x "$f" "$deps"; done
 triplet="$(gcc -dumpmachine)"
 lib="$deps/usr/lib/$triplet"
+# Absolute symlinks of the packages (zlib1g-dev's libz.so -> /lib/.../libz.so.1.2.13) point into
+# this machine's / : re-pointed into the unpacked tree.
+while IFS= read -r link; do
+  target="$(readlink "$link")"
+  [[ -e $deps$target ]] && ln -sfn "$deps$target" "$link"
+done < <(find "$deps" -type l -lname '/*')
 # The carried .pc files name include folders as on Debian 12; one that no carried package ships
 # (e.g. the multiarch /usr/include/<triplet>) is dropped: CMake refuses imported targets with
 # non-existent include folders.
