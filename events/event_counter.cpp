@@ -22,9 +22,26 @@ EventCounter::EventCounter(EventsConfig config)
   // and an exit (a move through it) plus one dwell: the list never grows past this.
   events_.reserve(tracks * (config_.lines.size() + 3 * config_.zones.size()));
   line_counts_.resize(config_.lines.size());
+  for (const LineSpec& line : config_.lines) {
+    const double dx = line.segment.to.x - line.segment.from.x;
+    const double dy = line.segment.to.y - line.segment.from.y;
+    const double squared = dx * dx + dy * dy;
+    lines_.push_back({line.segment.from, dx, dy, 1.0 / std::sqrt(squared), 1.0 / squared});
+  }
+  for (const ZoneSpec& zone : config_.zones) {
+    Bounds bounds{INFINITY, INFINITY, -INFINITY, -INFINITY};
+    for (const Point& p : zone.polygon) {
+      bounds.min_x = std::min(bounds.min_x, p.x);
+      bounds.min_y = std::min(bounds.min_y, p.y);
+      bounds.max_x = std::max(bounds.max_x, p.x);
+      bounds.max_y = std::max(bounds.max_y, p.y);
+    }
+    zone_bounds_.push_back(bounds);
+  }
   zone_counts_.resize(config_.zones.size());
   live_.reserve(tracks);
   births_.reserve(tracks);
+  hints_.assign(tracks, kNone);
   free_.reserve(tracks);
   for (std::size_t i = tracks; i > 0; --i) free_.push_back(static_cast<std::uint32_t>(i - 1));
 }
@@ -41,8 +58,13 @@ Point EventCounter::anchor_of(const tracker::Box& box) const {
   return {x, y};
 }
 
-std::uint32_t EventCounter::find_live(std::int32_t track_id) const {
-  // A linear scan of the live tracks: ids of 50 tracks in one cache line or two, no hashing.
+std::uint32_t EventCounter::find_live(std::int32_t track_id, std::size_t position) const {
+  // A tracker reports its tracks in the same order update after update: the slot that held the
+  // report at this position last time is nearly always the one. Otherwise a scan of the live.
+  if (position < hints_.size()) {
+    const std::uint32_t hint = hints_[position];
+    if (hint < slots_.size() && slots_[hint].live && slots_[hint].track_id == track_id) return hint;
+  }
   for (const std::uint32_t index : live_)
     if (slots_[index].track_id == track_id) return index;
   return kNone;
@@ -56,7 +78,7 @@ const std::vector<Event>& EventCounter::update(const std::vector<tracker::TrackR
   for (std::size_t r = 0; r < reports.size(); ++r) {
     const tracker::TrackReport& report = reports[r];
     if (!counts_class(report.class_id)) continue;
-    std::uint32_t index = find_live(report.id);
+    std::uint32_t index = find_live(report.id, r);
     if (index != kNone && time_seconds - slots_[index].last_seen > config_.lost_after_seconds) {
       forget(index, time_seconds);  // gone too long: this is a new life under the same id
       index = kNone;
@@ -69,6 +91,7 @@ const std::vector<Event>& EventCounter::update(const std::vector<tracker::TrackR
       }
       continue;
     }
+    if (r < hints_.size()) hints_[r] = index;
     follow(index, report, time_seconds);
   }
   for (const std::uint32_t r : births_) {
@@ -86,9 +109,11 @@ const std::vector<Event>& EventCounter::update(const std::vector<tracker::TrackR
       live_.push_back(index);
       slots_[index] = Slot{};
       slots_[index].track_id = report.id;
+      slots_[index].live = true;
       for (std::size_t l = 0; l < config_.lines.size(); ++l) line_state(index, l) = LineState{};
       for (std::size_t z = 0; z < config_.zones.size(); ++z) zone_state(index, z) = ZoneState{};
     }
+    if (r < hints_.size()) hints_[r] = index;
     follow(index, report, time_seconds);
   }
   for (std::size_t i = live_.size(); i > 0; --i) {
@@ -170,14 +195,27 @@ void EventCounter::follow(std::uint32_t index, const tracker::TrackReport& repor
 
 void EventCounter::cross_lines(std::uint32_t index, const Point& from, const Point& to, double band,
                                bool first, double time) {
-  for (std::size_t l = 0; l < config_.lines.size(); ++l) {
-    const LineSpec& line = config_.lines[l];
+  for (std::size_t l = 0; l < lines_.size(); ++l) {
+    const PreparedLine& line = lines_[l];
     LineState& state = line_state(index, l);
-    double position = 0.0;
-    if (!first && crossing_position(line.segment, from, to, position) && position >= 0.0 &&
-        position <= 1.0)
-      state.met_within_ends = true;
-    const double distance = signed_distance(line.segment, to);
+    // signed_distance() and crossing_position() of geometry.hpp, with the line's constants
+    // prepared and the previous position's distance remembered: one cross product per line and
+    // update, the crossing point only when the move changes sides.
+    const double distance =
+        (line.dx * (to.y - line.from.y) - line.dy * (to.x - line.from.x)) * line.inverse_length;
+    if (!first) {
+      const double previous = state.distance;
+      const bool meets =
+          (previous <= 0.0 && distance >= 0.0) || (previous >= 0.0 && distance <= 0.0);
+      if (meets && !(previous == 0.0 && distance == 0.0)) {
+        const double t = previous / (previous - distance);
+        const double mx = from.x + t * (to.x - from.x) - line.from.x;
+        const double my = from.y + t * (to.y - from.y) - line.from.y;
+        const double position = (mx * line.dx + my * line.dy) * line.inverse_squared_length;
+        if (position >= 0.0 && position <= 1.0) state.met_within_ends = true;
+      }
+    }
+    state.distance = distance;
     const std::int8_t side = distance > band ? 1 : distance < -band ? -1 : 0;
     if (side == 0) continue;  // in the dead band: keeps the side it had
     if (state.side != 0 && side != state.side && state.met_within_ends)
@@ -200,6 +238,16 @@ void EventCounter::visit_zones(std::uint32_t index, const Point& from, const Poi
   for (std::size_t z = 0; z < config_.zones.size(); ++z) {
     const ZoneSpec& zone = config_.zones[z];
     ZoneState& state = zone_state(index, z);
+    const Bounds& bounds = zone_bounds_[z];
+    // Most tracks are far from most zones: a move whose box, grown by the band, misses the zone's
+    // box is outside by more than the band at both ends and cannot pass through.
+    if (std::max(from.x, to.x) + band < bounds.min_x ||
+        std::min(from.x, to.x) - band > bounds.max_x ||
+        std::max(from.y, to.y) + band < bounds.min_y ||
+        std::min(from.y, to.y) - band > bounds.max_y) {
+      if (state.inside) leave(index, z, to, time, /*lost=*/false);
+      continue;
+    }
     const bool inside = inside_polygon(zone.polygon, to);
     if (inside != state.inside) {
       if (distance_to_boundary(zone.polygon, to) <= band) continue;  // the dead band
@@ -266,6 +314,7 @@ void EventCounter::forget(std::uint32_t index, double time) {
   // A track that dies inside a zone leaves it now, marked lost: occupancy must not keep the dead.
   for (std::size_t z = 0; z < config_.zones.size(); ++z)
     if (zone_state(index, z).inside) leave(index, z, slots_[index].anchor, time, /*lost=*/true);
+  slots_[index].live = false;
   const auto at = std::find(live_.begin(), live_.end(), index);
   *at = live_.back();
   live_.pop_back();

@@ -39,7 +39,21 @@ class EventCounter {
   std::int64_t tracks_not_followed() const { return tracks_not_followed_; }
 
  private:
+  struct PreparedLine {
+    Point from;
+    double dx;
+    double dy;
+    double inverse_length;
+    double inverse_squared_length;
+  };
+  struct Bounds {
+    double min_x;
+    double min_y;
+    double max_x;
+    double max_y;
+  };
   struct LineState {
+    double distance{0.0};         // signed distance of the last position
     std::int8_t side{0};          // -1 left, +1 right, 0 not yet known
     bool met_within_ends{false};  // the path since the last decided side met the segment
   };
@@ -53,6 +67,7 @@ class EventCounter {
     double h{0.0};
   };
   struct Slot {
+    bool live{false};
     std::int32_t track_id{0};
     std::int32_t class_id{0};
     double last_seen{0.0};
@@ -66,7 +81,7 @@ class EventCounter {
   static constexpr std::uint32_t kNone = ~std::uint32_t{0};
 
   bool counts_class(std::int32_t class_id) const;
-  std::uint32_t find_live(std::int32_t track_id) const;
+  std::uint32_t find_live(std::int32_t track_id, std::size_t position) const;
   std::uint32_t find_broken_off(const tracker::TrackReport& report, double time) const;
   Point anchor_of(const tracker::Box& box) const;
   void measure_noise(const Slot& slot, const tracker::Box& box);
@@ -91,9 +106,12 @@ class EventCounter {
   }
 
   EventsConfig config_;
+  std::vector<PreparedLine> lines_;
+  std::vector<Bounds> zone_bounds_;
   std::vector<Slot> slots_;
   std::vector<std::uint32_t> live_;  // slots in use, in no order
   std::vector<std::uint32_t> free_;
+  std::vector<std::uint32_t> hints_;   // the slot of the report at each position last update
   std::vector<std::uint32_t> births_;  // this update's reports of ids not followed yet
   std::vector<LineState> line_states_;
   std::vector<ZoneState> zone_states_;

@@ -47,7 +47,9 @@ TrackRun track_detections(const FrameDetections& detections, const SequenceInfo&
   config.frame_rate = info.frame_rate;
   config.image_width = static_cast<float>(info.width);
   config.image_height = static_cast<float>(info.height);
-  tracker::Tracker tracker(config);
+  tracker::Tracker tracker(config, options.extension
+                                       ? options.extension()
+                                       : std::unique_ptr<tracker::TrackerExtension>());
 
   using Clock = std::chrono::steady_clock;
   Clock::duration in_update{};

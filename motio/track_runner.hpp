@@ -10,6 +10,7 @@
 #include "motio/frame_detections.hpp"
 #include "motio/mot_files.hpp"
 #include "tracker/tracker_config.hpp"
+#include "tracker/tracker_extension.hpp"
 
 namespace rtmot::motio {
 
@@ -23,6 +24,8 @@ struct TrackOptions {
   int interval{1};
   /// When set and true, the run stops before its next frame (TrackRun::stopped).
   const std::atomic<bool>* stop{nullptr};
+  /// The study's rules (mot/study_knobs.hpp) for the Tracker; empty in the product.
+  tracker::TrackerExtensionFactory extension;
 };
 
 struct TrackRun {

@@ -189,7 +189,12 @@ RunOutputs make_outputs(const RunConfig& config, std::vector<pipeline::PipelineI
     outputs.destinations.push_back(file_line("report", output.report_file));
   }
   if (config.stats_interval_s > 0.0 && inputs.size() == 1) {
-    sinks.push_back(std::make_unique<ProgressSink>(config.stats_interval_s, first.frame_count));
+    // The run ends at --max-frames when that comes first: the progress and its ETA say so.
+    std::int64_t total = first.frame_count;
+    if (config.max_frames > 0 && (total <= 0 || config.max_frames < total)) {
+      total = config.max_frames;
+    }
+    sinks.push_back(std::make_unique<ProgressSink>(config.stats_interval_s, total));
   }
   outputs.deliveries = probes;  // for the final report
   if (output.metrics_port > 0) {
