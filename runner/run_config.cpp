@@ -3,6 +3,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <set>
 
@@ -20,6 +21,21 @@ namespace {
 
 // A configuration is a page of text: a bigger file is not one.
 constexpr std::uint64_t kMaxConfigBytes = 1 << 20;
+
+// Keys whose value is a structure of its own, read by its own strict reader: the source's events
+// (lines and zones, events/events_yaml.hpp).
+using StructuredReader = void (*)(const YAML::Node& value, const Section& where,
+                                  const std::string& name, RunConfig& config);
+const std::map<std::string, StructuredReader>& structured_keys() {
+  static const std::map<std::string, StructuredReader> readers = {
+      {"source.events",
+       [](const YAML::Node& value, const Section& where, const std::string& name,
+          RunConfig& config) {
+         config.source.events = events::read_events_spec(value, where.file(), where.field(name));
+       }},
+  };
+  return readers;
+}
 
 bool has_settings_under(const std::string& prefix) {
   const std::string start = prefix + ".";
@@ -58,7 +74,10 @@ void read_settings(const Section& section, const YAML::Node& node, const std::st
     const std::string name = section.key_text(entry.first);
     if (read_elsewhere.count(name) > 0) continue;
     const std::string key = prefix.empty() ? name : prefix + "." + name;
-    if (const RunSetting* setting = find_run_setting(key)) {
+    if (const auto structured = structured_keys().find(key);
+        structured != structured_keys().end()) {
+      structured->second(entry.second, section, name, config);
+    } else if (const RunSetting* setting = find_run_setting(key)) {
       const std::string text = value_text(section, entry.first, entry.second, *setting, name);
       std::string problem;
       if (!setting->set(config, text, problem)) {

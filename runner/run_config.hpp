@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "detector/dnn_backend.hpp"
+#include "events/events_yaml.hpp"
 #include "outputs/mqtt_uri.hpp"
 #include "outputs/overlay.hpp"
 #include "outputs/video_target.hpp"
@@ -33,6 +34,8 @@ struct SourceConfig {
   double fps{0.0};
   /// Stream id in this source's messages; -1 = the top-level stream_id + the source's index.
   std::int64_t stream_id{-1};
+  /// `events:` lines and zones (docs/events.md), resolved against the frame once it is open.
+  events::EventsSpec events;
 };
 
 struct PlaybackConfig {

@@ -175,7 +175,7 @@ TEST(DetectorAllocation, XnnpackAllocatesNothingInSteadyState) {
   SsdDetector detector(config);
   std::vector<tracker::Detection> one;
   std::vector<std::vector<tracker::Detection>> many;
-  detector.detect(*images[0], 1, one);  // the outputs grow once
+  detector.detect(*images[0], 1, one);                            // the outputs grow once
   detector.detect_batch(images.data(), numbers.data(), 4, many);  // every slot used once
   // After start-up (which initialized XNNPACK): every later XNNPACK allocation is counted.
   const xnn_allocator counting{nullptr,   &xnn_counted,         &xnn_counted_realloc,

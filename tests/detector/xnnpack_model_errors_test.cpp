@@ -82,7 +82,7 @@ TEST_F(XnnpackModelErrors, UnsupportedOperatorIsNamedAndAutoFallsBackToOpenCv) {
   EXPECT_NE(std::string(e.what()).find(name), std::string::npos) << e.what();
   EXPECT_NE(std::string(e.what()).find("changed.onnx"), std::string::npos) << e.what();
 
-  SsdDetector fallback(write(BackendRequest::automatic));
+  SsdDetector fallback(write(BackendRequest::automatic));  // one thread: auto picks xnnpack
   EXPECT_EQ(fallback.backend().engine, Engine::opencv);
   EXPECT_EQ(fallback.backend().name, "cpu");
   EXPECT_NE(fallback.backend().reason.find("'Sum'"), std::string::npos)

@@ -33,7 +33,6 @@ void expect_same_tracker(const tracker::TrackerConfig& a, const tracker::Tracker
   EXPECT_EQ(a.affinity, b.affinity);
   EXPECT_EQ(a.affinity_threshold, b.affinity_threshold);
   EXPECT_EQ(a.detection_threshold, b.detection_threshold);
-  EXPECT_EQ(a.score_quantile, b.score_quantile);
   EXPECT_EQ(a.score_range_cut, b.score_range_cut);
   EXPECT_EQ(a.max_age, b.max_age);
   EXPECT_EQ(a.min_hits, b.min_hits);
@@ -41,7 +40,6 @@ void expect_same_tracker(const tracker::TrackerConfig& a, const tracker::Tracker
   EXPECT_EQ(a.second_round, b.second_round);
   EXPECT_EQ(a.low_score, b.low_score);
   EXPECT_EQ(a.birth_threshold, b.birth_threshold);
-  EXPECT_EQ(a.birth_range_cut, b.birth_range_cut);
   EXPECT_EQ(a.strong_birth_range_cut, b.strong_birth_range_cut);
   EXPECT_EQ(a.confirm_by_duration, b.confirm_by_duration);
   EXPECT_EQ(a.keep_confirmation, b.keep_confirmation);
