@@ -77,6 +77,7 @@ TrackRun track_detections(const FrameDetections& detections, const SequenceInfo&
       run.tracks.push_back(row);
     }
     ++run.frames_processed;
+    run.processed_frames.push_back(static_cast<int>(frame));
     if (progress) progress(static_cast<int>(frame), info.length);
   }
   run.seconds_in_update = std::chrono::duration<double>(in_update).count();

@@ -226,6 +226,34 @@ TEST_F(VideoOutputs, RtpStreamReachesAReceiver) {
   expect_overlay(back.saved, folder_ / "rtp.png");
 }
 
+// The SDP the log prints is all a player needs: GStreamer's sdpdemux (what a player does with a
+// .sdp file) receives and decodes the stream from it alone.
+TEST_F(VideoOutputs, RtpSdpIsEnoughForAPlayer) {
+  const unsigned short port = test::free_tcp_port();
+  const VideoTarget target = target_of("rtp://127.0.0.1:" + std::to_string(port));
+  const std::string sdp = rtp_sdp(target);
+  EXPECT_NE(sdp.find("m=video " + std::to_string(port) + " RTP/AVP 96\n"), std::string::npos);
+  EXPECT_NE(sdp.find("c=IN IP4 127.0.0.1\n"), std::string::npos);
+  EXPECT_NE(rtp_sdp(target_of("rtp://[::1]:5004")).find("c=IN IP6 ::1\n"), std::string::npos);
+  const auto file = folder_ / "stream.sdp";
+  { std::ofstream(file) << sdp; }
+  auto stream = open_video_stream(target, 30.0);
+  std::thread pusher;
+  const ReadBack back =
+      read_back("filesrc location=" + file.string() +
+                    " ! sdpdemux latency=0 ! rtph264depay ! avdec_h264" + to_bgr_sink,
+                frame_count / 2, frame_count, 30s, [&] {
+                  pusher = std::thread([&] {
+                    std::this_thread::sleep_for(500ms);
+                    push_test_frames(*stream, 33ms);
+                  });
+                });
+  pusher.join();
+  stream->close();
+  EXPECT_GE(back.frames, frame_count / 2);
+  expect_overlay(back.saved, folder_ / "sdp.png");
+}
+
 TEST_F(VideoOutputs, RtspServerIsPulledByAClient) {
   const unsigned short port = test::free_tcp_port();
   const VideoTarget target = target_of("rtsp://127.0.0.1:" + std::to_string(port) + "/tracks");
