@@ -184,6 +184,8 @@ RunOutputs make_outputs(const RunConfig& config, std::vector<pipeline::PipelineI
         &detector::coco_label);
     // One source (validate() checked it): the video sees every one of its frames.
     if (!inputs.empty()) inputs.front().tap = annotated->tap();
+    const auto& counted = inputs.empty() ? events::EventsConfig{} : inputs.front().events;
+    if (!counted.lines.empty() || !counted.zones.empty()) annotated->show_events(counted);
     video = std::move(annotated);
     outputs.destinations.push_back("video -> " + output.video_file + " (H.264, overlay " +
                                    output.overlay + ")");
