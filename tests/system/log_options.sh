@@ -12,7 +12,7 @@ fail() { echo "FAIL: $*"; exit 1; }
 printf 'detector:\n  kind: replay\n' >"$work/replay.yaml"
 
 "$rtmot" run --config "$work/replay.yaml" --source "mot-seq://$seq" --det-file "$seq/det/det.txt" \
-  --max-frames 20 --log-format json --log-file "$work/run.log" 2>"$work/run.err"
+  --max-frames 20 --playback every-frame --log-format json --log-file "$work/run.log" 2>"$work/run.err"
 [[ -s $work/run.log ]] || fail "no log file"
 cmp -s "$work/run.log" "$work/run.err" || fail "the file and stderr differ"
 bad=$(grep -cv '^{"time":"[0-9T:.-]*Z","level":"[a-z]*","thread":[0-9]*,"message":".*"}$' "$work/run.log" || true)
@@ -25,7 +25,7 @@ status=0
 grep -q 'say\\"what.onnx' "$work/bad.err" || { cat "$work/bad.err"; fail "the quote is not escaped"; }
 
 "$rtmot" run --config "$work/replay.yaml" --source "mot-seq://$seq" --det-file "$seq/det/det.txt" \
-  --max-frames 20 --log-level warn 2>"$work/warn.err"
+  --max-frames 20 --playback every-frame --log-level warn 2>"$work/warn.err"
 grep -q "frames captured 20 processed 20" "$work/warn.err" || fail "--log-level warn hid the final report"
 ! grep -q "detector: replay" "$work/warn.err" || fail "--log-level warn showed info lines"
 echo "PASS: $(wc -l <"$work/run.log") JSON log lines in file and stderr; a quote escaped; the final report under --log-level warn"
