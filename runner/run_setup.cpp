@@ -53,6 +53,7 @@ std::vector<pipeline::PipelineInput> make_inputs(const RunConfig& config) {
     inputs[i].events =
         events::resolve_events(sources[i].events, static_cast<int>(inputs[i].tracker.image_width),
                                static_cast<int>(inputs[i].tracker.image_height));
+    inputs[i].events.frame_period_seconds = 1.0 / inputs[i].tracker.frame_rate;
   }
   return inputs;
 }
@@ -180,6 +181,8 @@ RunOutputs make_outputs(const RunConfig& config, std::vector<pipeline::PipelineI
                                                                &detector::coco_label);
     // One source (validate() checked it): the video sees every one of its frames.
     if (!inputs.empty()) inputs.front().tap = annotated->tap();
+    const auto& counted = inputs.empty() ? events::EventsConfig{} : inputs.front().events;
+    if (!counted.lines.empty() || !counted.zones.empty()) annotated->show_events(counted);
     video = std::move(annotated);
     outputs.destinations.push_back("video -> " + output.video->text + " (H.264)");
   }

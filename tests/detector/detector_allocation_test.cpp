@@ -155,6 +155,7 @@ void* xnn_counted_aligned(void* /*context*/, std::size_t alignment, std::size_t 
 }
 
 TEST(DetectorAllocation, XnnpackAllocatesNothingInSteadyState) {
+  if (!xnnpack_runs_here()) GTEST_SKIP() << "XNNPACK does not initialize on this processor";
   const auto model = test::source_path("models/ssdlite_mobilenet_v2_coco.onnx");
   if (!std::filesystem::exists(model)) {
     FAIL() << "missing model " << model << ": run scripts/fetch_model.sh";

@@ -134,6 +134,9 @@ TEST_P(SsdReference, ReproducesTheTfjsModelOnVtest) {
   if (param.backend == BackendRequest::xnnpack && !xnnpack_built()) {
     GTEST_SKIP() << "this build has no XNNPACK backend (libxnnpack-dev, libonnx-dev)";
   }
+  if (param.backend == BackendRequest::xnnpack && !xnnpack_runs_here()) {
+    GTEST_SKIP() << "XNNPACK does not initialize on this processor";
+  }
 
   SsdConfig config;
   config.model_path = model;
@@ -244,6 +247,7 @@ TEST_P(SsdReference, ReproducesTheTfjsModelOnVtest) {
 // and 8); allowed 0.1 px and 0.001 (other SIMD paths, aarch64 included).
 TEST(SsdXnnpackAgainstOpenCv, SameDetectionsOnTheSameFrames) {
   if (!xnnpack_built()) GTEST_SKIP() << "this build has no XNNPACK backend";
+  if (!xnnpack_runs_here()) GTEST_SKIP() << "XNNPACK does not initialize on this processor";
   const auto model = test::source_path("models/ssdlite_mobilenet_v2_coco.onnx");
   if (!std::filesystem::exists(model)) {
     FAIL() << "missing model " << model << ": run scripts/fetch_model.sh";
