@@ -54,6 +54,7 @@ std::vector<pipeline::PipelineInput> make_inputs(const RunConfig& config) {
     inputs[i].events =
         events::resolve_events(sources[i].events, static_cast<int>(inputs[i].tracker.image_width),
                                static_cast<int>(inputs[i].tracker.image_height));
+    inputs[i].events.frame_period_seconds = 1.0 / inputs[i].tracker.frame_rate;
   }
   return inputs;
 }
