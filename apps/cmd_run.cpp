@@ -11,6 +11,7 @@
 #include "common/exit_codes.hpp"
 #include "common/input_error.hpp"
 #include "outputs/delivery_report.hpp"
+#include "outputs/report_json.hpp"
 #include "pipeline/pipeline.hpp"
 #include "platform/board.hpp"
 #include "platform/signals.hpp"
@@ -68,7 +69,7 @@ int run(const RunCommand& command) {
     for (const auto& stream : report.streams) spdlog::info("{}", pipeline::summary_line(stream));
   }
   if (!config.output.report_file.empty()) {
-    pipeline::write_report(report, config.output.report_file);
+    outputs::write_report(report, config.output.report_file);
     spdlog::info("report written to {}", config.output.report_file);
   }
   const outputs::DeliveryReport delivered = outputs::report_deliveries(outputs.deliveries);

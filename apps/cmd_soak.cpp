@@ -77,7 +77,7 @@ int run_soak(const SoakOptions& options) {
     ++pass;
     const double rss = resident_mb();
     rss_after_pass.push_back(rss);
-    const auto& e2e = report.latency.end_to_end;
+    const auto& e2e = report.latency.of(pipeline::Stage::end_to_end);
     fmt::print(
         "soak pass={} t_s={:.0f} rss_mb={:.1f} captured={} processed={} dropped={} lost={} "
         "e2e_ms p50={:.1f} p95={:.1f} p99={:.1f} max={:.1f}{}\n",

@@ -11,10 +11,6 @@ namespace {
 
 constexpr auto relaxed = std::memory_order_relaxed;
 
-std::int64_t span(std::int64_t from, std::int64_t to) {
-  return from > 0 && to >= from ? to - from : -1;  // -1: a stamp missing (outage ticks)
-}
-
 }  // namespace
 
 void LatencyBuckets::record(std::int64_t ns) {
@@ -73,11 +69,9 @@ void PipelineMetrics::observe(const messages::FrameResult& result) {
     stream.in_outage = result.source_outage;
   }
   if (!result.source_outage) {
-    stages_[queue].record(span(t.captured_ns, t.detect_start_ns));
-    stages_[detect].record(span(t.detect_start_ns, t.detected_ns));
-    stages_[track].record(span(t.detected_ns, t.tracked_ns));
-    stages_[sink].record(span(t.tracked_ns, t.sent_ns));
-    stages_[end_to_end].record(span(t.captured_ns, t.sent_ns));
+    for (const auto& [stage, name] : pipeline::kStageNames.entries()) {
+      stages_[static_cast<std::size_t>(stage)].record(pipeline::stage_span_ns(stage, t));
+    }
   }
   for (std::size_t i = 0; i < probes_.size(); ++i) {
     if (probes_[i].sent) outputs_[i].sent.store(probes_[i].sent(), relaxed);
@@ -141,11 +135,9 @@ std::string PipelineMetrics::render() const {
                  "# HELP rtmot_stage_latency_seconds Time per pipeline stage, every source "
                  "(queue: captured->detector, end_to_end: captured->sent).\n"
                  "# TYPE rtmot_stage_latency_seconds histogram\n");
-  constexpr std::array<const char*, stage_count> stage_names = {"queue", "detect", "track", "sink",
-                                                                "end_to_end"};
-  for (std::size_t stage = 0; stage < stage_count; ++stage) {
-    stages_[stage].render("rtmot_stage_latency_seconds",
-                          fmt::format("stage=\"{}\"", stage_names[stage]), out);
+  for (const auto& [stage, name] : pipeline::kStageNames.entries()) {
+    stages_[static_cast<std::size_t>(stage)].render("rtmot_stage_latency_seconds",
+                                                    fmt::format("stage=\"{}\"", name), out);
   }
   fmt::format_to(to,
                  "# HELP rtmot_output_messages_total Messages per output and outcome.\n"

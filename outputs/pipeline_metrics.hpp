@@ -18,6 +18,7 @@
 
 #include "messages/frame_result.hpp"
 #include "outputs/event_metrics.hpp"
+#include "pipeline/pipeline_report.hpp"
 
 namespace rtmot::outputs {
 
@@ -54,8 +55,6 @@ struct OutputProbe {
 
 class PipelineMetrics {
  public:
-  enum Stage : std::size_t { queue, detect, track, sink, end_to_end, stage_count };
-
   /// `streams`: the stream id of every source (frames of another id are counted only in the
   /// pipeline-wide series).
   PipelineMetrics(std::vector<OutputProbe> outputs, std::vector<std::uint32_t> streams);
@@ -90,8 +89,8 @@ class PipelineMetrics {
   std::vector<OutputProbe> probes_;
   std::vector<OutputCounters> outputs_;
   std::vector<std::uint32_t> stream_ids_;
-  std::vector<StreamCounters> streams_;  // parallel to stream_ids_
-  std::array<LatencyBuckets, stage_count> stages_;
+  std::vector<StreamCounters> streams_;                       // parallel to stream_ids_
+  std::array<LatencyBuckets, pipeline::kStageCount> stages_;  // in pipeline::kStageNames' order
   const EventMetrics* events_{nullptr};
 };
 

@@ -102,7 +102,7 @@ PipelineReport Pipeline::Stages::report() const {
     stream.stream_id = stream_ids[i];
     stream.source = capture.source().info().uri;
     stream.frames_captured = counts.frames_captured;
-    stream.frames_processed = sent.latency.end_to_end.count();
+    stream.frames_processed = sent.latency.of(pipeline::Stage::end_to_end).count();
     stream.frames_dropped = stream.frames_captured - stream.frames_processed;
     stream.frames_lost = counts.frames_lost;
     stream.source_outages = counts.outages;
@@ -125,7 +125,7 @@ PipelineReport Pipeline::Stages::report() const {
     report.streams.push_back(std::move(stream));
   }
   const SinkCounts& total = sink->total();
-  report.frames_processed = total.latency.end_to_end.count();
+  report.frames_processed = total.latency.of(pipeline::Stage::end_to_end).count();
   report.frames_dropped = report.frames_captured - report.frames_processed;
   if (report.frames_processed > 0 && total.last_sent_ns > first_capture_ns) {
     report.wall_seconds = static_cast<double>(total.last_sent_ns - first_capture_ns) * 1e-9;

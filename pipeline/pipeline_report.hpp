@@ -1,24 +1,41 @@
 #pragma once
 // What a run measured: frame counts, end-to-end throughput and the latency of every stage, for the
-// final log and `--report FILE` (JSON).
+// final log and `--report FILE` (its JSON form: outputs/report_json.hpp, so that nothing that
+// includes the pipeline includes a JSON library).
+#include <array>
 #include <cstdint>
-#include <nlohmann/json.hpp>
 #include <string>
+#include <string_view>
+#include <utility>
 #include <vector>
 
 #include "messages/frame_result.hpp"
 #include "pipeline/latency_histogram.hpp"
+#include "tracker/enum_names.hpp"
 
 namespace rtmot::pipeline {
 
-/// Latencies between the points of FrameTimes, recorded per processed frame by the sink stage.
-struct StageLatencies {
-  LatencyHistogram queued;      // captured -> taken by the detector
-  LatencyHistogram detect;      // taken -> detected
-  LatencyHistogram track;       // detected -> tracked
-  LatencyHistogram send;        // tracked -> sent
-  LatencyHistogram end_to_end;  // captured -> sent
+/// The spans a frame's latency is split into, between the points of FrameTimes. Named once: the
+/// JSON report and the Prometheus metrics (outputs/pipeline_metrics.hpp) use these names.
+enum class Stage { queue, detect, track, sink, end_to_end };
+inline constexpr auto kStageNames = tracker::make_enum_names<Stage>(
+    std::pair{Stage::queue, std::string_view("queue")},    // captured -> taken by the detector
+    std::pair{Stage::detect, std::string_view("detect")},  // taken -> detected
+    std::pair{Stage::track, std::string_view("track")},    // detected -> tracked
+    std::pair{Stage::sink, std::string_view("sink")},      // tracked -> sent
+    std::pair{Stage::end_to_end, std::string_view("end_to_end")});  // captured -> sent
+inline constexpr std::size_t kStageCount = kStageNames.entries().size();
 
+/// The span of `stage` in `times` (nanoseconds); -1 when one of its points is missing. The one
+/// place the split is computed (the report and the metrics both record it).
+std::int64_t stage_span_ns(Stage stage, const messages::FrameTimes& times);
+
+/// Latencies of every stage, recorded per processed frame by the sink stage.
+struct StageLatencies {
+  std::array<LatencyHistogram, kStageCount> stages;
+
+  LatencyHistogram& of(Stage stage) { return stages[static_cast<std::size_t>(stage)]; }
+  const LatencyHistogram& of(Stage stage) const { return stages[static_cast<std::size_t>(stage)]; }
   void record(const messages::FrameTimes& times);
   void clear();
 };
@@ -57,13 +74,9 @@ struct PipelineReport {
   std::vector<StreamReport> streams;
 };
 
-/// The JSON report; "streams" (per source) only when there are several.
-nlohmann::json to_json(const PipelineReport& report);
 /// One line: counts, fps, e2e p50/p95/p99/max.
 std::string summary_line(const PipelineReport& report);
 /// The same for one source, prefixed with its stream id and URI.
 std::string summary_line(const StreamReport& stream);
-/// Writes to_json(report) to `path`; throws rtmot::InputError if the file cannot be written.
-void write_report(const PipelineReport& report, const std::string& path);
 
 }  // namespace rtmot::pipeline

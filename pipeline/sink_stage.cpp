@@ -63,14 +63,14 @@ void SinkStage::log_interval(const TrackedFrame& frame, std::int64_t elapsed_ns)
       static_cast<double>(interval_frames_) * 1e9 / static_cast<double>(elapsed_ns),
       static_cast<double>(interval_e2e_.quantile_ns(0.5)) / 1e6,
       static_cast<double>(interval_e2e_.quantile_ns(0.95)) / 1e6, captured,
-      total_.latency.end_to_end.count(),
+      total_.latency.of(pipeline::Stage::end_to_end).count(),
       // One source: its dropped count as its messages carry it. Several: all not yet processed.
       streams_.size() == 1 ? static_cast<std::int64_t>(frame.result.frames_dropped)
-                           : captured - total_.latency.end_to_end.count());
+                           : captured - total_.latency.of(pipeline::Stage::end_to_end).count());
   if (streams_.size() > 1) {
     // Several sources: one more line each, over the run so far.
     for (std::size_t i = 0; i < streams_.size(); ++i) {
-      const LatencyHistogram& e2e = streams_[i].latency.end_to_end;
+      const LatencyHistogram& e2e = streams_[i].latency.of(pipeline::Stage::end_to_end);
       const std::int64_t stream_captured = captured_(i);
       spdlog::info(
           "  stream {} | capture->sent p50 {:.1f} ms p95 {:.1f} ms | captured {} processed {} "

@@ -9,6 +9,7 @@
 #include <mutex>
 #include <thread>
 
+#include "outputs/report_json.hpp"
 #include "pipeline/pipeline.hpp"
 #include "pipeline_test_parts.hpp"
 
@@ -124,14 +125,14 @@ TEST(MultiSource, TwoRecordingsEveryFrameKeepTheirOwnStreamsTrackersAndCounts) {
     EXPECT_EQ(stream.frames_captured, 40);
     EXPECT_EQ(stream.frames_processed, 40);
     EXPECT_EQ(stream.frames_dropped, 0);
-    EXPECT_EQ(stream.latency.end_to_end.count(), 40);
+    EXPECT_EQ(stream.latency.of(pipeline::Stage::end_to_end).count(), 40);
     EXPECT_GT(stream.fps, 0.0);
   }
   EXPECT_EQ(report.streams[0].stream_id, 7U);
   EXPECT_EQ(report.streams[1].stream_id, 9U);
   EXPECT_LE(report.detector_batches, 80) << "at most one batch per frame";
   EXPECT_GE(report.detector_batches, 40) << "a batch holds at most one frame per source";
-  const auto json = to_json(report);
+  const auto json = outputs::to_json(report);
   ASSERT_EQ(json["streams"].size(), 2U);
   EXPECT_EQ(json["streams"][1]["stream_id"], 9);
   EXPECT_EQ(json["streams"][1]["frames"]["processed"], 40);

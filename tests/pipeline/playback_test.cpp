@@ -15,6 +15,7 @@
 #include "common/input_error.hpp"
 #include "motio/frame_detections.hpp"
 #include "motio/mot_files.hpp"
+#include "outputs/report_json.hpp"
 #include "pipeline/pipeline.hpp"
 #include "pipeline_test_parts.hpp"
 #include "platform/clock.hpp"
@@ -122,14 +123,18 @@ TEST(EveryFramePlayback, ProcessesEveryFrameInOrderWithAllLatencyPoints) {
     EXPECT_LE(t.detected_ns, t.tracked_ns);
     EXPECT_LE(t.tracked_ns, t.sent_ns);
   }
-  EXPECT_EQ(report.latency.end_to_end.count(), 120);
+  EXPECT_EQ(report.latency.of(pipeline::Stage::end_to_end).count(), 120);
   EXPECT_GT(report.fps, 0.0);
   // The detector is busy for part of the wall time only, so its own rate is at least the
   // pipeline's.
   EXPECT_GE(report.detector_fps, report.fps);
-  const auto json = to_json(report);
+  const auto json = outputs::to_json(report);
   EXPECT_EQ(json["frames"]["processed"], 120);
   EXPECT_TRUE(json["latency"]["end_to_end"].contains("p99_ms"));
+  // The stages as the Prometheus metrics name them (one table: pipeline::kStageNames).
+  for (const char* stage : {"queue", "detect", "track", "sink", "end_to_end"}) {
+    EXPECT_EQ(json["latency"][stage]["count"], 120) << stage;
+  }
 }
 
 TEST(SequencePlayback, ImageLessMotSequenceFeedsItsDetectionsFrameByFrame) {
