@@ -5,6 +5,7 @@
 #include <optional>
 #include <set>
 
+#include "common/frame_rate.hpp"
 #include "common/input_error.hpp"
 #include "common/input_file.hpp"
 #include "detector/dnn_backend.hpp"
@@ -23,7 +24,6 @@ namespace {
 
 // The documented ranges (docs/config.md) of the keys outside `tracker:`.
 constexpr int kMaxImageSide = 16384;
-constexpr double kMaxFps = 1000.0;
 constexpr double kMaxLatencyMs = 3'600'000.0;
 constexpr int kMaxThreads = 256;
 constexpr int kMaxClassId = 1000;
@@ -38,7 +38,9 @@ void read_source(Section section, SourceConfig& source) {
                "a size in [0, " + std::to_string(kMaxImageSide) + "]");
   read_checked(section, "height", source.height, within(0, kMaxImageSide),
                "a size in [0, " + std::to_string(kMaxImageSide) + "]");
-  read_checked(section, "fps", source.fps, within(0.0, kMaxFps), "a rate in [0, 1000]");
+  read_checked(
+      section, "fps", source.fps, [](double fps) { return fps == 0.0 || is_frame_rate(fps); },
+      "0 (the source's rate) or a rate in " + frame_rate_range());
   read_checked(
       section, "stream_id", source.stream_id,
       [](std::int64_t v) { return v >= 0 && v <= std::int64_t{0xFFFFFFFF}; },

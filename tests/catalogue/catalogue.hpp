@@ -33,5 +33,7 @@ struct CatalogueCase {
 const std::vector<CatalogueCase>& catalogue();
 /// Round two: what a hostile tester found (issue 11), a class per block; catalogue() includes it.
 std::vector<CatalogueCase> hostile_cases();
+/// Round three (issue 23), a class per block; catalogue() includes it.
+std::vector<CatalogueCase> round_three_cases();
 
 }  // namespace rtmot::test
