@@ -16,6 +16,7 @@
 #include "common/distinct_files.hpp"
 #include "common/input_error.hpp"
 #include "detector/coco_labels.hpp"
+#include "messages/json_line_decoder.hpp"
 #include "messages/jsonl_sink.hpp"
 #include "messages/message_file_reader.hpp"
 #include "messages/message_format.hpp"
@@ -23,6 +24,7 @@
 #include "outputs/mqtt_subscriber.hpp"
 #include "outputs/mqtt_uri.hpp"
 #include "platform/clock.hpp"
+#include "platform/host_port.hpp"
 #include "platform/signals.hpp"
 #include "platform/udp_socket.hpp"
 
@@ -33,6 +35,10 @@ using messages::Arrival;
 using messages::DecodedMessage;
 using messages::DecodeError;
 using messages::ListenerStats;
+
+// A count a listener can reach (one datagram a nanosecond for 11 days): anything larger means
+// "no limit", which is spelled 0.
+constexpr std::int64_t kMaxCount = 1'000'000'000'000'000;
 
 struct ListenOptions {
   std::uint16_t port{0};
@@ -80,25 +86,43 @@ void print_message(const messages::DecodedMessage& message, messages::Arrival ar
       frame.sequence, frame.frame_number, frame.tracks.size(),
       message.truncated() ? fmt::format(" of {} (truncated)", message.total_track_count) : "",
       to_ms(static_cast<double>(message.latency_ns())), frame.frames_dropped, describe(arrival));
+  for (const auto& event : frame.events) {  // docs/events.md
+    fmt::print("  event {} {} track {}{}{}\n", events::kEventKindNames.name(event.kind),
+               event.index, event.track_id,
+               event.dwell_seconds > 0.0 ? fmt::format(" after {:.1f} s", event.dwell_seconds) : "",
+               event.lost ? " (lost inside)" : "");
+  }
 }
 
 void print_corrupt(messages::DecodeError reason, std::size_t size) {
   fmt::print("corrupt message ({} bytes): {}\n", size, messages::to_string(reason));
 }
 
-void print_stats_line(const messages::ListenerStats& stats, double elapsed_s) {
+void print_corrupt_json(const std::string& problem, std::size_t size) {
+  fmt::print("corrupt JSON message ({} bytes): {}\n", size, problem);
+}
+
+/// Payloads that looked like JSON (first byte '{') but did not read as a track message.
+struct InvalidJson {
+  std::uint64_t count{0};
+  std::string first_problem;
+};
+
+void print_stats_line(const messages::ListenerStats& stats, const InvalidJson& invalid_json,
+                      double elapsed_s) {
   std::uint64_t lost = 0;
   for (const auto& entry : stats.streams()) lost += entry.second.sequences.lost();
   fmt::print("[{:.1f} s] received {}, lost {}, corrupt {}, streams {}\n", elapsed_s,
-             stats.received(), lost, stats.corrupt(), stats.streams().size());
+             stats.received(), lost, stats.corrupt() + invalid_json.count, stats.streams().size());
   std::fflush(stdout);
 }
 
 /// `elapsed_s` < 0: not a timed run (a file).
-void print_summary(const messages::ListenerStats& stats, double elapsed_s) {
+void print_summary(const messages::ListenerStats& stats, const InvalidJson& invalid_json,
+                   double elapsed_s) {
   fmt::print("summary{}: {} messages, {} corrupt, {} streams\n",
              elapsed_s >= 0 ? fmt::format(" after {:.1f} s", elapsed_s) : std::string(),
-             stats.received(), stats.corrupt(), stats.streams().size());
+             stats.received(), stats.corrupt() + invalid_json.count, stats.streams().size());
   if (stats.evicted_streams() > 0) {
     fmt::print(
         "  {} more streams ({} messages) not listed: evicted, least recently heard first, to keep "
@@ -114,6 +138,11 @@ void print_summary(const messages::ListenerStats& stats, double elapsed_s) {
         stream.truncated, to_ms(static_cast<double>(stream.latency_min_ns)),
         to_ms(stream.latency_mean_ns()), to_ms(static_cast<double>(stream.latency_max_ns)),
         stream.last_frames_dropped);
+    for (const auto& [kind_and_index, count] : stream.events) {
+      fmt::print("  stream {}: events {} {}: {}\n", id,
+                 events::kEventKindNames.name(static_cast<events::EventKind>(kind_and_index.first)),
+                 kind_and_index.second, count);
+    }
     if (seq.clashes() > 0) {
       fmt::print(
           "  stream {}: CLASH: {} messages no single sender could have sent (sequence and "
@@ -121,13 +150,15 @@ void print_summary(const messages::ListenerStats& stats, double elapsed_s) {
           id, seq.clashes(), id);
     }
   }
-  if (stats.corrupt() > 0) {
+  if (stats.corrupt() + invalid_json.count > 0) {
     fmt::print("  corrupt by reason:");
     for (std::size_t i = 1; i < messages::decode_error_count; ++i) {
       const auto reason = static_cast<messages::DecodeError>(i);
       if (stats.corrupt(reason) > 0)
         fmt::print(" {} {};", messages::to_string(reason), stats.corrupt(reason));
     }
+    if (invalid_json.count > 0)
+      fmt::print(" invalid JSON {} (first: {});", invalid_json.count, invalid_json.first_problem);
     fmt::print("\n");
   }
   std::fflush(stdout);
@@ -141,15 +172,19 @@ class MessageHandler {
       jsonl_ = std::make_unique<messages::JsonlSink>(options.jsonl_path, &detector::coco_label);
   }
 
+  /// A binary message or a JSON line (an MQTT board with format=json), told apart by the first
+  /// byte: a fleet subscription may hold both kinds of board.
   void handle(const std::uint8_t* data, std::size_t size) {
+    if (messages::looks_like_json(data, size)) {
+      handle_json(data, size);
+      return;
+    }
     const messages::DecodeError error = messages::decode_message(data, size, decoded_);
     if (error != messages::DecodeError::none) {
       handle_corrupt(error, size);
       return;
     }
-    const messages::Arrival arrival = stats_.record(decoded_);
-    if (!quiet_) print_message(decoded_, arrival);
-    if (jsonl_) jsonl_->write(decoded_);
+    record(decoded_);
   }
 
   void handle_corrupt(messages::DecodeError reason, std::size_t size) {
@@ -161,9 +196,27 @@ class MessageHandler {
     if (jsonl_) jsonl_->flush();
   }
   const messages::ListenerStats& stats() const { return stats_; }
+  const InvalidJson& invalid_json() const { return invalid_json_; }
 
  private:
+  void handle_json(const std::uint8_t* data, std::size_t size) {
+    std::string problem;
+    if (!messages::decode_json_line(data, size, decoded_, problem)) {
+      if (invalid_json_.count++ == 0) invalid_json_.first_problem = problem;
+      if (!quiet_) print_corrupt_json(problem, size);
+      return;
+    }
+    record(decoded_);
+  }
+
+  void record(const messages::DecodedMessage& message) {
+    const messages::Arrival arrival = stats_.record(message);
+    if (!quiet_) print_message(message, arrival);
+    if (jsonl_) jsonl_->write(message);
+  }
+
   bool quiet_;
+  InvalidJson invalid_json_;
   messages::DecodedMessage
       decoded_;  // reused: decoding allocates nothing once it has seen the largest frame
   messages::ListenerStats stats_;
@@ -188,7 +241,7 @@ int listen_udp(const ListenOptions& options) {
     if (options.count > 0 && datagrams >= options.count) break;
     if (options.duration_s > 0 && elapsed_s() >= options.duration_s) break;
     if (options.stats_every_s > 0 && elapsed_s() >= next_stats_s) {
-      print_stats_line(handler.stats(), elapsed_s());
+      print_stats_line(handler.stats(), handler.invalid_json(), elapsed_s());
       next_stats_s += options.stats_every_s;
     }
     std::size_t size = 0;
@@ -205,7 +258,7 @@ int listen_udp(const ListenOptions& options) {
     }
   }
   handler.flush();
-  print_summary(handler.stats(), elapsed_s());
+  print_summary(handler.stats(), handler.invalid_json(), elapsed_s());
   return to_int(ExitCode::ok);
 }
 
@@ -240,7 +293,7 @@ int listen_mqtt(const ListenOptions& options) {
       const std::lock_guard<std::mutex> lock(handler_mutex);
       if (options.count > 0 && messages_seen >= options.count) break;
       if (options.stats_every_s > 0 && elapsed_s() >= next_stats_s) {
-        print_stats_line(handler.stats(), elapsed_s());
+        print_stats_line(handler.stats(), handler.invalid_json(), elapsed_s());
         next_stats_s += options.stats_every_s;
       }
     }
@@ -249,7 +302,7 @@ int listen_mqtt(const ListenOptions& options) {
   }
   const std::lock_guard<std::mutex> lock(handler_mutex);
   handler.flush();
-  print_summary(handler.stats(), elapsed_s());
+  print_summary(handler.stats(), handler.invalid_json(), elapsed_s());
   return to_int(ExitCode::ok);
 }
 
@@ -264,7 +317,7 @@ int read_file(const ListenOptions& options) {
     handler.handle(record.data(), record.size());
   }
   handler.flush();
-  print_summary(handler.stats(), -1.0);
+  print_summary(handler.stats(), handler.invalid_json(), -1.0);
   if (status == messages::FileReadStatus::broken_framing) {
     // Everything before the break was read and reported; the file itself is malformed.
     throw InputError(options.read_path, 0, "", reader.problem());
@@ -282,12 +335,14 @@ Subcommand add_listen_command(CLI::App& parent) {
       "lost, reordered, duplicated and corrupt messages per stream");
   auto* port = cli->add_option("--port,-p", options->port,
                                "UDP port to listen on (0: any free port, logged at start)")
-                   ->check(CLI::Range(0, 65535));
+                   ->check(integer_in(0, 65535));
   auto* bind =
       cli->add_option("--bind", options->bind_address, "local address to bind (IPv4 or IPv6)")
+          ->check(bind_address())
           ->capture_default_str();
   cli->add_option("--count,-n", options->count,
-                  "stop after this many datagrams/records (0 = no limit)");
+                  "stop after this many datagrams/records (0 = no limit)")
+      ->check(integer_in(0, kMaxCount));
   auto* duration = cli->add_option("--duration", options->duration_s,
                                    "stop after this many seconds (0 = no limit)")
                        ->check(finite_in(0.0, 1e9));
@@ -304,7 +359,8 @@ Subcommand add_listen_command(CLI::App& parent) {
   auto* mqtt = cli->add_option(
       "--mqtt", options->mqtt_uri,
       "subscribe to an MQTT broker instead of UDP: mqtt://HOST[:PORT]/TOPIC (wildcards + and # "
-      "allowed; binary payloads, as `run --mqtt` publishes by default)");
+      "allowed; binary and JSON payloads (`run --mqtt ...?format=json`) are both read, told apart "
+      "by their first byte)");
   read->excludes(port)->excludes(bind)->excludes(duration);
   mqtt->excludes(port)->excludes(bind)->excludes(read);
   cli->callback([port, read, mqtt] {

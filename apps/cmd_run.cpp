@@ -13,6 +13,7 @@
 #include "common/exit_codes.hpp"
 #include "common/input_error.hpp"
 #include "detector/coco_labels.hpp"
+#include "outputs/delivery_report.hpp"
 #include "outputs/overlay.hpp"
 #include "pipeline/pipeline.hpp"
 #include "platform/board.hpp"
@@ -175,6 +176,22 @@ int run(const RunOverrides& overrides) {
     pipeline::write_report(report, config.output.report_file);
     spdlog::info("report written to {}", config.output.report_file);
   }
+  const outputs::DeliveryReport delivered = outputs::report_deliveries(outputs.deliveries);
+  for (const auto& line : delivered.lines) {
+    if (delivered.empty.empty()) {
+      spdlog::info("output {}", line);
+    } else {
+      spdlog::error("output {}", line);
+    }
+  }
+  const bool files_written = !config.output.jsonl_file.empty() ||
+                             !config.output.binary_file.empty() ||
+                             !config.output.video_file.empty();
+  if (delivered.nothing_delivered && !files_written) {
+    spdlog::error("no output delivered any message: the tracks of this run went nowhere (exit {})",
+                  to_int(ExitCode::network));
+    return to_int(ExitCode::network);
+  }
   bool failed = false;
   for (const auto& stream : report.streams) {
     if (stream.source_error.empty()) continue;
@@ -198,7 +215,7 @@ Subcommand add_run_command(CLI::App& parent) {
                   "docs/config.md and the options below");
   cli->add_option("--model", overrides->model, "the SSD's ONNX model (sets detector.kind ssd)");
   cli->add_option("--threshold", overrides->threshold, "detector score threshold in [0, 1]")
-      ->check(CLI::Range(0.0, 1.0));
+      ->check(finite_in(0.0, 1.0));
   cli->add_option(
       "--classes", overrides->classes,
       "classes to keep: COCO names or ids, comma-separated (person,car or 1,3), or all");
@@ -211,7 +228,7 @@ Subcommand add_run_command(CLI::App& parent) {
                       "or none");
   cli->add_option("--metrics-port", overrides->metrics_port,
                   "serve Prometheus metrics on http://127.0.0.1:PORT/metrics (0 = off)")
-      ->check(CLI::Range(0, 65535));
+      ->check(integer_in(0, 65535));
   cli->add_option("--source", overrides->sources,
                   "source URI: file path, v4l2:///dev/videoN, csi://N, rtsp://..., test://..., "
                   "mot-seq://SEQUENCE_DIR; repeat for several sources (one batched detector)")
@@ -237,7 +254,7 @@ Subcommand add_run_command(CLI::App& parent) {
                   "seconds between progress lines (0 = none)")
       ->check(finite_in(0.0, 86'400.0));
   cli->add_option("--stream-id", overrides->stream_id, "stream id in every message")
-      ->check(CLI::Range(std::int64_t{0}, std::int64_t{4294967295}));
+      ->check(integer_in(0, 4294967295));
   overrides->tracker_flags.add_to(*cli);
   return {cli, [overrides] { return run(*overrides); }, /*stops_on_signals=*/true};
 }

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "apps/number_checks.hpp"
 #include "apps/subcommand.hpp"
 #include "common/exit_codes.hpp"
 #include "pipeline/pipeline.hpp"
@@ -23,6 +24,11 @@
 
 namespace rtmot::app {
 namespace {
+
+// A soak runs for at most a year, and no process grows by a petabyte: ranges that keep the
+// arithmetic on them finite.
+constexpr double kMaxSoakSeconds = 366.0 * 86'400.0;
+constexpr double kMaxGrowthMb = 1e9;
 
 struct SoakOptions {
   std::string config_path;
@@ -107,12 +113,12 @@ Subcommand add_soak_command(CLI::App& parent) {
       "latency percentiles and dropped frames after every pass");
   cli->add_option("--config,-c", options->config_path, "run configuration (YAML)")->required();
   cli->add_option("--duration", options->duration_s, "seconds to keep starting passes")
-      ->check(CLI::PositiveNumber)
+      ->check(positive_up_to(kMaxSoakSeconds))
       ->capture_default_str();
   cli->add_option("--max-growth-mb", options->max_growth_mb,
                   "fail (exit 1) if VmRSS grew more than this after warm-up (first third of the "
                   "passes); 0 = report only")
-      ->check(CLI::NonNegativeNumber)
+      ->check(finite_in(0.0, kMaxGrowthMb))
       ->capture_default_str();
   return {cli, [options] { return run_soak(*options); }, /*stops_on_signals=*/true};
 }

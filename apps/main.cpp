@@ -111,7 +111,7 @@ int main(int argc, char** argv) {
   using namespace rtmot::app;
   const std::vector<Subcommand> subcommands = {
       // SUBCOMMAND-LIST
-      add_eval_command(app), add_listen_command(app), add_run_command(app),
+      add_count_command(app), add_eval_command(app), add_listen_command(app), add_run_command(app),
       add_soak_command(app), add_study_command(app),  add_track_command(app),
   };
 

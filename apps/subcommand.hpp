@@ -17,6 +17,7 @@ struct Subcommand {
 
 // One line per subcommand (keep alphabetical). Defined in apps/cmd_<name>.cpp.
 // SUBCOMMAND-DECLARATIONS
+Subcommand add_count_command(CLI::App& parent);
 Subcommand add_eval_command(CLI::App& parent);
 Subcommand add_listen_command(CLI::App& parent);
 Subcommand add_run_command(CLI::App& parent);

@@ -1,21 +1,29 @@
-// The SSD on N images per forward pass (Detector::detect_batch), per backend: what many cameras on
-// one detector gain. For each backend and batch size it times detect_batch() over vtest.avi frames
-// held in memory, and, inside it, the forward pass alone (SsdDetector::last_forward_ns), and prints
-// min / median per batch and per image. Not Google Benchmark: the numbers wanted are the min and
-// median of individual calls, per image, for a table (docs/gpu.md).
+// The SSD on N images per forward pass (Detector::detect_batch), per backend, side by side in one
+// process: for each thread count and batch size it builds one detector per backend and then calls
+// them in turn, call by call, so a shared or loaded machine's drift hits every backend alike. It
+// times detect_batch() over vtest.avi frames held in memory and, inside it, the forward pass alone
+// (SsdDetector::last_forward_ns), and prints min / median per batch and per image, and each
+// backend's median forward pass relative to the first backend's. Not Google Benchmark: the
+// numbers wanted are the min and median of individual calls, per image, for a table
+// (docs/gpu.md, docs/cpu-detector.md).
 //
-// Run: detector_batch_bench [--backends cpu,cuda,cuda-fp16] [--batches 1,2,4,8] [--iterations N]
-//                           [--threads N] [--model PATH] [--vary]
+// Run: detector_batch_bench [--backends cpu,xnnpack,cuda,cuda-fp16] [--batches 1,2,4,8]
+//                           [--threads 1,2] [--iterations N] [--model PATH] [--vary]
+// Backends default to every one this build has (cpu is OpenCV DNN; a backend the machine lacks is
+// reported and skipped); threads default to 1,2 (0: OpenCV's default and one XNNPACK worker per
+// core).
 // --vary: every other call one image short (batch, batch - 1, batch, ...), as a multi-source
 // pipeline's batches are when a camera is late: shows what OpenCV's re-planning on a change of
 // input shape costs.
 // Frames: RTMOT_BENCH_FRAMES=URI (e.g. images://DIR), else ../shared/data/video/vtest.avi through
-// GStreamer. A backend that this build or machine lacks is reported and skipped.
+// GStreamer.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
+#include <memory>
+#include <opencv2/core/version.hpp>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -23,17 +31,26 @@
 #include "bench_frames.hpp"
 #include "common/input_error.hpp"
 #include "detector/ssd_detector.hpp"
+#include "detector/xnnpack_network.hpp"
 
 namespace {
 
 using rtmot::detector::BackendRequest;
 using rtmot::detector::Fp16Request;
 
+std::vector<std::string> built_backends() {
+  std::vector<std::string> names{"cpu"};
+  if (rtmot::detector::xnnpack_built()) names.emplace_back("xnnpack");
+  names.emplace_back("cuda");
+  names.emplace_back("cuda-fp16");
+  return names;
+}
+
 struct Options {
-  std::vector<std::string> backends{"cpu", "cuda", "cuda-fp16"};
+  std::vector<std::string> backends{built_backends()};
   std::vector<int> batches{1, 2, 4, 8};
   int iterations{30};
-  int threads{0};
+  std::vector<int> threads{1, 2};
   std::string model{RTMOT_MODEL_PATH};
   bool vary{false};
 };
@@ -61,14 +78,16 @@ Options parse(int argc, char** argv) {
     } else if (arg == "--iterations" && has_value) {
       options.iterations = std::stoi(argv[++i]);
     } else if (arg == "--threads" && has_value) {
-      options.threads = std::stoi(argv[++i]);
+      options.threads.clear();
+      for (const auto& t : split(argv[++i])) options.threads.push_back(std::stoi(t));
     } else if (arg == "--model" && has_value) {
       options.model = argv[++i];
     } else if (arg == "--vary") {
       options.vary = true;
     } else {
-      std::cerr << "usage: detector_batch_bench [--backends cpu,cuda,cuda-fp16] "
-                   "[--batches 1,2,4,8] [--iterations N] [--threads N] [--model PATH] [--vary]\n";
+      std::cerr << "usage: detector_batch_bench [--backends cpu,xnnpack,cuda,cuda-fp16] "
+                   "[--batches 1,2,4,8] [--threads 1,2] [--iterations N] [--model PATH] "
+                   "[--vary]\n";
       std::exit(2);
     }
   }
@@ -87,42 +106,66 @@ double minimum(const std::vector<double>& values) {
 
 }  // namespace
 
+struct Run {
+  std::string backend;
+  std::unique_ptr<rtmot::detector::SsdDetector> detector;
+  std::vector<double> call_ms;
+  std::vector<double> forward_ms;
+};
+
+std::unique_ptr<rtmot::detector::SsdDetector> make_detector(const Options& options,
+                                                            const std::string& backend, int threads,
+                                                            int batch) {
+  rtmot::detector::SsdConfig config;
+  config.model_path = options.model;
+  config.backend = backend == "xnnpack" ? BackendRequest::xnnpack
+                   : backend == "cpu"   ? BackendRequest::cpu
+                                        : BackendRequest::cuda;
+  config.fp16 = backend == "cuda-fp16" ? Fp16Request::on : Fp16Request::off;
+  config.threads = threads;
+  config.max_batch = batch;
+  config.score_threshold = 0.5F;
+  config.classes = {1};
+  return std::make_unique<rtmot::detector::SsdDetector>(config);
+}
+
 int main(int argc, char** argv) {
   const Options options = parse(argc, argv);
+  for (const auto& backend : options.backends) {
+    if (backend != "cpu" && backend != "xnnpack" && backend != "cuda" && backend != "cuda-fp16") {
+      std::cerr << "detector_batch_bench: unknown backend '" << backend
+                << "' (cpu, xnnpack, cuda, cuda-fp16)\n";
+      return 2;
+    }
+  }
   std::string error;
   const std::vector<cv::Mat> frames = rtmot::bench::load_bench_frames(16, 25, error);
   if (frames.empty()) {
     std::cerr << "detector_batch_bench: " << error << "\n";
     return 3;
   }
-  std::printf("frames: %zu of %s, %dx%d; %d timed calls per row after 3 warm-up calls\n",
-              frames.size(), rtmot::bench::bench_frames_uri().c_str(), frames[0].cols,
-              frames[0].rows, options.iterations);
-  std::printf("%-10s %5s | %9s %9s | %9s %9s | %9s %9s | %8s\n", "backend", "batch", "call min",
-              "call med", "fwd min", "fwd med", "img med", "fwd/img", "images/s");
-  for (const std::string& backend : options.backends) {
+  std::printf(
+      "frames: %zu of %s, %dx%d; %d timed calls per row after 3 warm-up calls, backends "
+      "called in turn; OpenCV %s\n",
+      frames.size(), rtmot::bench::bench_frames_uri().c_str(), frames[0].cols, frames[0].rows,
+      options.iterations, CV_VERSION);
+  std::printf("%-10s %7s %5s | %9s %9s | %9s %9s | %9s %9s | %8s | %6s\n", "backend", "threads",
+              "batch", "call min", "call med", "fwd min", "fwd med", "img med", "fwd/img",
+              "images/s", "fwd x");
+  for (const int threads : options.threads) {
     for (const int batch : options.batches) {
-      rtmot::detector::SsdConfig config;
-      config.model_path = options.model;
-      config.backend = backend == "cpu" ? BackendRequest::cpu : BackendRequest::cuda;
-      config.fp16 = backend == "cuda-fp16" ? Fp16Request::on : Fp16Request::off;
-      config.threads = options.threads;
-      config.max_batch = batch;
-      config.score_threshold = 0.5F;
-      config.classes = {1};
-      std::unique_ptr<rtmot::detector::SsdDetector> detector;
-      try {
-        detector = std::make_unique<rtmot::detector::SsdDetector>(config);
-      } catch (const rtmot::InputError& e) {
-        std::printf("%-10s %5d | skipped: %s\n", backend.c_str(), batch, e.what());
-        break;
+      std::vector<Run> runs;
+      for (const std::string& backend : options.backends) {
+        try {
+          runs.push_back({backend, make_detector(options, backend, threads, batch), {}, {}});
+          std::printf("# %s\n", runs.back().detector->describe().c_str());
+        } catch (const rtmot::InputError& e) {
+          std::printf("%-10s %7d %5d | skipped: %s\n", backend.c_str(), threads, batch, e.what());
+        }
       }
-      if (batch == options.batches.front()) std::printf("# %s\n", detector->describe().c_str());
       std::vector<const cv::Mat*> images(static_cast<std::size_t>(batch));
       std::vector<std::int64_t> numbers(static_cast<std::size_t>(batch));
       std::vector<std::vector<rtmot::tracker::Detection>> out;
-      std::vector<double> call_ms;
-      std::vector<double> forward_ms;
       std::size_t next = 0;
       for (int i = -3; i < options.iterations; ++i) {
         const int count = options.vary && batch > 1 && i % 2 != 0 ? batch - 1 : batch;
@@ -131,25 +174,32 @@ int main(int argc, char** argv) {
           numbers[static_cast<std::size_t>(k)] = static_cast<std::int64_t>(next % frames.size());
           ++next;
         }
-        const auto start = std::chrono::steady_clock::now();
-        detector->detect_batch(images.data(), numbers.data(), count, out);
-        const double ms =
-            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-                .count();
-        if (i < 0) continue;  // warm-up
-        call_ms.push_back(ms);
-        forward_ms.push_back(static_cast<double>(detector->last_forward_ns()) * 1e-6);
+        for (Run& run : runs) {  // the same images for every backend, in turn
+          const auto start = std::chrono::steady_clock::now();
+          run.detector->detect_batch(images.data(), numbers.data(), count, out);
+          const double ms =
+              std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+                  .count();
+          if (i < 0) continue;  // warm-up
+          run.call_ms.push_back(ms);
+          run.forward_ms.push_back(static_cast<double>(run.detector->last_forward_ns()) * 1e-6);
+        }
       }
-      const double call_median = median(call_ms);
       // With --vary the calls hold batch - 0.5 images on average.
       const bool varied = options.vary && batch > 1;
       const double per_call = varied ? batch - 0.5 : batch;
       const std::string label =
           varied ? std::to_string(batch) + "/" + std::to_string(batch - 1) : std::to_string(batch);
-      std::printf("%-10s %5s | %9.2f %9.2f | %9.2f %9.2f | %9.2f %9.2f | %8.1f\n", backend.c_str(),
-                  label.c_str(), minimum(call_ms), call_median, minimum(forward_ms),
-                  median(forward_ms), call_median / per_call, median(forward_ms) / per_call,
-                  1000.0 * per_call / call_median);
+      const double baseline = runs.empty() ? 0.0 : median(runs.front().forward_ms);
+      for (const Run& run : runs) {
+        const double call_median = median(run.call_ms);
+        const double forward_median = median(run.forward_ms);
+        std::printf("%-10s %7d %5s | %9.2f %9.2f | %9.2f %9.2f | %9.2f %9.2f | %8.1f | %6.2f\n",
+                    run.backend.c_str(), threads, label.c_str(), minimum(run.call_ms), call_median,
+                    minimum(run.forward_ms), forward_median, call_median / per_call,
+                    forward_median / per_call, 1000.0 * per_call / call_median,
+                    baseline / forward_median);
+      }
       std::fflush(stdout);
     }
   }

@@ -1,7 +1,9 @@
 // The SSD detector's own speed on vtest.avi frames: frames are decoded into memory first (through
 // rtmot's sources: bench_frames.hpp), so only detect() (resize, normalise, forward pass, decoding,
-// NMS) is timed. Needs the model (scripts/fetch_model.sh) and ../shared/data/video/vtest.avi (or
-// RTMOT_BENCH_FRAMES=images://DIR). For batches and the CUDA backends: detector_batch_bench.
+// NMS) is timed, on OpenCV DNN's CPU path (backend 0) and on XNNPACK (backend 1, where built).
+// Needs the model (scripts/fetch_model.sh) and ../shared/data/video/vtest.avi (or
+// RTMOT_BENCH_FRAMES=images://DIR). For batches, the CUDA backends and backends called in turn
+// (side by side, fairer on a loaded machine): detector_batch_bench.
 // Run: build/bench/detector_bench [--benchmark_filter=...]
 #include <benchmark/benchmark.h>
 
@@ -9,6 +11,7 @@
 
 #include "bench_frames.hpp"
 #include "detector/ssd_detector.hpp"
+#include "detector/xnnpack_network.hpp"
 
 namespace {
 
@@ -35,10 +38,17 @@ void BM_SsdDetect(benchmark::State& state) {
     state.SkipWithError(("no frames: " + frames().error).c_str());
     return;
   }
+  const bool xnnpack = state.range(0) == 1;
+  if (xnnpack && !rtmot::detector::xnnpack_built()) {
+    state.SkipWithError("this build has no XNNPACK backend");
+    return;
+  }
+  state.SetLabel(xnnpack ? "xnnpack" : "opencv-cpu");
   rtmot::detector::SsdConfig config;
   config.model_path = RTMOT_MODEL_PATH;
-  config.backend = rtmot::detector::BackendRequest::cpu;
-  config.threads = static_cast<int>(state.range(0));
+  config.backend =
+      xnnpack ? rtmot::detector::BackendRequest::xnnpack : rtmot::detector::BackendRequest::cpu;
+  config.threads = static_cast<int>(state.range(1));
   config.score_threshold = 0.5F;
   config.classes = {1};
   std::unique_ptr<rtmot::detector::SsdDetector> detector;
@@ -61,9 +71,8 @@ void BM_SsdDetect(benchmark::State& state) {
       static_cast<double>(boxes) / static_cast<double>(state.iterations());
 }
 BENCHMARK(BM_SsdDetect)
-    ->ArgName("threads")
-    ->Arg(1)
-    ->Arg(2)
+    ->ArgNames({"backend", "threads"})
+    ->ArgsProduct({{0, 1}, {1, 2}})
     ->Unit(benchmark::kMillisecond)
     ->MinTime(3.0)
     ->UseRealTime();

@@ -3,15 +3,42 @@
 #include <algorithm>
 #include <opencv2/core/cuda.hpp>
 #include <opencv2/dnn.hpp>
+#include <utility>
 
 #include "common/input_error.hpp"
+#include "detector/xnnpack_network.hpp"
 
 namespace rtmot::detector {
 
+namespace {
+
+constexpr std::pair<BackendRequest, const char*> kBackendNames[] = {
+    {BackendRequest::automatic, "auto"},
+    {BackendRequest::cpu, "cpu"},
+    {BackendRequest::cuda, "cuda"},
+    {BackendRequest::xnnpack, "xnnpack"},
+};
+
+}  // namespace
+
+const char* backend_request_name(BackendRequest request) {
+  for (const auto& [value, name] : kBackendNames) {
+    if (value == request) return name;
+  }
+  return "?";
+}
+
+std::string backend_request_names() {
+  std::string names;
+  for (const auto& entry : kBackendNames)
+    names += (names.empty() ? "" : ", ") + std::string(entry.second);
+  return names;
+}
+
 std::optional<BackendRequest> parse_backend_request(const std::string& text) {
-  if (text == "auto") return BackendRequest::automatic;
-  if (text == "cpu") return BackendRequest::cpu;
-  if (text == "cuda") return BackendRequest::cuda;
+  for (const auto& [value, name] : kBackendNames) {
+    if (text == name) return value;
+  }
   return std::nullopt;
 }
 
@@ -30,6 +57,7 @@ BackendCapabilities probe_backend_capabilities() {
   });
   caps.cuda_devices = cv::cuda::getCudaEnabledDeviceCount();
   if (caps.cuda_devices > 0) caps.integrated_gpu = cv::cuda::DeviceInfo(0).integrated();
+  caps.xnnpack_built = xnnpack_built();
   return caps;
 }
 
@@ -47,6 +75,13 @@ BackendChoice choose_backend(BackendRequest backend, Fp16Request fp16,
                          " (build OpenCV with scripts/build_opencv.sh --cuda: docs/gpu.md)",
                      ExitCode::usage);
   }
+  if (backend == BackendRequest::xnnpack && !caps.xnnpack_built) {
+    throw InputError("detector", 0, "backend",
+                     "xnnpack was requested but this build has no XNNPACK backend (install "
+                     "libxnnpack-dev and libonnx-dev, scripts/install_deps.sh, and rebuild: "
+                     "docs/cpu-detector.md)",
+                     ExitCode::usage);
+  }
   const bool use_cuda =
       backend == BackendRequest::cuda || (backend == BackendRequest::automatic && cuda_possible);
   if (!use_cuda) {
@@ -55,8 +90,17 @@ BackendChoice choose_backend(BackendRequest backend, Fp16Request fp16,
                        "fp16 needs the cuda backend; the detector runs on the cpu",
                        ExitCode::usage);
     }
-    const std::string reason = backend == BackendRequest::cpu ? "cpu requested" : why_not_cuda;
-    return {cv::dnn::DNN_BACKEND_OPENCV, cv::dnn::DNN_TARGET_CPU, "cpu", reason};
+    if (backend == BackendRequest::xnnpack) {
+      return {Engine::xnnpack, 0, 0, "xnnpack", "xnnpack requested"};
+    }
+    if (backend == BackendRequest::automatic && caps.xnnpack_built) {
+      return {Engine::xnnpack, 0, 0, "xnnpack",
+              why_not_cuda + "; xnnpack is the fastest CPU backend built in"};
+    }
+    const std::string reason = backend == BackendRequest::cpu
+                                   ? "cpu requested"
+                                   : why_not_cuda + "; no xnnpack in this build";
+    return {Engine::opencv, cv::dnn::DNN_BACKEND_OPENCV, cv::dnn::DNN_TARGET_CPU, "cpu", reason};
   }
   const std::string origin = backend == BackendRequest::cuda ? "cuda requested" : "cuda available";
   const bool half =
@@ -65,7 +109,7 @@ BackendChoice choose_backend(BackendRequest backend, Fp16Request fp16,
                                   : fp16 == Fp16Request::off ? "fp16 off by request"
                                   : half                     ? "fp16 on an integrated (Jetson) GPU"
                                                              : "fp32 on a discrete GPU";
-  return {cv::dnn::DNN_BACKEND_CUDA,
+  return {Engine::opencv, cv::dnn::DNN_BACKEND_CUDA,
           half ? cv::dnn::DNN_TARGET_CUDA_FP16 : cv::dnn::DNN_TARGET_CUDA,
           half ? "cuda-fp16" : "cuda", origin + ", " + fp16_reason};
 }

@@ -1,22 +1,30 @@
 #pragma once
-// Which OpenCV DNN backend/target runs the SSD, decided once at start-up.
+// Which engine (OpenCV DNN backend/target, or XNNPACK) runs the SSD, decided once at start-up.
 #include <optional>
 #include <string>
 
 namespace rtmot::detector {
 
-enum class BackendRequest { automatic, cpu, cuda };
+enum class BackendRequest { automatic, cpu, cuda, xnnpack };
 enum class Fp16Request { automatic, on, off };
 
-/// "auto"/"cpu"/"cuda" -> request; nullopt otherwise.
+/// The one table of backend names ("auto", "cpu", "cuda", "xnnpack"), for parsing and messages.
+const char* backend_request_name(BackendRequest request);
+/// "auto, cpu, cuda, xnnpack": what the settings accept, for messages and help.
+std::string backend_request_names();
+/// A name of the table -> request; nullopt otherwise.
 std::optional<BackendRequest> parse_backend_request(const std::string& text);
 /// "auto"/"on"/"off" (also "true"/"false") -> request; nullopt otherwise.
 std::optional<Fp16Request> parse_fp16_request(const std::string& text);
 
+/// What runs the forward pass: OpenCV DNN (backend/target below) or the XNNPACK subgraph.
+enum class Engine { opencv, xnnpack };
+
 struct BackendChoice {
+  Engine engine{Engine::opencv};
   int backend{0};      // cv::dnn::Backend
   int target{0};       // cv::dnn::Target
-  std::string name;    // "cpu", "cuda", "cuda-fp16"
+  std::string name;    // "cpu", "cuda", "cuda-fp16", "xnnpack"
   std::string reason;  // why, for the log
 };
 
@@ -25,14 +33,16 @@ struct BackendCapabilities {
   bool opencv_has_cuda{false};  // cv::dnn::getAvailableBackends() lists DNN_BACKEND_CUDA
   int cuda_devices{0};          // cv::cuda::getCudaEnabledDeviceCount()
   bool integrated_gpu{false};   // device 0 shares memory with the CPU: a Jetson board
+  bool xnnpack_built{false};    // this build has the XNNPACK backend
 };
 
 BackendCapabilities probe_backend_capabilities();
 
-/// CUDA when asked or (automatic) when available, else the CPU. FP16 on CUDA when asked or
+/// CUDA when asked or (automatic) when available; else (automatic) XNNPACK when built in, the
+/// fastest CPU engine (docs/cpu-detector.md), else OpenCV's CPU path. FP16 on CUDA when asked or
 /// (automatic) on Jetson boards, where it roughly doubles throughput at no measurable accuracy
 /// cost; discrete GPUs without tensor-core paths in OpenCV gain little. Throws rtmot::InputError
-/// (ExitCode::usage) when CUDA is forced but impossible, or FP16 is forced on the CPU.
+/// (ExitCode::usage) when CUDA or XNNPACK is forced but impossible, or FP16 is forced on the CPU.
 BackendChoice choose_backend(BackendRequest backend, Fp16Request fp16,
                              const BackendCapabilities& capabilities);
 

@@ -3,11 +3,12 @@
 #include <algorithm>
 #include <cctype>
 #include <cstring>
-#include <fstream>
+#include <sstream>
 #include <system_error>
 #include <vector>
 
 #include "common/input_error.hpp"
+#include "detector/model_files.hpp"
 
 namespace rtmot::detector {
 namespace {
@@ -121,21 +122,20 @@ std::string sha256_hex(const std::string& bytes) {
 }
 
 std::string sha256_file_hex(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    throw InputError(path.string(), 0, "", "cannot read the file (permissions?)",
-                     ExitCode::bad_model);
-  }
+  // Streamed (the model is tens of MB), bounded by the model's size limit: a file that grows
+  // beyond it while being hashed is refused too.
+  InputFile in = open_model_file(path, kMaxModelBytes, "file listed in the checksums");
   Sha256 hash;
   std::vector<char> buffer(1 << 16);
-  while (in) {
-    in.read(buffer.data(), static_cast<std::streamsize>(buffer.size()));
-    hash.update(reinterpret_cast<const unsigned char*>(buffer.data()),
-                static_cast<std::size_t>(in.gcount()));
-  }
-  if (in.bad()) {
-    throw InputError(path.string(), 0, "", "read error while checking its checksum",
-                     ExitCode::bad_model);
+  std::uint64_t total = 0;
+  while (const std::size_t got = in.read(buffer.data(), buffer.size())) {
+    total += got;
+    if (total > kMaxModelBytes) {
+      throw InputError(path.string(), 0, "",
+                       "grew beyond " + std::to_string(kMaxModelBytes) + " bytes while hashed",
+                       ExitCode::bad_model);
+    }
+    hash.update(reinterpret_cast<const unsigned char*>(buffer.data()), got);
   }
   return hash.hex();
 }
@@ -150,11 +150,7 @@ int verify_model_checksums(const std::filesystem::path& checksum_file,
                            const std::filesystem::path& anchors_path) {
   std::error_code error;
   if (!std::filesystem::exists(checksum_file, error)) return 0;
-  std::ifstream in(checksum_file);
-  if (!in) {
-    throw InputError(checksum_file.string(), 0, "", "cannot read the checksum file (permissions?)",
-                     ExitCode::bad_model);
-  }
+  std::istringstream in(read_model_file(checksum_file, kMaxChecksumBytes, "checksum file"));
   const std::filesystem::path folder = checksum_file.parent_path();
   int checked = 0;
   int line_number = 0;

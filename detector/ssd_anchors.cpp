@@ -3,10 +3,11 @@
 #include <array>
 #include <cmath>
 #include <cstdlib>
-#include <fstream>
+#include <sstream>
 #include <string>
 
 #include "common/input_error.hpp"
+#include "detector/model_files.hpp"
 
 namespace rtmot::detector {
 namespace {
@@ -27,12 +28,7 @@ float parse_field(const std::string& text, const std::filesystem::path& path, in
 }  // namespace
 
 std::vector<Anchor> read_anchors(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  if (!in) {
-    throw InputError(path.string(), 0, "",
-                     "cannot open the anchors file (run scripts/fetch_model.sh)",
-                     ExitCode::bad_model);
-  }
+  std::istringstream in(read_model_file(path, kMaxAnchorsBytes, "anchors file"));
   std::vector<Anchor> anchors;
   std::string text;
   for (int line = 1; std::getline(in, text); ++line) {

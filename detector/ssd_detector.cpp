@@ -1,8 +1,10 @@
 #include "detector/ssd_detector.hpp"
 
+#include <spdlog/spdlog.h>
+
 #include <algorithm>
 #include <chrono>
-#include <fstream>
+#include <cmath>
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 #include <sstream>
@@ -11,6 +13,7 @@
 #include "common/input_error.hpp"
 #include "detector/coco_labels.hpp"
 #include "detector/model_checksum.hpp"
+#include "detector/model_files.hpp"
 
 namespace rtmot::detector {
 namespace {
@@ -35,12 +38,12 @@ void require_readable_file(const std::filesystem::path& path, const char* what) 
   if (std::filesystem::is_directory(status)) {
     throw model_error(path, std::string("the ") + what + " path is a folder, not a file");
   }
-  if (!std::filesystem::is_regular_file(status)) {
+  if (!std::filesystem::exists(status)) {
     throw model_error(path, std::string(what) + " file not found (run scripts/fetch_model.sh)");
   }
-  if (!std::ifstream(path, std::ios::binary)) {
-    throw model_error(path, std::string("cannot read the ") + what + " file (permissions?)");
-  }
+  // Opened (and closed) as every input is: a FIFO or device named here never reaches OpenCV's
+  // own reader, which would block on it or read it without end.
+  open_model_file(path, kMaxModelBytes, what);
 }
 
 cv::dnn::Net load_network(const std::filesystem::path& path, const BackendChoice& backend) {
@@ -104,13 +107,67 @@ std::filesystem::path default_anchors_path(const std::filesystem::path& model_pa
 SsdDetector::SsdDetector(SsdConfig config)
     : config_(std::move(config)),
       backend_(checked_backend(config_)),
-      net_(load_network(config_.model_path, backend_)),
+      xnn_(backend_.engine == Engine::xnnpack ? build_xnnpack() : nullptr),
+      net_(backend_.engine == Engine::opencv ? load_network(config_.model_path, backend_)
+                                             : cv::dnn::Net()),
       postprocess_(read_anchors(anchors_path_of(config_)), kNumClasses,
                    postprocess_config(config_)),
       resized_(kInputSize, kInputSize, CV_8UC3),
       normalized_(kInputSize, kInputSize, CV_32FC3),
       output_names_{"box_encodings", "class_logits"} {
   if (config_.threads > 0) cv::setNumThreads(config_.threads);
+  if (backend_.engine == Engine::xnnpack && start_xnnpack()) return;
+  start_opencv();
+  // The choice and its reason are logged by whoever builds the pipeline (describe()), once.
+}
+
+std::unique_ptr<XnnpackNetwork> SsdDetector::build_xnnpack() {
+  try {
+    XnnpackNetworkConfig xnn;
+    xnn.model_path = config_.model_path;
+    xnn.input_size = kInputSize;
+    xnn.max_batch = config_.max_batch;
+    xnn.threads = config_.threads;
+    return std::make_unique<XnnpackNetwork>(xnn);
+  } catch (const InputError& e) {
+    if (config_.backend != BackendRequest::automatic || e.exit_code() != ExitCode::bad_model) {
+      throw;
+    }
+    fall_back_to_opencv(e.what());
+    return nullptr;
+  }
+}
+
+bool SsdDetector::start_xnnpack() {
+  try {
+    for (int image = 0; image < config_.max_batch; ++image) {
+      xnn_inputs_.emplace_back(kInputSize, kInputSize, CV_32FC3, xnn_->input(image));
+    }
+    warm_up(1);
+    if (config_.max_batch > 1) warm_up(config_.max_batch);
+    return true;
+  } catch (const InputError& e) {
+    if (config_.backend != BackendRequest::automatic || e.exit_code() != ExitCode::bad_model) {
+      throw;
+    }
+    fall_back_to_opencv(e.what());
+    xnn_.reset();
+    xnn_inputs_.clear();
+    return false;
+  }
+}
+
+// auto: the model may still run on OpenCV (an operator XNNPACK lacks); if not, OpenCV's own
+// start-up says why.
+void SsdDetector::fall_back_to_opencv(const std::string& why) {
+  spdlog::warn("detector: xnnpack cannot run the model ({}); falling back to OpenCV's cpu backend",
+               why);
+  backend_ = {Engine::opencv, cv::dnn::DNN_BACKEND_OPENCV, cv::dnn::DNN_TARGET_CPU, "cpu",
+              "xnnpack cannot run the model (" + why + ")"};
+}
+
+void SsdDetector::start_opencv() {
+  if (net_.empty()) net_ = load_network(config_.model_path, backend_);
   const int batch = config_.max_batch;
   const int blob_shape[] = {batch, 3, kInputSize, kInputSize};
   blob_.create(4, blob_shape, CV_32F);
@@ -131,7 +188,6 @@ SsdDetector::SsdDetector(SsdConfig config)
   // context, cuDNN plans) out of the first frame.
   warm_up(1);
   if (batch > 1) warm_up(batch);
-  // The choice and its reason are logged by whoever builds the pipeline (describe()), once.
 }
 
 void SsdDetector::warm_up(int count) {
@@ -139,18 +195,26 @@ void SsdDetector::warm_up(int count) {
     forward(count);
   } catch (const cv::Exception& e) {
     throw model_error(config_.model_path, "the model does not run: " + e.msg);
+  } catch (const std::runtime_error& e) {  // XNNPACK's
+    throw model_error(config_.model_path, std::string("the model does not run: ") + e.what());
   }
   const auto anchors = static_cast<std::size_t>(postprocess_.num_anchors());
   const int pass = count == 1 ? 1 : config_.max_batch;  // images the network computed
   const auto images = static_cast<std::size_t>(pass);
-  if (outputs_.size() != 2 || outputs_[0].total() != images * anchors * 4 ||
-      outputs_[1].total() != images * anchors * kNumClasses) {
-    throw model_error(config_.model_path,
-                      "the model's outputs do not match " + std::to_string(anchors) +
-                          " anchors x (4 box codes, 91 classes): wrong model or anchors file");
+  const std::string mismatch = "the model's outputs do not match " + std::to_string(anchors) +
+                               " anchors x (4 box codes, 91 classes): wrong model or anchors file";
+  if (xnn_) {
+    if (xnn_->anchors() != anchors || xnn_->classes() != static_cast<std::size_t>(kNumClasses)) {
+      throw model_error(config_.model_path, mismatch);
+    }
+  } else if (outputs_.size() != 2 || outputs_[0].total() != images * anchors * 4 ||
+             outputs_[1].total() != images * anchors * kNumClasses) {
+    throw model_error(config_.model_path, mismatch);
   }
-  // A model exported for one image per pass concatenates a batch's anchors into one row.
-  if (outputs_[0].dims < 3 || outputs_[0].size[0] != pass || outputs_[1].size[0] != pass) {
+  // A model exported for one image per pass concatenates a batch's anchors into one row (the
+  // xnnpack builder refuses such a model's input shape itself).
+  if (!xnn_ &&
+      (outputs_[0].dims < 3 || outputs_[0].size[0] != pass || outputs_[1].size[0] != pass)) {
     throw model_error(config_.model_path,
                       "the model takes one image per pass (exported before batching), max_batch " +
                           std::to_string(pass) +
@@ -159,17 +223,27 @@ void SsdDetector::warm_up(int count) {
   }
   // NaN or infinite weights (a damaged or badly converted model) make every score NaN, and NaN
   // compares false with the threshold: the detector would silently find nothing.
-  for (const cv::Mat& output : outputs_) {
-    if (!cv::checkRange(output)) {
-      throw model_error(config_.model_path,
-                        "the model computes NaN or infinite values on its start-up pass (damaged "
-                        "weights?): run scripts/fetch_model.sh again");
-    }
+  const auto finite = [](const float* data, std::size_t n) {
+    return std::all_of(data, data + n, [](float v) { return std::isfinite(v); });
+  };
+  if (!finite(boxes_, images * anchors * 4) || !finite(logits_, images * anchors * kNumClasses)) {
+    throw model_error(config_.model_path,
+                      "the model computes NaN or infinite values on its start-up pass (damaged "
+                      "weights?): run scripts/fetch_model.sh again");
   }
 }
 
 void SsdDetector::forward(int count) {
   const auto start = std::chrono::steady_clock::now();
+  if (xnn_) {
+    xnn_->run(count);
+    boxes_ = xnn_->boxes();
+    logits_ = xnn_->logits();
+    last_forward_ns_ = std::chrono::duration_cast<std::chrono::nanoseconds>(
+                           std::chrono::steady_clock::now() - start)
+                           .count();
+    return;
+  }
   // Each network always sees the same input shape: a new shape would make OpenCV re-plan (and
   // re-allocate) every layer. Slots count.. of a padded batch hold earlier images; their outputs
   // are not read.
@@ -179,7 +253,20 @@ void SsdDetector::forward(int count) {
   // about 1000 small heap allocations (per-layer bookkeeping: Mat vectors, scratch of at most
   // 64 KB) and returns headers on the network's own output blobs. No buffer the size of an image
   // or blob: those above are reused.
-  net.forward(outputs_, output_names_);
+  try {
+    net.forward(outputs_, output_names_);
+  } catch (const cv::Exception& e) {
+    if (backend_.backend != cv::dnn::DNN_BACKEND_CUDA) throw;
+    // A CUDA failure while running (a replayed graph, a stream, a lost device): name the backend
+    // and the way out; exit code bad_model ("does not run"), through the run's usual error path.
+    throw InputError("", 0, "",
+                     "detector: the forward pass failed on " + backend_.name + " at run time (" +
+                         e.msg +
+                         "): set 'backend: cpu' in the detector config to run without the GPU",
+                     ExitCode::bad_model);
+  }
+  boxes_ = outputs_[0].ptr<float>();
+  logits_ = outputs_[1].ptr<float>();
   last_forward_ns_ =
       std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - start)
           .count();
@@ -195,6 +282,10 @@ void SsdDetector::preprocess(const cv::Mat& bgr_image, int slot) {
   // reference, this way by 5e-5. (cv::resize also allocates two small interpolation tables.)
   cv::resize(bgr_image, resized_, resized_.size(), 0.0, 0.0, cv::INTER_LINEAR);
   resized_.convertTo(normalized_, CV_32F, kPixelScale, -1.0);
+  if (xnn_) {
+    cv::cvtColor(normalized_, xnn_inputs_[static_cast<std::size_t>(slot)], cv::COLOR_BGR2RGB);
+    return;  // XNNPACK takes NHWC: the same values, interleaved
+  }
   cv::split(normalized_, planes_.data() + 3 * slot);  // into blob_, reordered to RGB
 }
 
@@ -202,8 +293,7 @@ void SsdDetector::detect(const cv::Mat& bgr_image, std::int64_t /*frame_number*/
                          std::vector<tracker::Detection>& out) {
   preprocess(bgr_image, 0);
   forward(1);
-  postprocess_.run(outputs_[0].ptr<float>(), outputs_[1].ptr<float>(), bgr_image.cols,
-                   bgr_image.rows, out);
+  postprocess_.run(boxes_, logits_, bgr_image.cols, bgr_image.rows, out);
 }
 
 void SsdDetector::detect_batch(const cv::Mat* const* images, const std::int64_t* /*frame_numbers*/,
@@ -220,9 +310,9 @@ void SsdDetector::detect_batch(const cv::Mat* const* images, const std::int64_t*
     // Outputs are [n, anchors, 4] and [n, anchors, 91]: image i's rows follow image i-1's.
     for (int i = 0; i < n; ++i) {
       const cv::Mat& image = *images[first + i];
-      postprocess_.run(outputs_[0].ptr<float>() + static_cast<std::size_t>(i) * box_stride,
-                       outputs_[1].ptr<float>() + static_cast<std::size_t>(i) * logit_stride,
-                       image.cols, image.rows, out[static_cast<std::size_t>(first + i)]);
+      postprocess_.run(boxes_ + static_cast<std::size_t>(i) * box_stride,
+                       logits_ + static_cast<std::size_t>(i) * logit_stride, image.cols, image.rows,
+                       out[static_cast<std::size_t>(first + i)]);
     }
   }
 }
@@ -230,9 +320,9 @@ void SsdDetector::detect_batch(const cv::Mat* const* images, const std::int64_t*
 std::string SsdDetector::describe() const {
   std::ostringstream text;
   text << "SSDLite-MobileNetV2 COCO (" << config_.model_path.string() << ") on " << backend_.name
-       << " (" << backend_.reason << "), batch <= " << config_.max_batch
-       << ", score >= " << config_.score_threshold << ", NMS IoU " << config_.nms_iou
-       << ", classes ";
+       << " (" << backend_.reason << ")" << (xnn_ ? " [" + xnn_->summary() + "]" : std::string())
+       << ", batch <= " << config_.max_batch << ", score >= " << config_.score_threshold
+       << ", NMS IoU " << config_.nms_iou << ", classes ";
   if (config_.classes.empty()) text << "all";
   for (std::size_t i = 0; i < config_.classes.size(); ++i) {
     const int id = config_.classes[i];

@@ -1,7 +1,9 @@
 #pragma once
-// The COCO SSDLite-MobileNetV2 on OpenCV DNN (model imported by scripts/fetch_model.sh; see
-// docs/model.md). CUDA (FP16 on Jetson boards) when available, else the CPU.
+// The COCO SSDLite-MobileNetV2 (model imported by scripts/fetch_model.sh; see docs/model.md): the
+// forward pass on OpenCV DNN (CUDA, FP16 on Jetson boards, when available) or on XNNPACK
+// (docs/cpu-detector.md); one pre-processing, one decoder, one NMS for both.
 #include <filesystem>
+#include <memory>
 #include <opencv2/core/mat.hpp>
 #include <opencv2/dnn/dnn.hpp>
 #include <string>
@@ -10,6 +12,7 @@
 #include "detector/detector.hpp"
 #include "detector/dnn_backend.hpp"
 #include "detector/ssd_postprocess.hpp"
+#include "detector/xnnpack_network.hpp"
 
 namespace rtmot::detector {
 
@@ -23,7 +26,9 @@ struct SsdConfig {
   std::vector<int> classes{1};  // COCO ids (1 = person); empty = all
   BackendRequest backend{BackendRequest::automatic};
   Fp16Request fp16{Fp16Request::automatic};
-  int threads{0};  // OpenCV's worker threads (process-wide: cv::setNumThreads); 0 = leave as is
+  /// Worker threads: OpenCV's (process-wide: cv::setNumThreads; 0 = leave as is) and XNNPACK's
+  /// own pool (0 = one per core).
+  int threads{0};
   /// The most images one forward pass takes (detect_batch); 1..kMaxBatchLimit. Above 1 the model
   /// must have a batch dimension (scripts/fetch_model.sh exports one since model format 2).
   int max_batch{1};
@@ -44,7 +49,9 @@ class SsdDetector : public Detector {
   /// Checks the model's checksums (when its .sha256 is there), loads it and runs it once (at
   /// max_batch images when that is above 1). Throws rtmot::InputError: ExitCode::bad_model naming
   /// the file when the model or anchors are missing, unreadable, damaged (checksum), truncated or
-  /// corrupt, compute non-finite values, or (max_batch > 1) the model has no batch dimension;
+  /// corrupt, compute non-finite values, or (max_batch > 1) the model has no batch dimension; on
+  /// xnnpack also for an operator it does not build, a wrong input shape or non-finite weights
+  /// (backend auto then falls back to OpenCV's CPU path, with a warning saying why);
   /// ExitCode::usage for a backend that cannot be had, class ids outside 1..90 or a max_batch
   /// outside 1..kMaxBatchLimit.
   explicit SsdDetector(SsdConfig config);
@@ -62,7 +69,8 @@ class SsdDetector : public Detector {
                     std::vector<std::vector<tracker::Detection>>& out) override;
   int max_batch() const override { return config_.max_batch; }
   /// Wall time of the last forward pass alone (setInput + forward; on CUDA it includes the upload
-  /// and the download of the outputs, which OpenCV does synchronously), for benchmarks and stats.
+  /// and the download of the outputs, which OpenCV does synchronously; on XNNPACK the run and the
+  /// joining of the output heads), for benchmarks and stats.
   std::int64_t last_forward_ns() const { return last_forward_ns_; }
   std::string describe() const override;
 
@@ -74,11 +82,20 @@ class SsdDetector : public Detector {
   /// batch_net_ on all max_batch slots otherwise.
   void forward(int count);
   void warm_up(int count);
+  /// The XNNPACK network; null (backend_ switched to OpenCV's CPU path, with the reason) when
+  /// backend auto chose it and the model cannot be built there.
+  std::unique_ptr<XnnpackNetwork> build_xnnpack();
+  /// Its start-up passes; false (and the same switch) when auto chose it and they fail.
+  bool start_xnnpack();
+  void start_opencv();
+  void fall_back_to_opencv(const std::string& why);
 
   SsdConfig config_;
   BackendChoice backend_;
-  cv::dnn::Net net_;        // input 1 x 3 x 300 x 300, always
-  cv::dnn::Net batch_net_;  // input max_batch x 3 x 300 x 300, when max_batch > 1
+  // The model is loaded before the anchors are read (a damaged model is named first).
+  std::unique_ptr<XnnpackNetwork> xnn_;  // when backend_.engine is xnnpack
+  cv::dnn::Net net_;                     // input 1 x 3 x 300 x 300, always
+  cv::dnn::Net batch_net_;               // input max_batch x 3 x 300 x 300, when max_batch > 1
   SsdPostprocessor postprocess_;
   // Reused every frame (sizes fixed by the network), so steady state allocates no image buffers.
   cv::Mat resized_;     // 300x300 BGR, 8-bit
@@ -92,6 +109,10 @@ class SsdDetector : public Detector {
 
   std::vector<cv::Mat> outputs_;
   std::vector<cv::String> output_names_;
+  std::vector<cv::Mat> xnn_inputs_;  // 300x300 RGB float headers on xnn_'s input, per image
+  // The last pass's outputs, [images, anchors, 4] and [images, anchors, 91], whichever engine.
+  const float* boxes_{nullptr};
+  const float* logits_{nullptr};
   std::int64_t last_forward_ns_{0};
 };
 

@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "events/event.hpp"
 #include "tracker/box.hpp"
 
 namespace rtmot::messages {
@@ -18,6 +19,10 @@ struct FrameTimes {
 
 struct FrameResult {
   std::uint32_t stream_id{0};
+  /// Which run of the sender this is: random, nonzero, chosen once per process
+  /// (this_process_run_id()); a receiver that sees it change knows the sender restarted, whatever
+  /// its sequence numbers say. 0: not carried (senders before the extension).
+  std::uint64_t run_id{0};
   std::uint64_t sequence{0};        // 0-based count of processed frames (messages) in this run
   std::int64_t frame_number{0};     // the source's 1-based frame number
   std::int64_t pts_ns{0};           // stream timestamp of the frame
@@ -27,7 +32,12 @@ struct FrameResult {
   bool source_outage{false};
   FrameTimes times;
   std::vector<tracker::TrackReport> tracks;  // reserved once; never grows in steady state
+  /// Line crossings and zone visits decided in this frame (events/, docs/events.md); reserved once.
+  std::vector<events::Event> events;
 };
+
+/// This process's run id: random and nonzero, the same for every call (drawn once).
+std::uint64_t this_process_run_id();
 
 /// A destination for track messages (UDP, binary file, JSON lines). Called from one thread only.
 class TrackSink {

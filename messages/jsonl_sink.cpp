@@ -71,7 +71,28 @@ void append_json_line(const FrameResult& frame, std::uint32_t total_track_count,
     fmt::format_to(to, R"(,"hits":{},"age":{}}})", track.hits, track.age);
     first = false;
   }
-  fmt::format_to(to, "]}}\n");
+  fmt::format_to(to, "]");
+  // Added fields (schema 2 still: nothing changed meaning): the sender's run id, as 16 hex digits
+  // because a u64 does not survive JavaScript's doubles, and the frame's events.
+  if (frame.run_id != 0) fmt::format_to(to, R"(,"run":"{:016x}")", frame.run_id);
+  if (!frame.events.empty()) {
+    fmt::format_to(to, R"(,"events":[)");
+    first = true;
+    for (const auto& event : frame.events) {
+      fmt::format_to(to, R"({}{{"kind":"{}","index":{},"track":{},"class":{},"x":)",
+                     first ? "" : ",", events::kEventKindNames.name(event.kind), event.index,
+                     event.track_id, event.class_id);
+      append_number(event.x, out);
+      fmt::format_to(to, R"(,"y":)");
+      append_number(event.y, out);
+      fmt::format_to(to, R"(,"dwell_s":)");
+      append_number(static_cast<float>(event.dwell_seconds), out);
+      fmt::format_to(to, R"(,"lost":{}}})", event.lost);
+      first = false;
+    }
+    fmt::format_to(to, "]");
+  }
+  fmt::format_to(to, "}}\n");
 }
 
 JsonlSink::JsonlSink(const std::filesystem::path& path, ClassLabelFn labels)

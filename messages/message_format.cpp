@@ -30,6 +30,27 @@ constexpr std::size_t track_record_length = 60;
 constexpr std::size_t reserved = 62;
 }  // namespace offset
 
+// The header extension (docs/message-format.md, "Header extension").
+namespace extension_offset {
+constexpr std::size_t run_id = 64;
+constexpr std::size_t event_count = 72;
+constexpr std::size_t event_record_length = 74;
+constexpr std::size_t total_event_count = 76;
+constexpr std::size_t reserved = 78;
+}  // namespace extension_offset
+
+namespace event_offset {
+constexpr std::size_t kind = 0;
+constexpr std::size_t flags = 1;
+constexpr std::size_t index = 2;
+constexpr std::size_t track_id = 4;
+constexpr std::size_t class_id = 8;
+constexpr std::size_t x = 12;
+constexpr std::size_t y = 16;
+constexpr std::size_t dwell_ms = 20;
+constexpr std::uint8_t flag_lost = 0x01;
+}  // namespace event_offset
+
 namespace track_offset {
 constexpr std::size_t id = 0;
 constexpr std::size_t x = 4;
@@ -125,6 +146,34 @@ tracker::TrackReport read_track(const std::uint8_t* at) {
   return track;
 }
 
+void write_event(std::uint8_t* at, const events::Event& event) {
+  at[event_offset::kind] = static_cast<std::uint8_t>(event.kind);
+  at[event_offset::flags] = event.lost ? event_offset::flag_lost : 0;
+  put<std::uint16_t>(at + event_offset::index, event.index);
+  put<std::uint32_t>(at + event_offset::track_id, static_cast<std::uint32_t>(event.track_id));
+  put<std::uint32_t>(at + event_offset::class_id, static_cast<std::uint32_t>(event.class_id));
+  put_f32(at + event_offset::x, event.x);
+  put_f32(at + event_offset::y, event.y);
+  const double dwell_ms = std::round(event.dwell_seconds * 1000.0);
+  put<std::uint32_t>(
+      at + event_offset::dwell_ms,
+      std::isfinite(dwell_ms) ? saturate<std::uint32_t>(std::max(dwell_ms, 0.0)) : 0U);
+}
+
+events::Event read_event(const std::uint8_t* at, std::int64_t pts_ns) {
+  events::Event event;
+  event.kind = static_cast<events::EventKind>(at[event_offset::kind]);
+  event.lost = (at[event_offset::flags] & event_offset::flag_lost) != 0;
+  event.index = get<std::uint16_t>(at + event_offset::index);
+  event.track_id = static_cast<std::int32_t>(get<std::uint32_t>(at + event_offset::track_id));
+  event.class_id = static_cast<std::int32_t>(get<std::uint32_t>(at + event_offset::class_id));
+  event.x = get_f32(at + event_offset::x);
+  event.y = get_f32(at + event_offset::y);
+  event.dwell_seconds = get<std::uint32_t>(at + event_offset::dwell_ms) / 1000.0;
+  event.time = static_cast<double>(pts_ns) * 1e-9;  // decided at this frame
+  return event;
+}
+
 // NaN sorts last, so that the ordering stays strict-weak whatever the detector produced.
 float score_key(float score) {
   return std::isnan(score) ? -std::numeric_limits<float>::infinity() : score;
@@ -136,7 +185,23 @@ std::size_t MessageEncoder::encode(const FrameResult& result, std::uint8_t* buff
                                    std::size_t capacity) {
   if (capacity < message::min_size) return 0;
   const auto& tracks = result.tracks;
-  const std::size_t fit = message::tracks_that_fit(capacity);
+  // The extension only when there is something to put in it: a message without run id and
+  // events is byte for byte what it was before the extension.
+  const bool extended = result.run_id != 0 || !result.events.empty();
+  std::size_t events_sent = 0;
+  if (extended && capacity >= message::header_extended_size + message::crc_size) {
+    const std::size_t room =
+        (capacity - message::header_extended_size - message::crc_size) / message::event_record_size;
+    events_sent = std::min({result.events.size(), room, std::size_t{0xFFFF}});
+  }
+  const bool events_truncated = events_sent < result.events.size();
+  const std::size_t header_length =
+      extended && capacity >= message::header_extended_size + message::crc_size
+          ? message::header_extended_size + events_sent * message::event_record_size
+          : message::header_size;
+  const std::size_t fit =
+      std::min(message::max_track_count,
+               (capacity - header_length - message::crc_size) / message::track_record_size);
   const bool truncated = tracks.size() > fit;
   const std::size_t sent = truncated ? fit : tracks.size();
 
@@ -145,9 +210,9 @@ std::size_t MessageEncoder::encode(const FrameResult& result, std::uint8_t* buff
   header[offset::version] = message::version;
   header[offset::flags] =
       static_cast<std::uint8_t>((truncated ? message::flag_truncated : 0) |
-                                (result.source_outage ? message::flag_source_outage : 0));
-  put<std::uint16_t>(header + offset::header_length,
-                     static_cast<std::uint16_t>(message::header_size));
+                                (result.source_outage ? message::flag_source_outage : 0) |
+                                (events_truncated ? message::flag_events_truncated : 0));
+  put<std::uint16_t>(header + offset::header_length, static_cast<std::uint16_t>(header_length));
   put<std::uint32_t>(header + offset::stream_id, result.stream_id);
   put<std::uint32_t>(header + offset::frames_dropped, result.frames_dropped);
   put<std::uint64_t>(header + offset::sequence, result.sequence);
@@ -164,7 +229,21 @@ std::size_t MessageEncoder::encode(const FrameResult& result, std::uint8_t* buff
                      static_cast<std::uint16_t>(message::track_record_size));
   put<std::uint16_t>(header + offset::reserved, 0);
 
-  std::uint8_t* record = buffer + message::header_size;
+  if (header_length >= message::header_extended_size) {
+    put<std::uint64_t>(header + extension_offset::run_id, result.run_id);
+    put<std::uint16_t>(header + extension_offset::event_count,
+                       static_cast<std::uint16_t>(events_sent));
+    put<std::uint16_t>(header + extension_offset::event_record_length,
+                       static_cast<std::uint16_t>(message::event_record_size));
+    put<std::uint16_t>(header + extension_offset::total_event_count,
+                       saturate<std::uint16_t>(result.events.size()));
+    put<std::uint16_t>(header + extension_offset::reserved, 0);
+    for (std::size_t i = 0; i < events_sent; ++i) {
+      write_event(header + message::header_extended_size + i * message::event_record_size,
+                  result.events[i]);
+    }
+  }
+  std::uint8_t* record = buffer + header_length;
   if (!truncated) {
     for (const auto& track : tracks) {
       write_track(record, track);
@@ -213,6 +292,8 @@ std::string_view to_string(DecodeError error) {
       return "length mismatch";
     case DecodeError::bad_crc:
       return "bad CRC";
+    case DecodeError::bad_event_counts:
+      return "bad event counts";
   }
   return "unknown error";
 }
@@ -240,6 +321,20 @@ DecodeError decode_message(const std::uint8_t* data, std::size_t size, DecodedMe
   const std::size_t body_size = size - message::crc_size;
   if (get<std::uint32_t>(data + body_size) != crc32_of(data, body_size))
     return DecodeError::bad_crc;
+  // The extension, when the header is long enough to hold it (a header between 64 and 80 bytes
+  // is some other compatible addition: skipped, as an old reader skips this one).
+  const bool extended = header_length >= message::header_extended_size;
+  std::uint64_t event_count = 0;
+  std::uint64_t event_length = message::event_record_size;
+  if (extended) {
+    event_count = get<std::uint16_t>(data + extension_offset::event_count);
+    event_length = get<std::uint16_t>(data + extension_offset::event_record_length);
+    if (event_length < message::event_record_size ||
+        message::header_extended_size + event_count * event_length > header_length ||
+        event_count > get<std::uint16_t>(data + extension_offset::total_event_count)) {
+      return DecodeError::bad_event_counts;
+    }
+  }
 
   out.version = version;
   out.flags = data[offset::flags];
@@ -257,6 +352,12 @@ DecodeError decode_message(const std::uint8_t* data, std::size_t size, DecodedMe
   frame.times.sent_ns =
       static_cast<std::int64_t>(static_cast<std::uint64_t>(frame.times.captured_ns) +
                                 get<std::uint64_t>(data + offset::latency_ns));
+  frame.run_id = extended ? get<std::uint64_t>(data + extension_offset::run_id) : 0;
+  frame.events.clear();
+  for (std::uint64_t i = 0; i < event_count; ++i) {
+    frame.events.push_back(
+        read_event(data + message::header_extended_size + i * event_length, frame.pts_ns));
+  }
   frame.tracks.clear();
   const std::uint8_t* record = data + header_length;
   for (std::uint64_t i = 0; i < track_count; ++i) {

@@ -19,6 +19,11 @@ constexpr std::uint8_t version = 1;
 constexpr std::size_t header_size = 64;        // version 1's header; a later header may be longer
 constexpr std::size_t track_record_size = 32;  // version 1's track record; later ones may be longer
 constexpr std::size_t crc_size = 4;
+/// The header extension (still version 1: old readers skip it with the header): run id, then the
+/// events. Present when a message carries a run id or events; the header is then
+/// header_extended_size + event_count x event_record_size bytes long.
+constexpr std::size_t header_extended_size = 80;
+constexpr std::size_t event_record_size = 24;
 constexpr std::size_t min_size = header_size + crc_size;
 /// Past this many tracks the 16-bit counts saturate (documented; real scenes are far below).
 constexpr std::size_t max_track_count = 0xFFFF;
@@ -26,7 +31,8 @@ constexpr std::size_t max_track_count = 0xFFFF;
 /// Flag bits of byte 5. Bits not listed are 0 when sent and ignored when read.
 constexpr std::uint8_t flag_truncated =
     0x01;  // fewer tracks than the frame had: highest scores kept
-constexpr std::uint8_t flag_source_outage = 0x02;  // no picture: the source is being reopened
+constexpr std::uint8_t flag_source_outage = 0x02;     // no picture: the source is being reopened
+constexpr std::uint8_t flag_events_truncated = 0x04;  // fewer events than the frame had
 
 /// The largest UDP payload we send by default: fits one unfragmented datagram on any IPv6 path
 /// (1280-byte minimum MTU - 40 IPv6 - 8 UDP = 1232) and through VPN/tunnel overheads; see the doc.
@@ -55,7 +61,9 @@ class MessageEncoder {
  public:
   /// Encodes `result` into `buffer[0, capacity)` and returns the bytes written. When not every
   /// track fits, keeps the highest-score ones (in their original order), sets flag_truncated and
-  /// records the frame's full track count. Returns 0 only if `capacity` < message::min_size.
+  /// records the frame's full track count. Events go first (rare and what a ground station counts);
+  /// those that do not fit are dropped and flag_events_truncated set. Returns 0 only if
+  /// `capacity` < message::min_size.
   std::size_t encode(const FrameResult& result, std::uint8_t* buffer, std::size_t capacity);
 
  private:
@@ -72,8 +80,9 @@ enum class DecodeError : std::uint8_t {
   bad_track_counts,  // sent track count above the frame's total
   length_mismatch,   // size differs from what the header announces (truncated or padded)
   bad_crc,           // the bytes changed on the way
+  bad_event_counts,  // the header extension's events do not fit in the header
 };
-constexpr std::size_t decode_error_count = 9;
+constexpr std::size_t decode_error_count = 10;
 
 std::string_view to_string(DecodeError error);
 
@@ -85,6 +94,7 @@ struct DecodedMessage {
   std::uint8_t version{0};
   std::uint8_t flags{0};
   std::uint32_t total_track_count{0};  // tracks the frame had; > frame.tracks.size() if truncated
+  bool events_truncated() const { return (flags & message::flag_events_truncated) != 0; }
 
   bool truncated() const { return (flags & message::flag_truncated) != 0; }
   std::int64_t latency_ns() const { return frame.times.sent_ns - frame.times.captured_ns; }

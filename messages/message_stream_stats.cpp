@@ -38,11 +38,31 @@ Arrival SequenceAccounting::clash() {
   return Arrival::clash;
 }
 
-Arrival SequenceAccounting::record(std::uint64_t sequence, std::int64_t pts_ns) {
+Arrival SequenceAccounting::restart(std::uint64_t sequence, std::int64_t pts_ns) {
+  lost_before_restarts_ += current_lost();
+  ++restarts_;
+  has_previous_epoch_ = true;
+  previous_highest_ = highest_;
+  start_epoch(sequence, pts_ns);
+  return Arrival::restart;
+}
+
+Arrival SequenceAccounting::record(std::uint64_t sequence, std::int64_t pts_ns,
+                                   std::uint64_t run_id) {
   ++received_;
   if (!started_) {
+    run_id_ = run_id;
     start_epoch(sequence, pts_ns);
     return Arrival::first;
+  }
+  if (run_id != 0 && run_id != run_id_) {
+    if (previous_run_id_ != 0 && run_id == previous_run_id_) return clash();
+    if (run_id_ != 0) {
+      previous_run_id_ = run_id_;
+      run_id_ = run_id;
+      return restart(sequence, pts_ns);
+    }
+    run_id_ = run_id;  // the first message that carries one: the run was already this one
   }
   const std::uint64_t ahead = ahead_by(sequence, highest_);
   if (ahead > 0) {
@@ -77,12 +97,7 @@ Arrival SequenceAccounting::record(std::uint64_t sequence, std::int64_t pts_ns) 
       previous_highest_ = sequence;
       return clash();
     }
-    lost_before_restarts_ += current_lost();
-    ++restarts_;
-    has_previous_epoch_ = true;
-    previous_highest_ = highest_;
-    start_epoch(sequence, pts_ns);
-    return Arrival::restart;
+    return restart(sequence, pts_ns);
   }
   const bool in_epoch = behind <= highest_ - first_;
   if (in_epoch && seen(sequence)) {
@@ -122,8 +137,10 @@ StreamStats& ListenerStats::stream(std::uint32_t id) {
 Arrival ListenerStats::record(const DecodedMessage& message) {
   const FrameResult& frame = message.frame;
   StreamStats& stream = this->stream(frame.stream_id);
-  const Arrival arrival = stream.sequences.record(frame.sequence, frame.pts_ns);
+  const Arrival arrival = stream.sequences.record(frame.sequence, frame.pts_ns, frame.run_id);
   if (arrival == Arrival::duplicate || arrival == Arrival::clash) return arrival;
+  for (const auto& event : frame.events)
+    ++stream.events[{static_cast<std::uint8_t>(event.kind), event.index}];
   const bool first = stream.messages == 0;
   ++stream.messages;
   const std::int64_t latency = message.latency_ns();

@@ -27,7 +27,10 @@ class SequenceAccounting {
   static constexpr std::uint64_t window = 4096;
 
   /// `pts_ns`: the message's presentation time (0 when the sender has none: no clash is seen).
-  Arrival record(std::uint64_t sequence, std::int64_t pts_ns = 0);
+  /// `run_id`: the sender's run (0 when the message carries none). A new run id is a restart
+  /// whatever the sequence says (a board restarted within `window` messages looked like
+  /// duplicates); the previous run's id coming back after it is a clash.
+  Arrival record(std::uint64_t sequence, std::int64_t pts_ns = 0, std::uint64_t run_id = 0);
 
   std::uint64_t received() const { return received_; }  // every valid message, duplicates included
   std::uint64_t lost() const { return lost_before_restarts_ + current_lost(); }
@@ -41,6 +44,7 @@ class SequenceAccounting {
     return started_ ? (highest_ - first_) - (unique_in_epoch_ - 1) : 0;
   }
   void start_epoch(std::uint64_t sequence, std::int64_t pts_ns);
+  Arrival restart(std::uint64_t sequence, std::int64_t pts_ns);
   bool continues_previous_epoch(std::uint64_t sequence) const;
   bool seen(std::uint64_t sequence) const { return seen_[sequence % window]; }
   void mark(std::uint64_t sequence) { seen_[sequence % window] = true; }
@@ -51,6 +55,8 @@ class SequenceAccounting {
   std::uint64_t highest_{0};  // highest sequence of this epoch (inclusive: 2^64 - 1 is valid)
   std::int64_t pts_at_highest_{0};
   bool has_previous_epoch_{false};
+  std::uint64_t run_id_{0};            // of this epoch (0: not carried)
+  std::uint64_t previous_run_id_{0};   // of the epoch before the last restart
   std::uint64_t previous_highest_{0};  // of the epoch before the last restart
   std::uint64_t unique_in_epoch_{0};
   std::uint64_t lost_before_restarts_{0};
@@ -71,6 +77,8 @@ struct StreamStats {
   std::int64_t latency_max_ns{0};
   double latency_sum_ns{0.0};
   std::uint32_t last_frames_dropped{0};  // the sender's own count of frames it could not process
+  /// Events received (docs/events.md), by kind and line/zone index: {kind, index} -> count.
+  std::map<std::pair<std::uint8_t, std::uint16_t>, std::uint64_t> events;
 
   double latency_mean_ns() const {
     return messages > 0 ? latency_sum_ns / static_cast<double>(messages) : 0.0;

@@ -25,7 +25,8 @@ UdpSink::UdpSink(const std::string& host, std::uint16_t port, std::size_t max_pa
 
 void UdpSink::write(const FrameResult& result) {
   const std::size_t size = encoder_.encode(result, buffer_.data(), buffer_.size());
-  if (result.tracks.size() > max_tracks_per_message()) ++truncated_;
+  // The message says whether it was cut (flag bit 0, or bit 2 for events): byte 5 of the header.
+  if ((buffer_[5] & (message::flag_truncated | message::flag_events_truncated)) != 0) ++truncated_;
   if (sender_.send(buffer_.data(), size)) {
     ++sent_;
     return;

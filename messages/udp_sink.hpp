@@ -27,6 +27,7 @@ class UdpSink : public TrackSink {
   std::uint64_t messages_sent() const { return sent_; }
   std::uint64_t send_failures() const { return failures_; }
   std::uint64_t messages_truncated() const { return truncated_; }
+  /// Without the header extension (run id, events: 16 bytes and 24 per event less).
   std::size_t max_tracks_per_message() const { return message::tracks_that_fit(buffer_.size()); }
 
  private:

@@ -149,8 +149,14 @@ void MqttPublisher::on_disconnect(struct mosquitto*, void* self, int rc) {
   }
   if (rc != 0) {  // 0: our own disconnect at the end
     publisher.counters_.disconnects.fetch_add(1, std::memory_order_relaxed);
-    spdlog::warn("mqtt {}: connection lost; reconnecting with backoff",
-                 to_string(publisher.options_.uri));
+    if (publisher.counters_.connects.load(std::memory_order_relaxed) > 0) {
+      spdlog::warn("mqtt {}: connection lost; reconnecting with backoff",
+                   to_string(publisher.options_.uri));
+    } else if (!publisher.unreached_logged_) {  // libmosquitto's thread only
+      publisher.unreached_logged_ = true;
+      spdlog::warn("mqtt {}: cannot reach the broker ({}); retrying with backoff",
+                   to_string(publisher.options_.uri), mosquitto_strerror(rc));
+    }
   }
   publisher.state_changed_.notify_all();
 }

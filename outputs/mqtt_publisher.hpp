@@ -93,6 +93,7 @@ class MqttPublisher final : public messages::TrackSink {
   // stage's path, so a mutex is fine here.
   std::atomic<bool> connected_{false};
   std::atomic<int> in_flight_{0};
+  bool unreached_logged_{false};  // libmosquitto's thread only: "cannot reach" is said once
   std::mutex state_mutex_;
   std::condition_variable state_changed_;
   MosquittoClient client_;

@@ -2,7 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <iterator>
+#include <opencv2/core/version.hpp>
 
 namespace rtmot::outputs {
 namespace {
@@ -41,29 +43,42 @@ void LatencyBuckets::render(const std::string& name, const std::string& labels,
   fmt::format_to(to, "{}_count{{{}}} {}\n", name, labels, count_.load(relaxed));
 }
 
-PipelineMetrics::PipelineMetrics(std::vector<OutputProbe> outputs)
-    : probes_(std::move(outputs)), outputs_(probes_.size()) {}
+PipelineMetrics::PipelineMetrics(std::vector<OutputProbe> outputs,
+                                 std::vector<std::uint32_t> streams)
+    : probes_(std::move(outputs)),
+      outputs_(probes_.size()),
+      stream_ids_(std::move(streams)),
+      streams_(stream_ids_.size()) {}
 
 void PipelineMetrics::observe(const messages::FrameResult& result) {
   const messages::FrameTimes& t = result.times;
-  if (first_captured_ns_.load(relaxed) == 0 && t.captured_ns > 0) {
-    first_captured_ns_.store(t.captured_ns, relaxed);
+  // A few sources at most: a linear search allocates nothing and takes no lock.
+  const auto id = std::find(stream_ids_.begin(), stream_ids_.end(), result.stream_id);
+  if (id != stream_ids_.end()) {
+    StreamCounters& stream = streams_[static_cast<std::size_t>(id - stream_ids_.begin())];
+    if (stream.first_captured_ns.load(relaxed) == 0 && t.captured_ns > 0) {
+      stream.first_captured_ns.store(t.captured_ns, relaxed);
+    }
+    stream.last_sent_ns.store(t.sent_ns, relaxed);
+    stream.frames_processed.fetch_add(1, relaxed);
+    stream.frames_captured.store(result.frame_number, relaxed);
+    stream.frames_skipped.store(result.frames_dropped, relaxed);
+    stream.tracks_reported.fetch_add(result.tracks.size(), relaxed);
+    stream.tracks_last_frame.store(static_cast<std::uint32_t>(result.tracks.size()), relaxed);
+    stream.up.store(!result.source_outage, relaxed);
+    if (result.source_outage) {
+      stream.outage_frames.fetch_add(1, relaxed);
+      if (!stream.in_outage) stream.outages.fetch_add(1, relaxed);
+    }
+    stream.in_outage = result.source_outage;
   }
-  last_sent_ns_.store(t.sent_ns, relaxed);
-  frames_processed_.fetch_add(1, relaxed);
-  frames_captured_.store(result.frame_number, relaxed);
-  frames_skipped_.store(result.frames_dropped, relaxed);
-  if (result.source_outage) {
-    outage_frames_.fetch_add(1, relaxed);
-    if (!in_outage_) outages_.fetch_add(1, relaxed);
-  } else {
+  if (!result.source_outage) {
     stages_[queue].record(span(t.captured_ns, t.detect_start_ns));
     stages_[detect].record(span(t.detect_start_ns, t.detected_ns));
     stages_[track].record(span(t.detected_ns, t.tracked_ns));
     stages_[sink].record(span(t.tracked_ns, t.sent_ns));
     stages_[end_to_end].record(span(t.captured_ns, t.sent_ns));
   }
-  in_outage_ = result.source_outage;
   for (std::size_t i = 0; i < probes_.size(); ++i) {
     if (probes_[i].sent) outputs_[i].sent.store(probes_[i].sent(), relaxed);
     if (probes_[i].dropped) outputs_[i].dropped.store(probes_[i].dropped(), relaxed);
@@ -72,30 +87,58 @@ void PipelineMetrics::observe(const messages::FrameResult& result) {
 
 std::string PipelineMetrics::render() const {
   std::string out;
-  out.reserve(4096);
+  out.reserve(8192);
   auto to = std::back_inserter(out);
-  const auto counter = [&](const char* name, const char* help, std::uint64_t value) {
-    fmt::format_to(to, "# HELP {} {}\n# TYPE {} counter\n{} {}\n", name, help, name, name, value);
-  };
-  counter("rtmot_frames_captured_total", "Frames the source produced (its frame number).",
-          static_cast<std::uint64_t>(std::max<std::int64_t>(0, frames_captured_.load(relaxed))));
-  counter("rtmot_frames_processed_total", "Frames through detector, tracker and outputs.",
-          frames_processed_.load(relaxed));
-  counter("rtmot_frames_skipped_total", "Frames captured but not processed (playback mode).",
-          frames_skipped_.load(relaxed));
-  counter("rtmot_source_outages_total", "Times the live source went down.", outages_.load(relaxed));
-  counter("rtmot_outage_messages_total", "Messages sent while the source was down.",
-          outage_frames_.load(relaxed));
-  const std::int64_t first = first_captured_ns_.load(relaxed);
-  const std::int64_t last = last_sent_ns_.load(relaxed);
-  const double seconds = first > 0 && last > first ? static_cast<double>(last - first) / 1e9 : 0.0;
-  fmt::format_to(
-      to,
-      "# HELP rtmot_fps Frames processed per second since the first frame.\n"
-      "# TYPE rtmot_fps gauge\nrtmot_fps {:.3f}\n",
-      seconds > 0 ? static_cast<double>(frames_processed_.load(relaxed)) / seconds : 0.0);
   fmt::format_to(to,
-                 "# HELP rtmot_stage_latency_seconds Time per pipeline stage "
+                 "# HELP rtmot_build_info rtmot's version and the OpenCV it runs on (value 1).\n"
+                 "# TYPE rtmot_build_info gauge\n"
+                 "rtmot_build_info{{version=\"{}\",opencv=\"{}\"}} 1\n",
+                 RTMOT_VERSION, CV_VERSION);
+  // One family per fact, one series per source.
+  const auto per_stream = [&](const char* name, const char* type, const char* help,
+                              const auto& value_of) {
+    fmt::format_to(to, "# HELP {} {}\n# TYPE {} {}\n", name, help, name, type);
+    for (std::size_t i = 0; i < streams_.size(); ++i) {
+      fmt::format_to(to, "{}{{stream=\"{}\"}} {}\n", name, stream_ids_[i], value_of(streams_[i]));
+    }
+  };
+  per_stream("rtmot_frames_captured_total", "counter",
+             "Frames the source produced (its frame number).", [](const StreamCounters& s) {
+               return static_cast<std::uint64_t>(
+                   std::max<std::int64_t>(0, s.frames_captured.load(relaxed)));
+             });
+  per_stream("rtmot_frames_processed_total", "counter",
+             "Frames through detector, tracker and outputs (outage ticks included).",
+             [](const StreamCounters& s) { return s.frames_processed.load(relaxed); });
+  per_stream("rtmot_frames_skipped_total", "counter",
+             "Frames captured but not processed (the detector was busy).",
+             [](const StreamCounters& s) { return s.frames_skipped.load(relaxed); });
+  per_stream("rtmot_source_up", "gauge",
+             "1 while the source delivers pictures; 0 before its first frame and while it is down.",
+             [](const StreamCounters& s) { return s.up.load(relaxed) ? 1 : 0; });
+  per_stream("rtmot_source_outages_total", "counter", "Times the live source went down.",
+             [](const StreamCounters& s) { return s.outages.load(relaxed); });
+  per_stream("rtmot_outage_messages_total", "counter", "Messages sent while the source was down.",
+             [](const StreamCounters& s) { return s.outage_frames.load(relaxed); });
+  per_stream("rtmot_tracks", "gauge", "Tracks reported in the source's last processed frame.",
+             [](const StreamCounters& s) { return s.tracks_last_frame.load(relaxed); });
+  per_stream("rtmot_tracks_reported_total", "counter",
+             "Tracks reported over all processed frames (divide by frames processed: tracks per "
+             "frame).",
+             [](const StreamCounters& s) { return s.tracks_reported.load(relaxed); });
+  per_stream("rtmot_fps", "gauge", "Frames processed per second since the source's first frame.",
+             [](const StreamCounters& s) {
+               const std::int64_t first = s.first_captured_ns.load(relaxed);
+               const std::int64_t last = s.last_sent_ns.load(relaxed);
+               const double seconds =
+                   first > 0 && last > first ? static_cast<double>(last - first) / 1e9 : 0.0;
+               return fmt::format(
+                   "{:.3f}", seconds > 0
+                                 ? static_cast<double>(s.frames_processed.load(relaxed)) / seconds
+                                 : 0.0);
+             });
+  fmt::format_to(to,
+                 "# HELP rtmot_stage_latency_seconds Time per pipeline stage, every source "
                  "(queue: captured->detector, end_to_end: captured->sent).\n"
                  "# TYPE rtmot_stage_latency_seconds histogram\n");
   constexpr std::array<const char*, stage_count> stage_names = {"queue", "detect", "track", "sink",

@@ -1,6 +1,8 @@
 #pragma once
-// The numbers the Prometheus endpoint serves (--metrics-port): frames captured/processed/skipped,
-// outages, fps, latency histograms per stage, messages sent/dropped per output.
+// The numbers the Prometheus endpoint serves (--metrics-port): per source (label stream="ID"):
+// frames captured/processed/skipped, outages, whether the source is up, fps, tracks; for the
+// pipeline (one detector serves every source): latency histograms per stage; per output: messages
+// sent/dropped; and rtmot_build_info. Series and labels: docs/config.md, "Metrics".
 //
 // Fed by MetricsSink, the last TrackSink of the sink stage: everything it needs is in each
 // FrameResult (counts, outage flag, per-stage timestamps) and in the other outputs' counters, which
@@ -21,8 +23,12 @@ namespace rtmot::outputs {
 /// A latency histogram with fixed bucket bounds (ms), cumulative as Prometheus wants them.
 class LatencyBuckets {
  public:
-  static constexpr std::array<double, 12> bounds_ms = {1,   2,   5,   10,   20,   50,
-                                                       100, 200, 500, 1000, 2000, 5000};
+  // Fine where a frame's latencies are on a CPU or a Jetson (0.5..200 ms: histogram_quantile
+  // interpolates inside a bucket, so a 20..50 ms bucket put a true p95 of 36.9 ms at 48.8 ms);
+  // coarse above, for a stalled stage.
+  static constexpr std::array<double, 25> bounds_ms = {
+      0.5, 1,  2,  3,   5,   7.5, 10,  15,  20,  25,   30,   35,  40,
+      50,  60, 75, 100, 125, 150, 200, 300, 500, 1000, 2000, 5000};
   void record(std::int64_t ns);
   /// Appends `name`'s _bucket, _sum and _count lines with `labels` (e.g. stage="detect").
   void render(const std::string& name, const std::string& labels, std::string& out) const;
@@ -33,18 +39,25 @@ class LatencyBuckets {
   std::atomic<std::uint64_t> count_{0};
 };
 
-/// How one output reports what it did (read on the sink stage's thread, after its write()).
+/// How one output reports what it did (read on the sink stage's thread, after its write(), and
+/// at the end of the run for the final report: outputs/delivery_report.hpp).
 struct OutputProbe {
-  std::string name;  // e.g. "udp", "mqtt", "jsonl"
-  std::function<std::uint64_t()> sent;
-  std::function<std::uint64_t()> dropped;
+  std::string name;                        // e.g. "udp", "mqtt", "jsonl"
+  std::function<std::uint64_t()> sent;     // delivered (MQTT QoS 1: acknowledged by the broker)
+  std::function<std::uint64_t()> dropped;  // given up on
+  /// For the final report (optional): messages handed to the output, and why nothing arrived
+  /// ("" when that is not known), e.g. "the broker was never reached".
+  std::function<std::uint64_t()> attempted;
+  std::function<std::string()> why_nothing;
 };
 
 class PipelineMetrics {
  public:
   enum Stage : std::size_t { queue, detect, track, sink, end_to_end, stage_count };
 
-  explicit PipelineMetrics(std::vector<OutputProbe> outputs);
+  /// `streams`: the stream id of every source (frames of another id are counted only in the
+  /// pipeline-wide series).
+  PipelineMetrics(std::vector<OutputProbe> outputs, std::vector<std::uint32_t> streams);
 
   /// Sink stage: one processed frame.
   void observe(const messages::FrameResult& result);
@@ -57,17 +70,25 @@ class PipelineMetrics {
     std::atomic<std::uint64_t> dropped{0};
   };
 
+  struct StreamCounters {
+    std::atomic<std::int64_t> frames_captured{0};
+    std::atomic<std::uint64_t> frames_processed{0};
+    std::atomic<std::uint64_t> frames_skipped{0};
+    std::atomic<std::uint64_t> outages{0};
+    std::atomic<std::uint64_t> outage_frames{0};
+    std::atomic<std::uint64_t> tracks_reported{0};
+    std::atomic<std::uint32_t> tracks_last_frame{0};
+    std::atomic<bool> up{false};  // false until its first frame: a cold start is not "up"
+    std::atomic<std::int64_t> first_captured_ns{0};
+    std::atomic<std::int64_t> last_sent_ns{0};
+    bool in_outage{false};  // sink stage only
+  };
+
   std::vector<OutputProbe> probes_;
   std::vector<OutputCounters> outputs_;
+  std::vector<std::uint32_t> stream_ids_;
+  std::vector<StreamCounters> streams_;  // parallel to stream_ids_
   std::array<LatencyBuckets, stage_count> stages_;
-  std::atomic<std::int64_t> frames_captured_{0};
-  std::atomic<std::uint64_t> frames_processed_{0};
-  std::atomic<std::uint64_t> frames_skipped_{0};
-  std::atomic<std::uint64_t> outages_{0};
-  std::atomic<std::uint64_t> outage_frames_{0};
-  std::atomic<std::int64_t> first_captured_ns_{0};
-  std::atomic<std::int64_t> last_sent_ns_{0};
-  bool in_outage_{false};  // sink stage only
 };
 
 /// The sink that feeds PipelineMetrics: put it last, so the other outputs' counters include this

@@ -2,11 +2,41 @@
 
 #include <gst/gst.h>
 
+#include <cstdlib>
+#include <filesystem>
+#include <string_view>
+
 #include "outputs/gst_video_output.hpp"
 #include "outputs/rtsp_video_server.hpp"
 #include "platform/gst_ptr.hpp"
 
 namespace rtmot::outputs {
+namespace {
+
+// Which Debian package (all installed by scripts/install_deps.sh) holds each element we use.
+std::string_view package_of(std::string_view element) {
+  if (element == "x264enc") return "gstreamer1.0-plugins-ugly";
+  if (element == "ximagesink") return "gstreamer1.0-x";
+  if (element == "appsrc" || element == "videoconvert") return "gstreamer1.0-plugins-base";
+  if (element == "filesink") return "libgstreamer1.0-0";
+  return "gstreamer1.0-plugins-good";  // mp4mux, matroskamux, rtph264pay, udpsink
+}
+
+// A display:// window needs an X server (a desktop, or XWayland): its local socket is
+// /tmp/.X11-unix/X<N>. Without it ximagesink fails only once the first frame is drawn.
+std::string check_display(int display) {
+  const std::filesystem::path socket = "/tmp/.X11-unix/X" + std::to_string(display);
+  std::error_code error;
+  if (std::filesystem::exists(socket, error)) return "";
+  const char* env = std::getenv("DISPLAY");
+  return "no display :" + std::to_string(display) + " to show the video on (no X server socket " +
+         socket.string() + "; DISPLAY is " +
+         (env != nullptr && *env != '\0' ? std::string("'") + env + "'" : std::string("unset")) +
+         "): display:// needs a desktop session; without one write a file (out.mp4) or stream "
+         "it (rtsp://:8554/NAME, rtp://HOST:PORT)";
+}
+
+}  // namespace
 
 std::string check_video_elements(const VideoTarget& target) {
   platform::gst::ensure_initialized();
@@ -29,11 +59,16 @@ std::string check_video_elements(const VideoTarget& target) {
   std::string missing;
   for (const char* name : needed) {
     const platform::gst::ObjectPtr<GstElementFactory> factory{gst_element_factory_find(name)};
-    if (!factory) missing += (missing.empty() ? "" : ", ") + std::string(name);
+    if (!factory) {
+      missing += (missing.empty() ? "" : ", ") + std::string(name) + " (in " +
+                 std::string(package_of(name)) + ")";
+    }
   }
-  if (missing.empty()) return "";
-  return "this GStreamer lacks " + missing +
-         " (scripts/install_deps.sh installs the plugins: x264enc is in gstreamer1.0-plugins-ugly)";
+  if (!missing.empty()) {
+    return "this GStreamer lacks " + missing +
+           ": apt-get install the package named, or run scripts/install_deps.sh";
+  }
+  return target.kind == VideoTargetKind::display ? check_display(target.display) : "";
 }
 
 std::unique_ptr<VideoStream> open_video_stream(const VideoTarget& target, double fps) {

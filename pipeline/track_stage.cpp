@@ -42,6 +42,7 @@ void TrackStage::run(const std::atomic<bool>& abort) {
     messages::FrameResult& result = out->result;
     result.tracks.assign(reports.begin(), reports.end());  // within the reserved capacity
     result.stream_id = stream.stream_id;
+    result.run_id = messages::this_process_run_id();  // a restarted board: a new run id
     result.sequence = static_cast<std::uint64_t>(stream.messages++);
     result.source_outage = in->outage;
     result.frame_number = in->info.frame_number;

@@ -309,6 +309,25 @@ bool GstVideoSource::adopt_caps(GstCaps* caps) {
   return true;
 }
 
+void require_source_elements(const std::string& uri) {
+  const VideoUri parsed = parse_video_uri(uri);
+  if (parsed.kind == SourceKind::images) return;
+  gst::ensure_initialized();
+  // Parsing the pipeline resolves every element factory by name and starts nothing: the device is
+  // not touched, so an absent camera passes and only a missing plugin fails.
+  GError* raw_error = nullptr;
+  const std::string description = gst::pipeline_description(parsed.kind);
+  GstElement* parsed_pipeline = gst_parse_launch(description.c_str(), &raw_error);
+  const gst::ErrorPtr error(raw_error);
+  if (parsed_pipeline) gst_object_unref(gst_object_ref_sink(parsed_pipeline));
+  if (error && error->domain == GST_PARSE_ERROR && error->code == GST_PARSE_ERROR_NO_SUCH_ELEMENT) {
+    throw InputError(uri, 0, "",
+                     std::string("cannot open video source: GStreamer: ") + error->message +
+                         missing_element_hint(parsed.kind),
+                     ExitCode::source_failed);
+  }
+}
+
 std::unique_ptr<VideoSource> open_video_source(const std::string& uri,
                                                const SourceOptions& options) {
   VideoUri parsed = parse_video_uri(uri);

@@ -53,6 +53,13 @@ struct SourceOptions {
   int rtsp_latency_ms{200};  // rtspsrc jitter buffer
 };
 
+/// Checks, without starting anything, that this GStreamer has every element the URI's pipeline
+/// names (csi:// needs NVIDIA's nvarguscamerasrc); throws rtmot::InputError (source_failed) naming
+/// the element and its package if not. A missing plugin does not appear later: a live source that
+/// passes this and still cannot open is a camera not there yet (cold start), one that fails it
+/// is fatal at start.
+void require_source_elements(const std::string& uri);
+
 /// Opens a source; throws rtmot::InputError (exit code source_failed) naming the URI on failure.
 std::unique_ptr<VideoSource> open_video_source(const std::string& uri,
                                                const SourceOptions& options = {});

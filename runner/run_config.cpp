@@ -8,6 +8,7 @@
 #include "common/frame_rate.hpp"
 #include "common/input_error.hpp"
 #include "common/input_file.hpp"
+#include "common/input_path.hpp"
 #include "detector/dnn_backend.hpp"
 #include "outputs/mqtt_uri.hpp"
 #include "outputs/overlay.hpp"
@@ -93,7 +94,7 @@ void read_detector(Section section, DetectorConfig& detector) {
   read_checked(
       section, "backend", detector.backend,
       [](const std::string& v) { return detector::parse_backend_request(v).has_value(); },
-      "auto, cpu or cuda");
+      detector::backend_request_names());
   read_checked(
       section, "fp16", detector.fp16,
       [](const std::string& v) { return detector::parse_fp16_request(v).has_value(); },
@@ -166,7 +167,12 @@ void read_output(Section section, OutputConfig& output) {
   read_checked(
       section, "metrics_port", output.metrics_port, [](int v) { return v >= 0 && v <= 65535; },
       "a TCP port 0..65535 (0 = off)");
-  section.read("metrics_bind", output.metrics_bind);
+  if (section.read("metrics_bind", output.metrics_bind)) {
+    std::string problem;
+    const auto address = platform::parse_bind_address(output.metrics_bind, problem);
+    if (!address) section.fail(*section.find("metrics_bind"), "metrics_bind", problem);
+    output.metrics_bind = *address;
+  }
   section.reject_unknown();
 }
 
@@ -231,15 +237,49 @@ RunConfig parse_run_config(const std::string& yaml_text, const std::string& file
   return config;
 }
 
+namespace {
+
+// The folder a configuration's relative input paths start from (common/input_path.hpp); none for
+// the command line's defaults.
+std::filesystem::path base_dir_of(const RunConfig& config) {
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(config.file, error)) return {};
+  return std::filesystem::absolute(config.file, error).parent_path();
+}
+
+// Inputs only (the model, det.txt, video files); outputs stay relative to the working directory.
+void resolve_input_paths(RunConfig& config) {
+  const auto base = base_dir_of(config);
+  std::string tried;
+  if (!config.detector.model.empty())
+    config.detector.model = resolve_input_path(config.detector.model, base, "models", tried);
+  if (!config.detector.det_file.empty())
+    config.detector.det_file = resolve_input_path(config.detector.det_file, base, "", tried);
+  const auto resolve_source = [&](SourceConfig& source) {
+    if (!source.uri.empty() && source.uri.find("://") == std::string::npos)
+      source.uri = resolve_input_path(source.uri, base, "", tried);
+  };
+  resolve_source(config.source);
+  for (SourceConfig& source : config.sources) resolve_source(source);
+}
+
+}  // namespace
+
 RunConfig default_run_config() {
   RunConfig config = parse_run_config("tracker: {}\n", "(defaults)");
   config.file = "(command line)";
   config.detector.model = "models/ssdlite_mobilenet_v2_coco.onnx";
+  resolve_input_paths(config);  // the working directory's models/, else the installed one
   return config;
 }
 
 RunConfig load_run_config(const std::string& path) {
-  return parse_run_config(read_text_file(path, kMaxConfigBytes), path);
+  // A bare name not here (`--config jetson-csi.yaml`) may be one of the installed configs.
+  std::string tried;
+  const std::string found = resolve_input_path(path, {}, "configs", tried);
+  RunConfig config = parse_run_config(read_text_file(found, kMaxConfigBytes), found);
+  resolve_input_paths(config);
+  return config;
 }
 
 std::vector<SourceConfig> source_list(const RunConfig& config) {
@@ -300,6 +340,18 @@ void validate(const RunConfig& config) {
   }
   if (!outputs::parse_overlay_flags(config.output.overlay, problem)) {
     missing("output.overlay", problem);
+  }
+  if (config.detector.kind == "ssd") {
+    // Say where it was looked for: "not found" alone sent users to fetch a model they had.
+    std::string tried;
+    resolve_input_path(config.detector.model, base_dir_of(config), "models", tried);
+    if (!tried.empty()) {
+      throw InputError(config.file, 0, "detector.model",
+                       "model file '" + config.detector.model + "' not found; tried " + tried +
+                           " (relative paths in a config file start at its folder; run "
+                           "scripts/fetch_model.sh to fetch the model)",
+                       ExitCode::bad_model);
+    }
   }
 }
 

@@ -134,8 +134,11 @@ RunOutputs make_outputs(const RunConfig& config, std::vector<pipeline::PipelineI
         parse_host_port(output.udp, config.file, 0, "output.udp", ExitCode::bad_input);
     auto sink = std::make_unique<messages::UdpSink>(target.host, target.port);
     const messages::UdpSink* udp = sink.get();
-    probes.push_back(
-        {"udp", [udp] { return udp->messages_sent(); }, [udp] { return udp->send_failures(); }});
+    probes.push_back({"udp",
+                      [udp] { return udp->messages_sent(); },
+                      [udp] { return udp->send_failures(); },
+                      {},
+                      {}});
     outputs.destinations.push_back("udp -> " +
                                    platform::format_host_port(target.host, target.port));
     sinks.push_back(std::move(sink));
@@ -151,11 +154,19 @@ RunOutputs make_outputs(const RunConfig& config, std::vector<pipeline::PipelineI
     auto sink =
         std::make_unique<outputs::MqttPublisher>(mqtt, config.stream_id, &detector::coco_label);
     const outputs::MqttPublisher* publisher = sink.get();
-    probes.push_back({"mqtt", [publisher] { return publisher->counters().published.load(); },
-                      [publisher] {
-                        return publisher->counters().dropped.load() +
-                               publisher->counters().failed.load();
-                      }});
+    probes.push_back(
+        {"mqtt", [publisher] { return publisher->counters().published.load(); },
+         [publisher] {
+           return publisher->counters().dropped.load() + publisher->counters().failed.load();
+         },
+         [publisher] {
+           return publisher->counters().queued.load() + publisher->counters().dropped.load();
+         },
+         [publisher, uri = outputs::to_string(mqtt.uri)] {
+           return publisher->counters().connects.load() == 0
+                      ? "the broker (" + uri + ") was never reached"
+                      : std::string();
+         }});
     outputs.destinations.push_back("mqtt -> " + outputs::to_string(mqtt.uri));
     sinks.push_back(std::move(sink));
   }
@@ -184,8 +195,11 @@ RunOutputs make_outputs(const RunConfig& config, std::vector<pipeline::PipelineI
   if (config.stats_interval_s > 0.0 && inputs.size() == 1) {
     sinks.push_back(std::make_unique<ProgressSink>(config.stats_interval_s, first.frame_count));
   }
+  outputs.deliveries = probes;  // for the final report
   if (output.metrics_port > 0) {
-    outputs.metrics = std::make_unique<outputs::PipelineMetrics>(std::move(probes));
+    std::vector<std::uint32_t> streams;
+    for (const auto& input : inputs) streams.push_back(input.stream_id);
+    outputs.metrics = std::make_unique<outputs::PipelineMetrics>(std::move(probes), streams);
     outputs.metrics_server = std::make_unique<outputs::MetricsServer>(
         *outputs.metrics, output.metrics_bind, static_cast<std::uint16_t>(output.metrics_port));
     sinks.push_back(std::make_unique<outputs::MetricsSink>(*outputs.metrics));

@@ -34,6 +34,9 @@ struct RunOutputs {
   /// One line per destination ("udp -> [::1]:5600", "jsonl -> tracks.jsonl (replaces an existing
   /// file)"), for the start-up log.
   std::vector<std::string> destinations;
+  /// The network outputs' counters, read at the end for the final report (valid while the
+  /// Pipeline that owns the consumers lives).
+  std::vector<outputs::OutputProbe> deliveries;
 };
 /// `inputs` (opened) give the progress line its total (a file's frame count) and the video its
 /// rate; the video sets the first input's tap (every source frame reaches it).

@@ -23,6 +23,9 @@ std::unique_ptr<platform::VideoSource> open_source(const std::string& uri,
   // above, and files are not live: both fail at once. The first open uses the configured
   // timeouts; reopens use short ones, because the pipeline's outage ticks (and so the messages to
   // the ground station) pause while a reopen blocks.
+  // A missing GStreamer plugin (csi:// without NVIDIA's nvarguscamerasrc) never appears: exit 5
+  // now, as docs/sources.md says, not retried for ever as if the camera were late.
+  platform::require_source_elements(uri);
   platform::SourceOptions reopen = options;
   reopen.open_timeout_ms = std::min(options.open_timeout_ms, 2000);
   reopen.read_timeout_ms = std::min(options.read_timeout_ms, 1000);

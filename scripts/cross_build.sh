@@ -26,6 +26,7 @@ jobs="$(nproc)"
 sysroot_packages=(
   libc6-dev libstdc++-12-dev zlib1g-dev
   libopencv-dev libeigen3-dev
+  libxnnpack-dev libpthreadpool-dev libonnx-dev libprotobuf-dev  # the XNNPACK detector backend
   libgstreamer1.0-dev libgstreamer-plugins-base1.0-dev gstreamer1.0-tools
   gstreamer1.0-plugins-base gstreamer1.0-plugins-good gstreamer1.0-libav
   libspdlog-dev libfmt-dev libcli11-dev libyaml-cpp-dev nlohmann-json3-dev

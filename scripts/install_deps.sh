@@ -7,9 +7,11 @@ packages=(
   build-essential cmake ninja-build pkg-config file git ca-certificates
   clang libclang-rt-dev                       # fuzzers and sanitizers
   libopencv-dev libeigen3-dev zlib1g-dev
+  libxnnpack-dev libpthreadpool-dev libonnx-dev libprotobuf-dev  # the XNNPACK detector backend
   libgstreamer1.0-dev libgstreamer-plugins-base1.0-dev
   gstreamer1.0-plugins-base gstreamer1.0-plugins-good gstreamer1.0-libav gstreamer1.0-tools
   gstreamer1.0-plugins-ugly                   # x264enc: the annotated video's H.264
+  gstreamer1.0-x                              # ximagesink: display:// (a window on the desktop)
   libgstrtspserver-1.0-dev gstreamer1.0-rtsp  # rtsp:// video output (gst-rtsp-server)
   libmosquitto-dev mosquitto                  # MQTT output; the tests start Debian's broker
   libcivetweb-dev                             # the Prometheus metrics endpoint

@@ -2,6 +2,8 @@
 // Value types the tracker speaks: boxes, detections and what it reports per track.
 #include <cstdint>
 
+#include "tracker/track_stage.hpp"
+
 namespace rtmot::tracker {
 
 /// Axis-aligned box in pixels: top-left corner and size (the MOTChallenge convention).
@@ -23,7 +25,8 @@ struct Detection {
   int class_id{0};
 };
 
-/// What the tracker reports for a confirmed track in one frame.
+/// What the tracker reports for a track in one frame: update() reports the confirmed ones,
+/// Tracker::track_table() every live one.
 struct TrackReport {
   std::int32_t id{0};        // 1-based, unique for the life of a Tracker
   Box box;                   // the filtered (posterior) box
@@ -31,6 +34,7 @@ struct TrackReport {
   std::int32_t class_id{0};  // class of the detections that made the track
   std::int32_t hits{0};      // consecutive matched updates
   std::int32_t age{0};       // updates since the track was born
+  TrackStage stage{TrackStage::confirmed};
 };
 
 }  // namespace rtmot::tracker

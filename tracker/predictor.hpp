@@ -6,7 +6,6 @@
 #include "tracker/kalman_predictor.hpp"
 #include "tracker/particle_predictor.hpp"
 #include "tracker/stationary_predictor.hpp"
-#include "tracker/xyah_kalman_predictor.hpp"
 
 namespace rtmot::tracker {
 

@@ -54,7 +54,9 @@ tracker::TrackerConfig rtmot_preset() {
 // (min_hits 1 in SORT's count, which does not count the birth) and dies if it misses the frame
 // after its birth; a confirmed track is kept 30 frames (track_buffer at 30 fps) and reported again
 // at its first match. One Kalman step per frame. Not ported: its score-weighted IoU (it assumes
-// scores in [0, 1]) and its x-y-aspect-height Kalman (ours is SORT's x-y-scale-ratio one).
+// scores in [0, 1]). Its x-y-aspect-height Kalman is ported (predictor kalman_xyah) but not the
+// preset's: SORT's x-y-scale-ratio one scores higher on MOT15 (the study's
+// preset-bytetrack+kalman-xyah row, docs/study/reading.md).
 tracker::TrackerConfig bytetrack_preset() {
   tracker::TrackerConfig config = tracker::TrackerConfig::sort_preset();
   config.second_round = true;

@@ -1,28 +1,40 @@
 #pragma once
-// One row of the Tracker's track table, and the life stage it is in. Internal to tracker/.
+// One row of the Tracker's track table, and its life stage. Internal to tracker/.
 #include <cstdint>
 #include <variant>
 
 #include "tracker/box.hpp"
-#include "tracker/enum_names.hpp"
+#include "tracker/confirmation_policy.hpp"
 #include "tracker/predictor.hpp"
+#include "tracker/track_stage.hpp"
 
 namespace rtmot::tracker {
 
-/// Where a track is in its life, decided afresh every update. SORT's rules: a missed update sends a
-/// confirmed track back to proving itself once it is found again, and a track never confirmed
-/// coasts like any other. ByteTrack's (keep_confirmation, tentative_dies_on_miss): confirmation is
-/// for life, and a track never confirmed dies at its first miss.
-enum class TrackState : std::uint8_t {
-  tentative,  // matched in this update, not (or no longer) confirmed: not reported
-  confirmed,  // matched in this update and confirmed: reported
-  coasting,   // alive, not matched in this update: predicted only, not reported
-  deleted,    // its slot is free
-};
+/// A track's life stage, changed only by these transitions (once an update in settle(), or at
+/// birth and death). SORT's rules and ByteTrack's differ in the confirmation policy and the
+/// deletion rule (tracker.cpp), not in the stages.
+class TrackLife {
+ public:
+  TrackStage stage() const { return stage_; }
+  bool ever_confirmed() const {
+    return stage_ == TrackStage::confirmed || stage_ == TrackStage::lost;
+  }
 
-inline constexpr auto kTrackStateNames = make_enum_names<TrackState>(
-    std::pair{TrackState::tentative, "tentative"}, std::pair{TrackState::confirmed, "confirmed"},
-    std::pair{TrackState::coasting, "coasting"}, std::pair{TrackState::deleted, "deleted"});
+  void born() { stage_ = TrackStage::tentative; }
+  /// The end of an update: confirmed by it, or not (missed, or matched short of proof). A track
+  /// never confirmed stays tentative; a confirmed one is lost.
+  void settle(bool confirmed_now) {
+    if (confirmed_now) {
+      stage_ = TrackStage::confirmed;
+    } else if (stage_ == TrackStage::confirmed) {
+      stage_ = TrackStage::lost;
+    }
+  }
+  void remove() { stage_ = TrackStage::removed; }
+
+ private:
+  TrackStage stage_{TrackStage::removed};
+};
 
 /// One slot of the table. Slots never move: a live track keeps its slot (and its particle storage)
 /// for life, so the steady state allocates nothing.
@@ -42,13 +54,16 @@ struct Track {
   double score_sum{0.0};  // of every match, for the track-level confidence
   std::int32_t matches{0};
   std::int32_t class_id{0};
-  TrackState state{TrackState::deleted};
-  bool ever_confirmed{false};
-  bool strong_birth{false};  // born at or above strong_birth_range_cut: confirmed sooner  //
-                             // confirmed in some update since its birth (ByteTrack's rules)
+  TrackLife life;
+  // Born at or above strong_birth_range_cut: confirmed sooner.
+  bool strong_birth{false};
 
-  bool matched_now() const {
-    return state == TrackState::tentative || state == TrackState::confirmed;
+  /// Matched (or born) in the update in progress.
+  bool matched_now() const { return steps_since_update == 0; }
+
+  TrackFacts facts() const {
+    return TrackFacts{hit_streak,         matches,      streak_frames,        score_sum,
+                      steps_since_update, strong_birth, life.ever_confirmed()};
   }
 };
 

@@ -20,9 +20,6 @@ constexpr int kTypicalSceneSize = 64;
 // The relative score cut remembers this many recent scores: about 100 frames of a MOT15 scene,
 // enough for a stable quantile, short enough to follow a scene that changes.
 constexpr int kScoreWindow = 1024;
-// Timestamps of nominal frames (f / rate) do not subtract to exactly one period in floating
-// point; a track one frame late must not die of a rounding error in the last bit.
-constexpr double kFrameTolerance = 1e-6;
 // The box noise is measured on matches about one nominal frame ahead: a live camera's timestamps
 // jitter, and two frames ahead the offset is mostly motion (the time-widened gate's business).
 constexpr double kOneFrameSlack = 0.5;
@@ -47,6 +44,7 @@ bool usable(const Detection& detection) {
 struct Tracker::State {
   explicit State(const TrackerConfig& c)
       : config(validated(c)),
+        confirmation(ConfirmationPolicy::from(c)),
         // MOT15 peaks at 16 detections a frame: a 64 x 64 workspace rarely has to grow.
         associator(std::min(c.max_detections, kTypicalSceneSize),
                    std::min(c.max_tracks, kTypicalSceneSize)),
@@ -71,11 +69,12 @@ struct Tracker::State {
     candidates.reserve(tracks);
     round_matches.reserve(std::min(tracks, detections));
     reports.reserve(tracks);
+    table.reserve(tracks);
     restart();
   }
 
   void restart() {
-    for (const int slot : order) slots[slot].state = TrackState::deleted;
+    for (const int slot : order) slots[slot].life.remove();
     order.clear();
     free_slots.clear();
     for (int s = config.max_tracks - 1; s >= 0; --s) free_slots.push_back(s);
@@ -146,7 +145,6 @@ struct Tracker::State {
       track.streak_frames += dt;
       ++track.steps_since_update;
       track.frames_since_update += dt;
-      track.state = TrackState::coasting;
       if (is_finite(track.predicted)) {
         order[kept++] = slot;
       } else {
@@ -164,13 +162,10 @@ struct Tracker::State {
     for (int t = 0; t < static_cast<int>(order.size()); ++t) {
       const Track& track = slots[order[t]];
       if (config.recent_tracks_first && track.steps_since_update != 1) continue;
-      if (config.confirmed_tracks_first && !track.ever_confirmed) continue;
+      if (config.confirmed_tracks_first && !track.life.ever_confirmed()) continue;
       positions.push_back(t);
     }
-    associate(high, [&](int d) {
-      high_taken[static_cast<std::size_t>(d)] = 1;
-      return d;
-    });
+    associate(high, [&](int d) { high_taken[static_cast<std::size_t>(d)] = 1; });
   }
 
   // DeepSORT's matching cascade in two levels: the tracks lost for a while (whose gate is wide and
@@ -186,9 +181,7 @@ struct Tracker::State {
     }
     collect_coasting_tracks();
     associate(rest, [&](int r) {
-      const int d = rest_index[static_cast<std::size_t>(r)];
-      high_taken[static_cast<std::size_t>(d)] = 1;
-      return d;
+      high_taken[static_cast<std::size_t>(rest_index[static_cast<std::size_t>(r)])] = 1;
     });
   }
 
@@ -199,26 +192,26 @@ struct Tracker::State {
     if (config.second_round_recent_only) {
       const auto lost = [&](int position) {
         const Track& track = slots[order[position]];
-        return !track.ever_confirmed || track.steps_since_update > 1;
+        return !track.life.ever_confirmed() || track.steps_since_update > 1;
       };
       positions.erase(std::remove_if(positions.begin(), positions.end(), lost), positions.end());
     }
     const double threshold = config.second_round_threshold > 0.0 ? config.second_round_threshold
                                                                  : config.affinity_threshold;
     associate(
-        low, [](int d) { return d; }, threshold);
+        low, [](int) {}, threshold);
   }
 
   void collect_coasting_tracks() {
     positions.clear();
     for (int t = 0; t < static_cast<int>(order.size()); ++t) {
-      if (slots[order[t]].state == TrackState::coasting) positions.push_back(t);
+      if (!slots[order[t]].matched_now()) positions.push_back(t);
     }
   }
 
   // One association round of `detections` against the tracks at `positions` (indices into
-  // `order`); each match corrects its track at once. `take(d)` marks detection d as used and
-  // returns its index in `high` or `low` (the cascade associates a subset of `high`).
+  // `order`); each match corrects its track at once. `take(d)` is told that detections[d] was
+  // matched (the first round and the cascade mark it taken in `high`).
   template <typename Take>
   void associate(const std::vector<Detection>& detections, Take take) {
     associate(detections, take, config.affinity_threshold);
@@ -264,7 +257,6 @@ struct Tracker::State {
     track.score = detection.score;
     track.score_sum += detection.score;
     ++track.matches;
-    track.state = TrackState::tentative;  // settle_and_report() decides whether it is confirmed
   }
 
   // OC-SORT's ORU: replay the lost frames from the last observation along a straight line to the
@@ -332,31 +324,27 @@ struct Tracker::State {
     track.score_sum = detection.score;
     track.matches = 1;
     track.class_id = detection.class_id;
-    track.ever_confirmed = false;
+    track.life.born();
     track.strong_birth = config.strong_birth_range_cut > 0.0 &&
                          detection.score >= score_cut.range_point(config.strong_birth_range_cut);
-    // sort.py reports a newborn track in the first min_hits frames: it counts as matched now.
-    track.state = TrackState::tentative;
+    // sort.py reports a newborn track in the first min_hits frames: it counts as matched now
+    // (steps_since_update 0).
     order.push_back(slot);
   }
 
-  // A matched track is confirmed by its run of matches (or, in the first frames, by sort.py's
-  // warm-up); confirmed tracks are reported; tracks coasting for too long are deleted.
+  // Every track's life moves on: a matched track is confirmed by its run of matches (or, in the
+  // first frames, by sort.py's warm-up) or not, a missed one is not; confirmed tracks are
+  // reported; tracks that miss too long (or, with tentative_dies_on_miss, once before they were
+  // ever confirmed) are removed.
   void settle_and_report() {
     reports.clear();
     std::size_t kept = 0;
     for (const int slot : order) {
       Track& track = slots[slot];
-      if (track.matched_now()) {
-        track.state = confirmed(track) ? TrackState::confirmed : TrackState::tentative;
-        track.ever_confirmed = track.ever_confirmed || track.state == TrackState::confirmed;
-      }
-      if (track.state == TrackState::confirmed) {
-        reports.push_back(TrackReport{track.id, current_box(track.predictor), track.score,
-                                      track.class_id, track.hit_streak, track.age});
-      }
-      const bool unproven_and_missed = config.tentative_dies_on_miss &&
-                                       track.state == TrackState::coasting && !track.ever_confirmed;
+      track.life.settle(track.matched_now() && confirmed(track));
+      if (track.life.stage() == TrackStage::confirmed) reports.push_back(report(track));
+      const bool unproven_and_missed = config.tentative_dies_on_miss && !track.matched_now() &&
+                                       track.life.stage() == TrackStage::tentative;
       if (unproven_and_missed || (track.frames_since_update > config.max_age + kFrameTolerance &&
                                   track.steps_since_update > config.min_coast_updates)) {
         release(slot);
@@ -367,29 +355,19 @@ struct Tracker::State {
     order.resize(kept);
   }
 
-  bool confirmed(const Track& track) const {
-    if (!confident(track)) return false;
-    if (config.keep_confirmation && track.ever_confirmed) return true;
-    if (track.hit_streak >= config.min_hits || in_warm_up()) return true;
-    // A strong birth needs one match, in the run that starts at its birth (matches counts the
-    // birth).
-    if (track.strong_birth && track.hit_streak >= 1 && track.matches == track.hit_streak + 1)
-      return true;
-    if (!config.confirm_by_duration) return false;
-    if (config.weak_births_by_count && config.strong_birth_range_cut > 0.0 && !track.strong_birth)
-      return false;
-    // The streak's first frame is the birth (or re-match) itself, hence the one frame less than
-    // hits; at full rate this is exactly the hit count.
-    return track.hit_streak >= config.duration_min_hits &&
-           (track.streak_frames + kFrameTolerance >= config.min_hits ||
-            elapsed_frames + kFrameTolerance < config.min_hits);
+  static TrackReport report(const Track& track) {
+    return TrackReport{track.id,          current_box(track.predictor),
+                       track.score,       track.class_id,
+                       track.hit_streak,  track.age,
+                       track.life.stage()};
   }
 
-  // sort.py reports every track in its first min_hits frames; with confirm_by_duration, as
-  // everything else about confirmation, in nominal frames (the same at full rate).
-  bool in_warm_up() const {
-    if (!config.confirm_by_duration) return frame_count <= config.min_hits;
-    return elapsed_frames + kFrameTolerance < config.min_hits;
+  bool confirmed(const Track& track) const {
+    if (!confident(track)) return false;
+    const bool duration_allowed = !(config.weak_births_by_count &&
+                                    config.strong_birth_range_cut > 0.0 && !track.strong_birth);
+    return confirmation.confirms(track.facts(), StreamClock{frame_count, elapsed_frames},
+                                 duration_allowed);
   }
 
   // The track-level confidence: a false positive that recurs at one place is matched often but
@@ -401,11 +379,18 @@ struct Tracker::State {
 
   void release(int slot) {
     slots[slot].predictor.emplace<std::monostate>();
-    slots[slot].state = TrackState::deleted;
+    slots[slot].life.remove();
     free_slots.push_back(slot);
   }
 
+  const std::vector<TrackReport>& fill_table() {
+    table.clear();
+    for (const int slot : order) table.push_back(report(slots[slot]));
+    return table;
+  }
+
   TrackerConfig config;
+  ConfirmationPolicy confirmation;
   // The track table: slots, the free ones, and the live ones oldest first (sort.py's list order).
   std::vector<Track> slots;
   std::vector<int> free_slots;
@@ -421,6 +406,7 @@ struct Tracker::State {
   std::vector<AssociationCandidate> candidates;
   std::vector<AssociationMatch> round_matches;
   std::vector<TrackReport> reports;
+  std::vector<TrackReport> table;  // track_table()'s
   Associator associator;
   BoxNoise box_noise;
   ScoreCut score_cut;
@@ -448,6 +434,10 @@ void Tracker::reset() {
 
 const TrackerConfig& Tracker::config() const {
   return state_->config;
+}
+
+const std::vector<TrackReport>& Tracker::track_table() {
+  return state_->fill_table();
 }
 
 int Tracker::live_tracks() const {

@@ -31,6 +31,11 @@ class Tracker {
   const TrackerConfig& config() const;
   /// Tracks alive now, reported or not.
   int live_tracks() const;
+  /// Every live track after the last update, reported or not, oldest first, with its life stage
+  /// (update() reports the confirmed ones); the box is the posterior where the track was matched,
+  /// the prediction where it was not. Valid until the next call of update() or track_table();
+  /// allocates nothing.
+  const std::vector<TrackReport>& track_table();
 
  private:
   struct State;

@@ -1,145 +1,235 @@
 #!/usr/bin/env bash
-# The GPU verification run (docs/gpu.md), as run on the lent GPU machine (Ubuntu 24.04, CUDA 13,
-# cuDNN from pip, no network, no apt): everything it needs travels in .devcarry/ (Debian 12 -dev
-# packages unpacked with dpkg -x into a folder of its own, the OpenCV source subset or an OpenCV
-# install built by an earlier run, the reference frames decoded as the reference was) and models/.
+# The GPU verification run (docs/gpu.md §3) on a machine without network or apt (the lent H100:
+# Ubuntu 24.04, CUDA 13, cuDNN from pip). Everything it needs is in the carried folder that
+# scripts/gpu_prepare.sh made on Debian 12 (default .gpu-carry/ in this checkout).
 #
 #   scripts/opencv/gpu_machine.sh OUT_DIR [stages]
-# stages (default "opencv rtmot tests bench pipeline"):
-#   opencv    build OpenCV 4.10 with CUDA (arch 9.0) from .devcarry/opencv-*.tar.xz and pack the
-#             install to OUT_DIR/opencv-4.10-cuda-sm90.tar.xz (reused by later runs when it is
-#             carried as .devcarry/opencv-4.10-cuda-sm90.tar.xz)
-#   rtmot     build rtmot's detector tests, benchmarks (and rtmot itself where it links) against it
-#   tests     the detector tests on cpu, cuda and cuda-fp16 (reference frames: .devcarry/vtest-ref)
-#   bench     detector_batch_bench: forward ms per backend at batch 1, 2, 4, 8, 16 (twice), and
-#             with batches varying by one image
-#   pipeline  rtmot run every-frame on an image folder, per backend, 1/2/4/8 sources
-# The logs are packed into OUT_DIR/logs.tar.xz (the device returns 8 files at most).
-set -uo pipefail
+# stages (default "opencv rtmot tests bench profile pipeline"), each an error with its reason when it
+# cannot run (never skipped):
+#   opencv    build OpenCV 4.10 with CUDA (arch 9.0) from the carried source and pack the install to
+#             OUT_DIR/opencv-4.10-cuda-sm90.tar.xz; or unpack a carried install (gpu_prepare.sh
+#             --opencv-install)
+#   rtmot     build rtmot (every target the stages below run) against it
+#   tests     the detector tests, reference frames decoded as the reference was (FFmpeg)
+#   bench     detector_batch_bench: cpu, cuda, cuda-fp16 at batch 1, 2, 4, 8, three passes
+#   profile   scripts/opencv/forward_profile: host time per layer (Net::getPerfProfile) against the
+#             forward's wall time, batch 1, per backend; Nsight Systems' kernel summary where nsys is
+#   pipeline  rtmot run every-frame on the reference frames, per backend, 1/2/4/8 sources, with
+#             nvidia-smi sampling the GPU's busy share
+# Environment: RTMOT_CARRY (the carried folder), RTMOT_SOURCE (the rtmot source tree to build and
+# run, default this checkout: e.g. an older commit to compare), RTMOT_PASSES (bench passes, 3),
+# RTMOT_OPENCV_DIR (where the OpenCV install is or goes, /tmp/rtmot-opencv; its install/ folder).
+set -euo pipefail
 out="${1:?usage: gpu_machine.sh OUT_DIR [stages]}"
-stages="${2:-opencv rtmot tests bench pipeline}"
+stages="${2:-opencv rtmot tests bench profile pipeline}"
 repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
-carry="$repo/.devcarry"
+carry="$(realpath "${RTMOT_CARRY:-$repo/.gpu-carry}")"
+source_dir="$(realpath "${RTMOT_SOURCE:-$repo}")"
+tag="$(basename "$source_dir")"
 deps=/tmp/rtmot-deps
-ocv=/tmp/rtmot-opencv
-build=/tmp/rtmot-build
-mkdir -p "$out" "$deps"
+ocv="${RTMOT_OPENCV_DIR:-/tmp/rtmot-opencv}"
+build="/tmp/rtmot-build-$tag"
+frames=/tmp/rtmot-vtest-ref
+mkdir -p "$out"
 has() { [[ " $stages " == *" $1 "* ]]; }
 step() { echo "=== $(date -u +%H:%M:%S) $*"; }
+die() {
+  echo "gpu_machine: $*" >&2
+  exit 1
+}
+on_error() { echo "gpu_machine: FAILED at line $1 (stage above); nothing after it ran" >&2; }
+trap 'on_error $LINENO' ERR
+
+for stage in $stages; do
+  [[ " opencv rtmot tests bench profile pipeline " == *" $stage "* ]] || die "unknown stage '$stage'"
+done
+[[ -d $carry ]] || die "$carry: no carried folder (make it with scripts/gpu_prepare.sh on Debian 12: docs/gpu.md)"
 
 step "machine"
 nproc
-nvidia-smi --query-gpu=name,driver_version,memory.total,clocks.sm,clocks.max.sm --format=csv || true
-nvcc --version | tail -2
-g++ --version | head -1
-cmake --version | head -1
-ls /usr/local/cuda/include/npp.h /usr/local/cuda/include/cudnn.h 2>&1 | sed 's/^/  /'
+nvidia-smi --query-gpu=name,driver_version,memory.total,clocks.sm,clocks.max.sm --format=csv
+for tool in nvcc g++ cmake ninja pkg-config dpkg python3; do
+  command -v "$tool" >/dev/null || die "$tool: not on this machine (needed by the build)"
+done
+nvcc --version | tail -n 2
+g++ --version | head -n 1
+cmake --version | head -n 1
 
-step "dependencies: dpkg -x into $deps"
+step "requirements: the checkout's against the carried folder's"
+# The packages were derived from the CMake requirements of the checkout gpu_prepare.sh ran in: a
+# requirement added since then has no package here.
+missing="$(comm -23 <(bash "$repo/scripts/gpu_deps.sh" requirements "$source_dir" | cut -f1,2 | sort -u) \
+  <(cut -f1,2 "$carry/requirements.tsv" | sort -u))"
+[[ -z $missing ]] || die "requirements the carried folder was not prepared for (run scripts/gpu_prepare.sh again): $missing"
+
+step "dependencies: $(wc -l <"$carry/packages.txt") Debian packages, dpkg -x into $deps"
+rm -rf "$deps" && mkdir -p "$deps/pkgconfig"
 for f in "$carry"/debs/*.deb; do dpkg -x "$f" "$deps"; done
-lib="$deps/usr/lib/x86_64-linux-gnu"
+triplet="$(gcc -dumpmachine)"
+lib="$deps/usr/lib/$triplet"
+# The carried .pc files name include folders as on Debian 12; one that no carried package ships
+# (e.g. the multiarch /usr/include/<triplet>) is dropped: CMake refuses imported targets with
+# non-existent include folders.
+for f in "$carry"/pkgconfig/*.pc; do
+  sed "s|^prefix=/usr\$|prefix=$deps/usr|" "$f" | while IFS= read -r line; do
+    if [[ $line == Cflags:* ]]; then
+      kept=()
+      for flag in ${line#Cflags:}; do
+        flag="${flag//\$\{prefix\}/$deps/usr}"
+        [[ $flag == -I* && ! -d ${flag#-I} ]] && continue
+        kept+=("$flag")
+      done
+      line="Cflags: ${kept[*]}"
+    fi
+    printf '%s\n' "$line"
+  done >"$deps/pkgconfig/$(basename "$f")"
+done
+export PKG_CONFIG_LIBDIR="$deps/pkgconfig" PKG_CONFIG_PATH="$deps/pkgconfig"
+while IFS=$'\t' read -r kind name _; do
+  [[ $kind == pkg_* ]] || continue
+  pkg-config --exists "$name" || die "pkg-config: $name not in the carried .pc files"
+done <"$carry/requirements.tsv"
 # cuDNN: the toolkit's own, else NVIDIA's pip package (headers + libcudnn.so.9 only: OpenCV links
 # -lcudnn, so a folder with a libcudnn.so symlink)
 cudnn_args=()
+cudnn_lib=""
 if [[ ! -f /usr/local/cuda/include/cudnn.h ]]; then
-  pip_cudnn="$(python3 -c 'import nvidia.cudnn as m; print(m.__path__[0])')"
+  pip_cudnn="$(python3 -c 'import nvidia.cudnn as m; print(m.__path__[0])')" ||
+    die "no cuDNN: neither /usr/local/cuda/include/cudnn.h nor the pip package nvidia-cudnn"
   mkdir -p /tmp/cudnn/lib
   ln -sfn "$pip_cudnn/include" /tmp/cudnn/include
   ln -sf "$pip_cudnn/lib/libcudnn.so.9" /tmp/cudnn/lib/libcudnn.so
   cudnn_args=(--cudnn /tmp/cudnn)
-  export LD_LIBRARY_PATH="$pip_cudnn/lib:${LD_LIBRARY_PATH:-}"
+  cudnn_lib="$pip_cudnn/lib"
 fi
-export LD_LIBRARY_PATH="$ocv/install/lib:$lib:$deps/lib/x86_64-linux-gnu:/usr/local/cuda/lib64:${LD_LIBRARY_PATH:-}"
-# GStreamer through pkg-config files of our own: the packages' own ones name /usr and pull in
-# private requirements (libffi, pcre2, ...) that this machine has no -dev files for.
-mkdir -p /tmp/rtmot-pc
-for pc in gstreamer-1.0:gstreamer-1.0 gstreamer-app-1.0:"gstapp-1.0 -lgstbase-1.0" \
-  gstreamer-video-1.0:"gstvideo-1.0 -lgstbase-1.0"; do
-  name="${pc%%:*}"
-  libs="${pc#*:}"
-  cat >"/tmp/rtmot-pc/$name.pc" <<PC
-Name: $name
-Description: Debian 12's, unpacked in $deps
-Version: 1.22.0
-Cflags: -I$deps/usr/include/gstreamer-1.0 -I$deps/usr/include/glib-2.0 -I$lib/glib-2.0/include
-Libs: -L$lib -l$libs -lgstreamer-1.0 -lgobject-2.0 -lglib-2.0
-PC
-done
-export PKG_CONFIG_LIBDIR=/tmp/rtmot-pc PKG_CONFIG_PATH=/tmp/rtmot-pc
-pkg-config --version || echo "no pkg-config here"
+# Our programs only: Debian's libraries must not shadow this machine's for its own tools.
+run_env=(env "LD_LIBRARY_PATH=$ocv/install/lib:$lib:$deps/lib/$triplet:/usr/local/cuda/lib64${cudnn_lib:+:$cudnn_lib}")
 
 if has opencv; then
   if [[ -f $carry/opencv-4.10-cuda-sm90.tar.xz ]]; then
-    step "opencv: reusing the carried install"
-    mkdir -p "$ocv" && tar -xJf "$carry/opencv-4.10-cuda-sm90.tar.xz" -C "$ocv"
+    step "opencv: unpacking the carried install"
+    rm -rf "$ocv" && mkdir -p "$ocv" && tar -xJf "$carry/opencv-4.10-cuda-sm90.tar.xz" -C "$ocv"
   else
-    step "opencv: build"
-    /usr/bin/time -v "$repo/scripts/build_opencv.sh" --source "$(ls "$carry"/opencv-4.10.0-*.tar.xz)" \
-      --prefix "$ocv/install" --build-dir "$ocv/build" --cuda --cuda-arch 9.0 "${cudnn_args[@]}" \
-      --jobs "$(nproc)" --pack "$out/opencv-4.10-cuda-sm90.tar.xz" 2>&1 | tail -40
-    cp "$ocv/build/configure.log" "$out/opencv-configure.log" 2>/dev/null
-    grep -E "error|Error" "$ocv/build/build.log" | head -30
+    source_tar="$(ls "$carry"/opencv-4.10.0-*.tar.xz 2>/dev/null | head -n 1)"
+    [[ -n $source_tar ]] || die "$carry: neither opencv-4.10-cuda-sm90.tar.xz nor an opencv-4.10.0-*.tar.xz source"
+    step "opencv: build from $(basename "$source_tar")"
+    "$repo/scripts/build_opencv.sh" --source "$source_tar" --prefix "$ocv/install" --build-dir "$ocv/build" \
+      --cuda --cuda-arch 9.0 "${cudnn_args[@]}" --jobs "$(nproc)" --pack "$out/opencv-4.10-cuda-sm90.tar.xz" \
+      >"$out/opencv-build.log" 2>&1 || { tail -n 40 "$out/opencv-build.log"; die "OpenCV build failed (log above)"; }
+    tail -n 3 "$out/opencv-build.log"
   fi
   cat "$ocv/install/BUILD_INFO.txt"
 fi
+[[ -d $ocv/install/lib/cmake/opencv4 ]] || die "no OpenCV at $ocv/install (run the opencv stage)"
 
 if has rtmot; then
-  if [[ ! -e $ocv/install/lib/libopencv_videoio.so ]]; then
-    # pipeline/ still links cv::VideoWriter (the annotated video, not written in these runs) and
-    # this OpenCV has no videoio: link rtmot against a stub whose every call fails.
-    step "rtmot: videoio stub for pipeline/"
-    mkdir -p /tmp/videoio-stub
-    g++ -std=c++17 -O2 -shared -fPIC -I"$carry/videoio-stub/include" -I"$ocv/install/include/opencv4" \
-      "$carry/videoio-stub/stub.cpp" -o /tmp/videoio-stub/libopencv_videoio.so
-    export CPLUS_INCLUDE_PATH="$carry/videoio-stub/include" LIBRARY_PATH=/tmp/videoio-stub
-    export LD_LIBRARY_PATH="/tmp/videoio-stub:$LD_LIBRARY_PATH"
+  step "rtmot ($source_dir): configure and build"
+  # The model where the tests and configs look for it (models/ is git-ignored, a link here)
+  if [[ ! -f $source_dir/models/ssdlite_mobilenet_v2_coco.onnx ]]; then
+    rm -rf "$source_dir/models" && mkdir -p "$source_dir/models"
+    cp "$carry"/model/* "$source_dir/models/"
   fi
-  step "rtmot: configure and build"
   # -Wno-dangling-reference: g++ 13 (this machine's) flags runner/run_config.cpp, which the
-  # project's compilers (g++ 9-12) do not.
-  cmake -S "$repo" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release \
+  # project's compilers (g++ 9-12) do not. rpath-link: Debian's libraries' own dependencies.
+  rm -f "$build/CMakeCache.txt" # pkg-config results are cached: a fresh configure each run
+  cmake -S "$source_dir" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release \
     -DOpenCV_DIR="$ocv/install/lib/cmake/opencv4" -DCMAKE_PREFIX_PATH="$deps/usr" \
     -DRTMOT_SHARED_DIR="$carry/shared" -DCMAKE_CXX_FLAGS=-Wno-dangling-reference \
-    >"$out/rtmot-configure.log" 2>&1 || tail -30 "$out/rtmot-configure.log"
-  grep -E "OpenCV 4" "$out/rtmot-configure.log"
-  ninja -C "$build" detector_tests detector_batch_bench detector_bench >"$out/rtmot-build.log" 2>&1 ||
-    grep -E "error|FAILED" -A5 "$out/rtmot-build.log" | head -60
-  ninja -C "$build" rtmot >"$out/rtmot-app-build.log" 2>&1 ||
-    { echo "rtmot (the app) did not build:"; grep -E "error|FAILED|undefined" "$out/rtmot-app-build.log" | head -8; }
+    "-DCMAKE_EXE_LINKER_FLAGS=-Wl,-rpath-link,$lib:$deps/lib/$triplet:$ocv/install/lib" \
+    "-DCMAKE_SHARED_LINKER_FLAGS=-Wl,-rpath-link,$lib:$deps/lib/$triplet:$ocv/install/lib" \
+    >"$out/rtmot-configure-$tag.log" 2>&1 || { tail -n 30 "$out/rtmot-configure-$tag.log"; die "rtmot: configure failed"; }
+  grep -E "OpenCV 4" "$out/rtmot-configure-$tag.log" || true
+  ninja -C "$build" detector_tests detector_batch_bench rtmot >"$out/rtmot-build-$tag.log" 2>&1 ||
+    { grep -E "error|FAILED|undefined" -A3 "$out/rtmot-build-$tag.log" | head -n 60; die "rtmot: build failed"; }
+  echo "built: detector_tests detector_batch_bench rtmot"
 fi
 
-export RTMOT_VTEST_FRAMES="$carry/vtest-ref" RTMOT_BENCH_FRAMES="images://$carry/vtest-ref"
+if has tests || has bench || has pipeline; then
+  if [[ ! -f $frames/751.png ]]; then
+    step "reference frames: vtest.avi frames 1, 51, ..., 751 decoded by FFmpeg (this machine's opencv-python)"
+    mkdir -p "$frames"
+    python3 - "$carry/shared/data/video/vtest.avi" "$frames" <<'PY' || die "frame extraction failed (needs python3's cv2 with FFmpeg)"
+import sys, cv2
+capture = cv2.VideoCapture(sys.argv[1], cv2.CAP_FFMPEG)
+assert capture.isOpened(), 'FFmpeg cannot open ' + sys.argv[1]
+written = 0
+for number in range(1, 752):
+    ok, frame = capture.read()
+    assert ok, f'frame {number} not decoded'
+    if (number - 1) % 50 == 0:
+        assert cv2.imwrite(f'{sys.argv[2]}/{number}.png', frame)
+        written += 1
+print(f'{written} frames')
+PY
+  fi
+fi
+export RTMOT_VTEST_FRAMES="$frames" RTMOT_BENCH_FRAMES="images://$frames"
+
 if has tests; then
-  step "detector tests"
-  (cd "$build" && ./tests/detector/detector_tests 2>&1 | tee "$out/detector_tests.log" |
-    grep -E "matched|OK \]|FAILED|SKIPPED \]|PASSED|on (cpu|cuda)" | head -80)
+  step "detector tests ($tag)"
+  (cd "$build" && "${run_env[@]}" ./tests/detector/detector_tests) >"$out/detector_tests-$tag.log" 2>&1 ||
+    { grep -E "FAILED|Failure" -A3 "$out/detector_tests-$tag.log" | head -n 40; die "detector tests failed"; }
+  grep -E "matched|PASSED|on (cpu|cuda)" "$out/detector_tests-$tag.log" | head -n 30
 fi
+
 if has bench; then
-  step "detector_batch_bench"
-  "$build/bench/detector_batch_bench" --backends cpu,cuda,cuda-fp16 --batches 1,2,4,8,16 \
-    --iterations 50 2>&1 | tee "$out/detector_batch_bench.log"
-  "$build/bench/detector_batch_bench" --backends cpu,cuda,cuda-fp16 --batches 1,2,4,8,16 \
-    --iterations 50 2>&1 | tee "$out/detector_batch_bench_repeat.log" | tail -18
-  "$build/bench/detector_batch_bench" --backends cpu,cuda,cuda-fp16 --batches 2,8 --vary \
-    --iterations 50 2>&1 | tee "$out/detector_batch_bench_vary.log" | tail -9
+  for pass in $(seq 1 "${RTMOT_PASSES:-3}"); do
+    step "detector_batch_bench ($tag) pass $pass"
+    "${run_env[@]}" "$build/bench/detector_batch_bench" --backends cpu,cuda,cuda-fp16 --batches 1,2,4,8 \
+      --iterations 60 2>&1 | tee "$out/bench-$tag-$pass.log" | tail -n 14
+    # the benchmark reports a backend it cannot run as "skipped": here that is a failure
+    ! grep -q "skipped" "$out/bench-$tag-$pass.log" || die "detector_batch_bench skipped a backend (above)"
+  done
 fi
-if has pipeline && [[ -x $build/apps/rtmot ]]; then
+
+if has profile; then
+  step "forward profile (host time per layer, batch 1)"
+  g++ -std=c++17 -O2 "$repo/scripts/opencv/forward_profile.cpp" -o /tmp/forward_profile \
+    -I"$ocv/install/include/opencv4" -L"$ocv/install/lib" -lopencv_dnn -lopencv_core
+  for backend in cuda cuda-fp16 cpu; do
+    "${run_env[@]}" /tmp/forward_profile "$carry"/model/*.onnx "$backend" 300 2>&1 |
+      tee "$out/profile-$backend.log" | head -n 12
+  done
+  # scripts/opencv/cuda_graph.patch's switch: the same build layer by layer
+  for backend in cuda cuda-fp16; do
+    echo "--- $backend with OPENCV_DNN_CUDA_GRAPH=0 (layer by layer)"
+    "${run_env[@]}" OPENCV_DNN_CUDA_GRAPH=0 /tmp/forward_profile "$carry"/model/*.onnx "$backend" 300 2>&1 |
+      tee "$out/profile-$backend-nograph.log" | head -n 4
+  done
+  if command -v nsys >/dev/null; then
+    "${run_env[@]}" nsys profile -o /tmp/forward-fp16 --force-overwrite true /tmp/forward_profile \
+      "$carry"/model/*.onnx cuda-fp16 300 >/dev/null 2>&1 || die "nsys profile failed"
+    nsys stats -r cuda_gpu_kern_sum,cuda_api_sum /tmp/forward-fp16.nsys-rep >"$out/nsys-fp16.txt" 2>&1 ||
+      die "nsys stats failed"
+    head -n 40 "$out/nsys-fp16.txt"
+  else
+    echo "nsys: not on this machine (Nsight Systems' summary not taken; the profile above is OpenCV's own)"
+  fi
+fi
+
+if has pipeline; then
+  [[ -x $build/apps/rtmot ]] || die "$build/apps/rtmot: not built (run the rtmot stage)"
   for backend in cpu cuda cuda-fp16; do
-    config="/tmp/rtmot-$backend.yaml"
-    sed -e "s|^  model: .*|  model: $repo/models/ssdlite_mobilenet_v2_coco.onnx|" \
+    config="/tmp/rtmot-$tag-$backend.yaml"
+    sed -e "s|^  model: .*|  model: $source_dir/models/ssdlite_mobilenet_v2_coco.onnx|" \
       -e "s|^  backend: auto|  backend: ${backend%-fp16}\n  fp16: $([[ $backend == *fp16 ]] && echo on || echo off)|" \
       -e "s|^  udp: .*|  udp: 127.0.0.1:5600|" -e "s|^  jsonl_file: .*|  jsonl_file: /tmp/tracks-$backend.jsonl|" \
-      "$repo/configs/desktop.yaml" >"$config"
+      "$source_dir/configs/desktop.yaml" >"$config"
     for n in 1 2 4 8; do
-      step "pipeline every-frame on $backend, $n sources"
+      step "pipeline ($tag) every-frame on $backend, $n sources"
       args=()
-      for ((i = 0; i < n; ++i)); do args+=(--source "images://$carry/vtest-ref?fps=10&loop=25"); done
-      "$build/apps/rtmot" run --config "$config" "${args[@]}" --playback every-frame \
-        --report "$out/pipeline-$backend-$n.json" >"$out/pipeline-$backend-$n.log" 2>&1
-      grep -E "detector:|frames captured" "$out/pipeline-$backend-$n.log" | cut -c 40- | tail -3
+      for ((i = 0; i < n; ++i)); do args+=(--source "images://$frames?fps=10&loop=25"); done
+      nvidia-smi --query-gpu=utilization.gpu --format=csv,noheader,nounits -lms 100 >"/tmp/smi-$n.txt" &
+      smi=$!
+      "${run_env[@]}" "$build/apps/rtmot" run --config "$config" "${args[@]}" --playback every-frame \
+        --report "$out/pipeline-$tag-$backend-$n.json" >"$out/pipeline-$tag-$backend-$n.log" 2>&1 ||
+        { kill "$smi"; tail -n 20 "$out/pipeline-$tag-$backend-$n.log"; die "rtmot run failed ($backend, $n sources)"; }
+      kill "$smi" && wait "$smi" 2>/dev/null || true
+      busy="$(awk '{s += $1; n++} END {if (n) printf "%.0f", s / n; else print 0}' "/tmp/smi-$n.txt")"
+      echo "gpu busy (mean of 100 ms nvidia-smi samples over the whole run, start-up included): $busy %" | tee -a "$out/pipeline-$tag-$backend-$n.log"
+      grep -E "detector:|frames captured" "$out/pipeline-$tag-$backend-$n.log" | cut -c 40- | tail -n 3
     done
   done
 fi
-step "done"
-tar -C "$out" -cJf /tmp/logs.tar.xz --exclude '*.tar.xz' . && mv /tmp/logs.tar.xz "$out/logs.tar.xz"
-find "$out" -maxdepth 1 -type f ! -name '*.tar.xz' ! -name run.log -delete
+trap - ERR
+step "all stages passed: $stages"

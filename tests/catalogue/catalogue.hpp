@@ -35,5 +35,9 @@ const std::vector<CatalogueCase>& catalogue();
 std::vector<CatalogueCase> hostile_cases();
 /// Round three (issue 23), a class per block; catalogue() includes it.
 std::vector<CatalogueCase> round_three_cases();
+/// Round three (issue 23), the settings surface's classes: checked numbers and addresses.
+std::vector<CatalogueCase> settings_cases();
+/// Round three (issue 23, class 1): the detector's files through common/input_file.
+std::vector<CatalogueCase> detector_file_cases();
 
 }  // namespace rtmot::test

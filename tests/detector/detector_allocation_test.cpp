@@ -12,6 +12,13 @@
 #include "shared_data.hpp"
 #include "vtest_frames.hpp"
 
+#if RTMOT_HAVE_XNNPACK
+#include <xnnpack.h>
+
+#include <atomic>
+#include <cstdlib>
+#endif
+
 namespace rtmot::detector {
 namespace {
 
@@ -123,6 +130,77 @@ TEST(DetectorAllocation, SsdBatchAllocatesNoImageBuffersPerBatch) {
   EXPECT_EQ(counts[0], counts[1]);
   EXPECT_LT(largest, kImageBytes + 4 * kOpenCvScratchPerImage);
 }
+
+#if RTMOT_HAVE_XNNPACK
+// XNNPACK allocates with malloc/posix_memalign through its own allocator table, which operator
+// new never sees: counted here by handing XNNPACK a counting table (the same functions as its
+// default one, so blocks allocated before stay compatible).
+std::atomic<long> xnnpack_allocations{0};
+
+void* xnn_counted(void* /*context*/, std::size_t size) {
+  ++xnnpack_allocations;
+  return std::malloc(size);
+}
+void* xnn_counted_realloc(void* /*context*/, void* pointer, std::size_t size) {
+  ++xnnpack_allocations;
+  return std::realloc(pointer, size);
+}
+void xnn_free(void* /*context*/, void* pointer) {
+  std::free(pointer);
+}
+void* xnn_counted_aligned(void* /*context*/, std::size_t alignment, std::size_t size) {
+  ++xnnpack_allocations;
+  void* pointer = nullptr;
+  return posix_memalign(&pointer, alignment, size) == 0 ? pointer : nullptr;
+}
+
+TEST(DetectorAllocation, XnnpackAllocatesNothingInSteadyState) {
+  const auto model = test::source_path("models/ssdlite_mobilenet_v2_coco.onnx");
+  if (!std::filesystem::exists(model)) {
+    FAIL() << "missing model " << model << ": run scripts/fetch_model.sh";
+  }
+  const auto frames = test::vtest_frames({1, 51, 101, 151});
+  ASSERT_EQ(frames.size(), 4U);
+  std::vector<const cv::Mat*> images;
+  std::vector<std::int64_t> numbers;
+  for (const auto& [number, image] : frames) {
+    images.push_back(&image);
+    numbers.push_back(number);
+  }
+  SsdConfig config;
+  config.model_path = model;
+  config.backend = BackendRequest::xnnpack;
+  config.threads = 2;  // the thread pool's hand-over must not allocate either
+  config.max_batch = 4;
+  SsdDetector detector(config);
+  std::vector<tracker::Detection> one;
+  std::vector<std::vector<tracker::Detection>> many;
+  detector.detect(*images[0], 1, one);  // the outputs grow once
+  detector.detect_batch(images.data(), numbers.data(), 4, many);  // every slot used once
+  // After start-up (which initialized XNNPACK): every later XNNPACK allocation is counted.
+  const xnn_allocator counting{nullptr,   &xnn_counted,         &xnn_counted_realloc,
+                               &xnn_free, &xnn_counted_aligned, &xnn_free};
+  ASSERT_EQ(xnn_initialize(&counting), xnn_status_success);
+  long counts[2] = {0, 0};
+  std::size_t largest = 0;
+  xnnpack_allocations = 0;
+  for (long& count : counts) {
+    const test::CountingScope counting_new;
+    detector.detect(*images[1], 2, one);
+    detector.detect_batch(images.data(), numbers.data(), 4, many);
+    detector.detect_batch(images.data(), numbers.data(), 2, many);
+    count = counting_new.allocations();
+    largest = counting_new.largest();
+  }
+  std::cout << "xnnpack detect + detect_batch(4) + detect_batch(2): " << counts[1]
+            << " operator new allocations (largest " << largest << " bytes), "
+            << xnnpack_allocations.load() << " XNNPACK allocations\n";
+  EXPECT_EQ(xnnpack_allocations.load(), 0);
+  // What remains is cv::resize's two small interpolation tables per image, the same every frame.
+  EXPECT_EQ(counts[0], counts[1]);
+  EXPECT_LT(largest, kImageBytes);
+}
+#endif
 
 }  // namespace
 }  // namespace rtmot::detector

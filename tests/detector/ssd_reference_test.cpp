@@ -57,6 +57,8 @@ constexpr Tolerance kGstDecodeTolerance{6.F, 0.08F};  // NEON rounding on top (n
 #else
 constexpr Tolerance kGstDecodeTolerance{4.F, 0.05F};
 #endif
+// XNNPACK (fp32, its own kernels and summation order): the CPU's allowance.
+constexpr Tolerance kXnnpackTolerance = kCpuTolerance;
 // CUDA fp32 (cuDNN): measured on the H100 (docs/gpu.md) 0.05 px and 5e-5 like the CPU; the same
 // allowance as the CPU's.
 constexpr Tolerance kCudaTolerance{2.F, 0.01F};
@@ -127,6 +129,10 @@ TEST_P(SsdReference, ReproducesTheTfjsModelOnVtest) {
       GTEST_SKIP() << "no CUDA here (OpenCV with the CUDA DNN backend and a GPU): "
                    << "this case runs on the GPU machine (docs/gpu.md)";
     }
+  }
+
+  if (param.backend == BackendRequest::xnnpack && !xnnpack_built()) {
+    GTEST_SKIP() << "this build has no XNNPACK backend (libxnnpack-dev, libonnx-dev)";
   }
 
   SsdConfig config;
@@ -238,6 +244,8 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(
         Case{"cpu", BackendRequest::cpu, Fp16Request::off, kCpuTolerance, 1},
         Case{"cpu_batch8", BackendRequest::cpu, Fp16Request::off, kCpuTolerance, 8},
+        Case{"xnnpack", BackendRequest::xnnpack, Fp16Request::off, kXnnpackTolerance, 1},
+        Case{"xnnpack_batch8", BackendRequest::xnnpack, Fp16Request::off, kXnnpackTolerance, 8},
         Case{"cuda", BackendRequest::cuda, Fp16Request::off, kCudaTolerance, 1},
         Case{"cuda_batch8", BackendRequest::cuda, Fp16Request::off, kCudaTolerance, 8},
         Case{"cuda_fp16", BackendRequest::cuda, Fp16Request::on, kCudaFp16Tolerance, 1},

@@ -2,6 +2,7 @@
 // when the service starts is retried with the outage backoff: rtmot runs, sends source_outage
 // messages, and tracks once the camera (an RTSP server started here, streaming vtest.avi) appears.
 // A missing file and a malformed URI still fail at once.
+#include <gst/gst.h>
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
@@ -121,6 +122,22 @@ TEST_F(ColdStart, MissingFileAndMalformedUriFailAtOnce) {
   EXPECT_EQ(err.find("retrying"), std::string::npos) << err;
 }
 
+// A live URI whose GStreamer element is missing (csi:// off a Jetson: no nvarguscamerasrc) is not a
+// camera that boots late: exit 5 at once, naming the element and where it comes from (it was
+// retried for ever). A v4l2 device that is absent is still a cold start (the test above).
+TEST_F(ColdStart, MissingGStreamerElementFailsAtOnce) {
+  gst_init(nullptr, nullptr);
+  if (GstElementFactory* factory = gst_element_factory_find("nvarguscamerasrc")) {
+    gst_object_unref(factory);
+    GTEST_SKIP() << "this machine has nvarguscamerasrc (a Jetson): csi://0 may be a cold start";
+  }
+  EXPECT_EQ(run_to_end({"run", "--source", "csi://0", "--model", model_.string()}), 5);
+  const std::string err = test::read_text(folder_ / "err.txt");
+  EXPECT_NE(err.find("no element \"nvarguscamerasrc\""), std::string::npos) << err;
+  EXPECT_NE(err.find("L4T"), std::string::npos) << err;
+  EXPECT_EQ(err.find("retrying"), std::string::npos) << err;
+}
+
 }  // namespace
 }  // namespace rtmot::outputs
 
@@ -130,7 +147,7 @@ namespace {
 // The systemd unit matches the cold start: it never stops restarting (no start limit), and it
 // does not treat exit 5 (source failed) as final.
 TEST(ColdStartUnit, ServiceNeverGivesUp) {
-  const std::string unit = test::read_text(test::source_path("scripts/deploy/rtmot.service"));
+  const std::string unit = test::read_text(test::source_path("scripts/deploy/rtmot.service.in"));
   ASSERT_FALSE(unit.empty());
   EXPECT_NE(unit.find("\nStartLimitIntervalSec=0\n"), std::string::npos);
   EXPECT_NE(unit.find("\nRestart=on-failure\n"), std::string::npos);

@@ -4,9 +4,11 @@
 // the loss and every board's publishing resumes. The numbers are printed (and recorded as test
 // properties) for the report.
 #include <gtest/gtest.h>
+#include <mosquitto.h>
 
 #include <chrono>
 #include <csignal>
+#include <fstream>
 #include <regex>
 #include <thread>
 #include <vector>
@@ -14,6 +16,7 @@
 #include "message_test_data.hpp"
 #include "mosquitto_broker.hpp"
 #include "outputs/mqtt_publisher.hpp"
+#include "shared_data.hpp"
 
 namespace rtmot::outputs {
 namespace {
@@ -66,15 +69,19 @@ struct FleetRun {
   double seconds{0.0};
 };
 
-// Every board publishes the same recorded sequence under its own stream id and topic.
-FleetRun run_fleet(const test::MosquittoBroker& broker, const std::function<void()>& mid_run) {
+// Every board publishes the same recorded sequence under its own stream id and topic, binary or
+// JSON as `format_of(board)` says.
+FleetRun run_fleet(
+    const test::MosquittoBroker& broker, const std::function<void()>& mid_run,
+    const std::function<const char*(int board)>& format_of = [](int) { return "binary"; }) {
   const auto frames = test::frames_from_detections("ETH-Bahnhof", messages_per_board);
   std::vector<std::unique_ptr<MqttPublisher>> publishers;
   for (int board = 0; board < boards; ++board) {
     MqttPublisherOptions options;
     std::string problem;
-    options.uri =
-        *parse_mqtt_uri(broker.mqtt_uri("fleet/board" + std::to_string(board) + "?qos=1"), problem);
+    options.uri = *parse_mqtt_uri(broker.mqtt_uri("fleet/board" + std::to_string(board) +
+                                                  "?qos=1&format=" + format_of(board)),
+                                  problem);
     options.client_id = "fleet-board-" + std::to_string(board);
     publishers.push_back(std::make_unique<MqttPublisher>(options, 1000 + board));
   }
@@ -111,9 +118,10 @@ class Fleet : public ::testing::Test {
                                   ("rtmot-fleet-" + std::to_string(::getpid()) + "-" +
                                    ::testing::UnitTest::GetInstance()->current_test_info()->name());
 
-  std::unique_ptr<test::ChildProcess> start_listener(const test::MosquittoBroker& broker) {
+  std::unique_ptr<test::ChildProcess> start_listener(const test::MosquittoBroker& broker,
+                                                     const std::string& filter = "fleet/#") {
     auto listener = std::make_unique<test::ChildProcess>(
-        std::vector<std::string>{RTMOT_BINARY, "listen", "--mqtt", broker.mqtt_uri("fleet/#"),
+        std::vector<std::string>{RTMOT_BINARY, "listen", "--mqtt", broker.mqtt_uri(filter),
                                  "--quiet", "--stats-every", "0"},
         folder_ / "listen.out", folder_ / "listen.err");
     // Listening once its subscription is acknowledged (it logs that line).
@@ -174,6 +182,90 @@ TEST_F(Fleet, FiftyBoardsOneBrokerNothingLostAtQos1) {
     EXPECT_EQ(stream.received, messages_per_board) << "stream " << id;
     EXPECT_EQ(stream.lost, 0U) << "stream " << id;
   }
+}
+
+// A fleet of JSON and binary boards (`?format=json` on the listener's URI as a user writes it):
+// every JSON payload is decoded and counted like a binary one, none is called corrupt.
+TEST_F(Fleet, JsonAndBinaryBoardsAllDecodedAndCounted) {
+  test::MosquittoBroker broker(folder_);
+  auto listener = start_listener(broker, "fleet/#?format=json");
+  const FleetRun run = run_fleet(
+      broker, [] {}, [](int board) { return board % 2 == 0 ? "json" : "binary"; });
+  const Summary summary = stop_listener(std::move(listener));
+  report("fleet json and binary", run, summary);
+
+  EXPECT_EQ(run.published, boards * messages_per_board);
+  EXPECT_EQ(summary.messages, boards * messages_per_board);
+  EXPECT_EQ(summary.corrupt, 0U);
+  ASSERT_EQ(summary.streams.size(), static_cast<std::size_t>(boards));
+  for (const auto& [id, stream] : summary.streams) {
+    EXPECT_EQ(stream.received, messages_per_board) << "stream " << id;
+    EXPECT_EQ(stream.lost, 0U) << "stream " << id;
+    EXPECT_EQ(stream.duplicated, 0U) << "stream " << id;
+  }
+}
+
+// A payload that starts like JSON but is not a track message is counted as corrupt, with the
+// field that failed named, never silently ignored.
+TEST_F(Fleet, MalformedJsonPayloadCountedAsCorruptWithItsReason) {
+  test::MosquittoBroker broker(folder_);
+  auto listener = start_listener(broker);
+  // A plain libmosquitto client: our publisher only ever sends well-formed messages.
+  mosquitto_lib_init();
+  mosquitto* client = mosquitto_new("malformed-json-board", true, nullptr);
+  ASSERT_NE(client, nullptr);
+  ASSERT_EQ(mosquitto_connect(client, "127.0.0.1", broker.port(), 10), MOSQ_ERR_SUCCESS);
+  const auto publish = [&](const std::string& payload) {
+    ASSERT_EQ(mosquitto_publish(client, nullptr, "fleet/bad", static_cast<int>(payload.size()),
+                                payload.data(), 1, false),
+              MOSQ_ERR_SUCCESS);
+    // QoS 1: a few loop turns send the message and take the broker's acknowledgement.
+    for (int turn = 0; turn < 10; ++turn) mosquitto_loop(client, 50, 1);
+  };
+  publish(R"({"schema":2,"stream":7})");
+  publish("{not json");
+  mosquitto_disconnect(client);
+  mosquitto_destroy(client);
+  const Summary summary = stop_listener(std::move(listener));
+  EXPECT_EQ(summary.messages, 0U);
+  EXPECT_EQ(summary.corrupt, 2U);
+  EXPECT_NE(test::read_text(folder_ / "listen.out").find("invalid JSON 2 (first: no \"sequence\")"),
+            std::string::npos)
+      << test::read_text(folder_ / "listen.out");
+}
+
+// `rtmot run` whose only output is MQTT: the final report says per output what was delivered; a
+// broker never reached is named as such (not "connection lost") and the run exits 6 (it exited 0,
+// silent about 0 messages delivered).
+TEST_F(Fleet, RunReportsDeliveriesAndFailsWhenNothingWasDelivered) {
+  const auto sequence = test::shared_path("data/mot15-train/ADL-Rundle-6");
+  RTMOT_REQUIRE_FILE(sequence / "det/det.txt");
+  std::filesystem::create_directories(folder_);
+  { std::ofstream(folder_ / "replay.yaml") << "detector:\n  kind: replay\n"; }
+  const auto run = [&](const std::string& mqtt_uri) {
+    test::ChildProcess rtmot(
+        {RTMOT_BINARY, "run", "--config", (folder_ / "replay.yaml").string(), "--source",
+         "mot-seq://" + sequence.string(), "--det-file", (sequence / "det/det.txt").string(),
+         "--max-frames", "40", "--mqtt", mqtt_uri},
+        folder_ / "run.out", folder_ / "run.err");
+    const int status = rtmot.wait(60s);
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  };
+  {
+    test::MosquittoBroker broker(folder_);
+    EXPECT_EQ(run(broker.mqtt_uri("rtmot/board1")), 0) << test::read_text(folder_ / "run.err");
+    EXPECT_NE(test::read_text(folder_ / "run.err").find("output mqtt: delivered 40 of 40 messages"),
+              std::string::npos)
+        << test::read_text(folder_ / "run.err");
+  }
+  const std::string nowhere = "mqtt://127.0.0.1:" + std::to_string(test::free_tcp_port()) + "/t";
+  EXPECT_EQ(run(nowhere), 6);
+  const std::string err = test::read_text(folder_ / "run.err");
+  EXPECT_NE(err.find("cannot reach the broker"), std::string::npos) << err;
+  EXPECT_EQ(err.find("connection lost"), std::string::npos) << err;
+  EXPECT_NE(err.find("delivered 0 of 40 messages"), std::string::npos) << err;
+  EXPECT_NE(err.find("was never reached"), std::string::npos) << err;
+  EXPECT_NE(err.find("no output delivered any message"), std::string::npos) << err;
 }
 
 TEST_F(Fleet, BrokerRestartedMidRunLossCountedPublishingResumes) {

@@ -7,6 +7,7 @@
 #include <sys/time.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <regex>
 #include <string>
 #include <vector>
@@ -67,7 +68,9 @@ TEST(Metrics, EndpointServesPrometheusText) {
   ASSERT_EQ(frames.size(), 120U);
   std::uint64_t sent = 0;
   std::uint64_t dropped = 0;
-  PipelineMetrics metrics({OutputProbe{"udp", [&] { return sent; }, [&] { return dropped; }}});
+  PipelineMetrics metrics(
+      {OutputProbe{"udp", [&] { return sent; }, [&] { return dropped; }, {}, {}}},
+      {frames.front().stream_id});
   const unsigned short port = test::free_tcp_port();
   MetricsServer server(metrics, "127.0.0.1", port);
   EXPECT_EQ(server.url(), "http://127.0.0.1:" + std::to_string(port) + "/metrics");
@@ -85,12 +88,20 @@ TEST(Metrics, EndpointServesPrometheusText) {
   const std::string response = http_get(port, "/metrics");
   ASSERT_NE(response.find("200 OK"), std::string::npos) << response;
   EXPECT_NE(response.find("Content-Type: text/plain; version=0.0.4"), std::string::npos);
-  EXPECT_EQ(value_of(response, "rtmot_frames_processed_total"), 120.0);
-  EXPECT_EQ(value_of(response, "rtmot_frames_captured_total"),
+  EXPECT_EQ(value_of(response, R"(rtmot_frames_processed_total{stream="7"})"), 120.0);
+  EXPECT_EQ(value_of(response, R"(rtmot_frames_captured_total{stream="7"})"),
             static_cast<double>(frames.back().frame_number));
-  EXPECT_EQ(value_of(response, "rtmot_frames_skipped_total"), 11.0);
-  EXPECT_EQ(value_of(response, "rtmot_source_outages_total"), 1.0);
-  EXPECT_EQ(value_of(response, "rtmot_outage_messages_total"), 5.0);
+  EXPECT_EQ(value_of(response, R"(rtmot_frames_skipped_total{stream="7"})"), 11.0);
+  EXPECT_EQ(value_of(response, R"(rtmot_source_outages_total{stream="7"})"), 1.0);
+  EXPECT_EQ(value_of(response, R"(rtmot_outage_messages_total{stream="7"})"), 5.0);
+  EXPECT_EQ(value_of(response, R"(rtmot_source_up{stream="7"})"), 1.0);
+  EXPECT_EQ(value_of(response, R"(rtmot_tracks{stream="7"})"),
+            static_cast<double>(frames.back().tracks.size()));
+  std::size_t tracks = 0;
+  for (const auto& frame : frames) tracks += frame.tracks.size();
+  EXPECT_EQ(value_of(response, R"(rtmot_tracks_reported_total{stream="7"})"),
+            static_cast<double>(tracks));
+  EXPECT_NE(response.find("rtmot_build_info{version=\""), std::string::npos);
   EXPECT_EQ(value_of(response, R"(rtmot_output_messages_total{output="udp",outcome="sent"})"),
             120.0);
   EXPECT_EQ(value_of(response, R"(rtmot_output_messages_total{output="udp",outcome="dropped"})"),
@@ -102,7 +113,7 @@ TEST(Metrics, EndpointServesPrometheusText) {
             115.0);
   EXPECT_LE(value_of(response, R"(rtmot_stage_latency_seconds_bucket{stage="detect",le="0.001"})"),
             value_of(response, R"(rtmot_stage_latency_seconds_bucket{stage="detect",le="0.1"})"));
-  EXPECT_GT(value_of(response, "rtmot_fps"), 0.0);
+  EXPECT_GT(value_of(response, R"(rtmot_fps{stream="7"})"), 0.0);
   EXPECT_NE(http_get(port, "/other").find("404"), std::string::npos);
 }
 
@@ -110,9 +121,9 @@ TEST(Metrics, EndpointServesPrometheusText) {
 // nothing, held open while Prometheus scrapes: every scrape is answered within its 10 s timeout.
 // With civetweb's defaults (one worker, 30 s request timeout) the first scrape got nothing.
 TEST(Metrics, ScrapesAreAnsweredWhileIdleAndHalfSentConnectionsAreHeld) {
-  PipelineMetrics metrics({});
-  MetricsSink sink(metrics);
   auto frames = test::frames_from_detections("TUD-Stadtmitte", 10);
+  PipelineMetrics metrics({}, {frames.front().stream_id});
+  MetricsSink sink(metrics);
   for (auto& frame : frames) sink.write(frame);
   const unsigned short port = test::free_tcp_port();
   MetricsServer server(metrics, "127.0.0.1", port);
@@ -130,13 +141,69 @@ TEST(Metrics, ScrapesAreAnsweredWhileIdleAndHalfSentConnectionsAreHeld) {
     const std::string response = http_get(port, "/metrics");
     ASSERT_NE(response.find("200 OK"), std::string::npos)
         << "scrape " << scrape << ": " << response;
-    EXPECT_EQ(value_of(response, "rtmot_frames_processed_total"), 10.0);
+    EXPECT_EQ(value_of(response, "rtmot_frames_processed_total{stream=\"" +
+                                     std::to_string(frames.front().stream_id) + "\"}"),
+              10.0);
   }
   for (const int fd : held) ::close(fd);
 }
 
+// Two sources through one pipeline: each has its own series (the captured count was one stream's,
+// below the processed count of both); a source down is 0 in rtmot_source_up, the other stays 1.
+TEST(Metrics, EverySourceHasItsOwnSeries) {
+  const auto frames = test::frames_from_detections("TUD-Stadtmitte", 60);
+  PipelineMetrics metrics({}, {5, 6});
+  for (const auto& recorded : frames) {
+    for (const std::uint32_t stream : {5U, 6U}) {
+      auto frame = recorded;
+      frame.stream_id = stream;
+      frame.frame_number = recorded.frame_number * (stream == 5 ? 1 : 2);  // 6 skips every other
+      frame.frames_dropped = stream == 5 ? 0 : static_cast<std::uint32_t>(recorded.frame_number);
+      frame.source_outage = stream == 6 && &recorded == &frames.back();
+      metrics.observe(frame);
+    }
+  }
+  const std::string text = metrics.render();
+  const double last = static_cast<double>(frames.back().frame_number);
+  EXPECT_EQ(value_of(text, R"(rtmot_frames_captured_total{stream="5"})"), last);
+  EXPECT_EQ(value_of(text, R"(rtmot_frames_captured_total{stream="6"})"), 2 * last);
+  EXPECT_EQ(value_of(text, R"(rtmot_frames_processed_total{stream="5"})"), 60.0);
+  EXPECT_EQ(value_of(text, R"(rtmot_frames_processed_total{stream="6"})"), 60.0);
+  EXPECT_EQ(value_of(text, R"(rtmot_frames_skipped_total{stream="6"})"), last);
+  EXPECT_EQ(value_of(text, R"(rtmot_source_up{stream="5"})"), 1.0);
+  EXPECT_EQ(value_of(text, R"(rtmot_source_up{stream="6"})"), 0.0);
+  EXPECT_EQ(value_of(text, R"(rtmot_source_outages_total{stream="6"})"), 1.0);
+  // One HELP/TYPE per family, whatever the number of sources (promtool rejects repeats).
+  std::size_t type_lines = 0;
+  for (std::size_t at = 0;
+       (at = text.find("# TYPE rtmot_frames_captured_total ", at)) != std::string::npos; ++at) {
+    ++type_lines;
+  }
+  EXPECT_EQ(type_lines, 1U);
+}
+
+// The latency buckets are fine where the latencies are: a true p95 of 36.9 ms is bracketed by
+// bounds 5 ms apart (35..40 ms), not 20..50 ms; no bucket below 200 ms is wider than a third of
+// its upper bound (or 2 ms).
+TEST(Metrics, LatencyBucketsAreFineBetweenHalfAMillisecondAnd200) {
+  std::size_t fine = 0;
+  for (std::size_t i = 1; i < LatencyBuckets::bounds_ms.size(); ++i) {
+    const double low = LatencyBuckets::bounds_ms[i - 1];
+    const double high = LatencyBuckets::bounds_ms[i];
+    if (high <= 200.0) {
+      EXPECT_LE(high - low, std::max(2.0, 0.34 * high)) << low << ".." << high;
+      ++fine;
+    }
+  }
+  EXPECT_EQ(LatencyBuckets::bounds_ms.front(), 0.5);
+  EXPECT_GE(fine, 15U);
+  const auto above =
+      std::upper_bound(LatencyBuckets::bounds_ms.begin(), LatencyBuckets::bounds_ms.end(), 36.9);
+  EXPECT_EQ(*above - *(above - 1), 5.0);
+}
+
 TEST(Metrics, PortInUseIsANetworkError) {
-  PipelineMetrics metrics({});
+  PipelineMetrics metrics({}, {});
   const unsigned short port = test::free_tcp_port();
   MetricsServer first(metrics, "127.0.0.1", port);
   try {

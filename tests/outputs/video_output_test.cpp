@@ -121,6 +121,22 @@ TEST_F(VideoOutputs, MissingFoldersAreCreatedUnwritableTargetsSaySo) {
   EXPECT_NE(prepare_video_file(target_of("/proc/rtmot/demo.mp4")), "");
 }
 
+// display:// on a machine without that display (a board, CI): refused before the run with what is
+// missing: the package of ximagesink (gstreamer1.0-x, which the setup did not install and the
+// error blamed on x264enc), or the X server, with the outputs that work instead.
+TEST_F(VideoOutputs, DisplayWithoutXServerOrPluginSaysWhich) {
+  const std::string problem = check_video_elements(target_of("display://97"));
+  const platform::gst::ObjectPtr<GstElementFactory> sink{gst_element_factory_find("ximagesink")};
+  if (sink) {
+    EXPECT_NE(problem.find("no display :97"), std::string::npos) << problem;
+    EXPECT_NE(problem.find("/tmp/.X11-unix/X97"), std::string::npos) << problem;
+    EXPECT_NE(problem.find("rtsp://"), std::string::npos) << problem;
+  } else {
+    EXPECT_NE(problem.find("ximagesink (in gstreamer1.0-x)"), std::string::npos) << problem;
+  }
+  EXPECT_EQ(problem.find("x264enc"), std::string::npos) << problem;
+}
+
 TEST_F(VideoOutputs, Mp4HasEveryFrameAsH264IndexFirst) {
   const auto path = folder_ / "demo.mp4";
   const VideoTarget target = target_of(path.string());

@@ -55,6 +55,33 @@ TEST(HostPort, SaysWhatIsWrong) {
   EXPECT_TRUE(parse_host_port("host:0", problem, 0, true).has_value());
 }
 
+// Issue 23, class 5: `999.999.1.1` was looked up as a name and listened on 231.231.1.1.
+TEST(HostPort, RefusesWhatIsNotAnAddress) {
+  EXPECT_EQ(problem_of("999.999.1.1:5600"),
+            "'999.999.1.1' is not an IPv4 address (four numbers 0..255)");
+  EXPECT_EQ(problem_of("1.2.3:5600"), "'1.2.3' is not an IPv4 address (four numbers 0..255)");
+  EXPECT_EQ(problem_of("[::g]:5600"), "'::g' is not an IPv6 address");
+  EXPECT_EQ(problem_of("ground station:5600"),
+            "'ground station' is not a host name or an IP address");
+  EXPECT_EQ(problem_of("-bad.example:5600"), "'-bad.example' is not a host name or an IP address");
+  EXPECT_EQ(problem_of("a..b:5600"), "'a..b' is not a host name or an IP address");
+  EXPECT_EQ(parsed("ground-station.local:5600").host, "ground-station.local");
+  EXPECT_EQ(parsed("example.com.:5600").host, "example.com.");
+  EXPECT_EQ(parsed("[fe80::1%eth0]:5600").host, "fe80::1%eth0");
+  EXPECT_EQ(parsed("255.255.255.255:5600").host, "255.255.255.255");
+}
+
+TEST(HostPort, BindAddressIsAnIpLiteral) {
+  std::string problem;
+  EXPECT_EQ(parse_bind_address("0.0.0.0", problem).value_or(""), "0.0.0.0");
+  EXPECT_EQ(parse_bind_address("[::1]", problem).value_or(""), "::1");
+  EXPECT_EQ(parse_bind_address("::", problem).value_or(""), "::");
+  for (const char* bad : {"999.999.1.1", "localhost", "", "[::1", "1.2.3.4:80"}) {
+    EXPECT_FALSE(parse_bind_address(bad, problem).has_value()) << bad;
+    EXPECT_NE(problem.find("is not an IPv4 or IPv6 address"), std::string::npos) << problem;
+  }
+}
+
 TEST(HostPort, FormatReadsBack) {
   EXPECT_EQ(format_host_port("::1", 5600), "[::1]:5600");
   EXPECT_EQ(format_host_port("127.0.0.1", 5600), "127.0.0.1:5600");

@@ -5,9 +5,9 @@
 #include <vector>
 
 #include "tracker/box_geometry.hpp"
+#include "tracker/kalman_predictor.hpp"
 #include "tracker/particle_predictor.hpp"
 #include "tracker/stationary_predictor.hpp"
-#include "tracker/xyah_kalman_predictor.hpp"
 
 namespace rtmot::tracker {
 namespace {

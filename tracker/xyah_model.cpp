@@ -1,10 +1,9 @@
-#include "tracker/xyah_kalman_predictor.hpp"
-
 #include <Eigen/Cholesky>
 #include <cmath>
 #include <limits>
 
 #include "tracker/constant_velocity.hpp"
+#include "tracker/kalman_predictor.hpp"
 
 namespace rtmot::tracker {
 namespace {
@@ -21,11 +20,11 @@ double square(double value) {
 }
 }  // namespace
 
-XyahKalmanPredictor::Observation XyahKalmanPredictor::to_observation(const Box& box) {
+XyahModel::Observation XyahModel::to_observation(const Box& box) {
   return Observation{box.x + box.w / 2.0, box.y + box.h / 2.0, double{box.w} / box.h, box.h};
 }
 
-Box XyahKalmanPredictor::to_box(const State& x) {
+Box XyahModel::to_box(const State& x) {
   const double h = x(3);
   const double w = x(2) * h;
   if (!(h > 0.0) || !(w > 0.0)) {
@@ -36,49 +35,44 @@ Box XyahKalmanPredictor::to_box(const State& x) {
              static_cast<float>(w), static_cast<float>(h)};
 }
 
-XyahKalmanPredictor::XyahKalmanPredictor(const Box& box) {
-  x_.setZero();
-  x_.head<4>() = to_observation(box);
+void XyahModel::start(const Box& box, State& x, Covariance& p) {
+  x.setZero();
+  x.head<4>() = to_observation(box);
   const double h = box.h;
   const double position = 2.0 * kPositionWeight * h;
   const double velocity = 10.0 * kVelocityWeight * h;
   const double variances[8] = {square(position), square(position), square(1e-2), square(position),
                                square(velocity), square(velocity), square(1e-5), square(velocity)};
-  p_.setZero();
-  for (int i = 0; i < 8; ++i) p_(i, i) = variances[i];
+  p.setZero();
+  for (int i = 0; i < 8; ++i) p(i, i) = variances[i];
 }
 
-Box XyahKalmanPredictor::predict(double dt) {
-  const double h = x_(3);
+void XyahModel::predict(double dt, State& x, Covariance& p) {
+  const double h = x(3);
   // Process noise for one frame, scaled with the frames elapsed (a random walk's variance grows
   // linearly with time), as SORT's filter here does.
   const double position = square(kPositionWeight * h);
   const double velocity = square(kVelocityWeight * h);
   const double noise[8] = {position, position, square(kAspectProcess),         position,
                            velocity, velocity, square(kAspectVelocityProcess), velocity};
-  constant_velocity_step(x_, p_, 4, 4, noise, dt);
-  return to_box(x_);
+  constant_velocity_step(x, p, 4, 4, noise, dt);
 }
 
-void XyahKalmanPredictor::update(const Box& box) {
-  const double h = x_(3);
+void XyahModel::update(const Box& box, State& x, Covariance& p) {
+  const double h = x(3);
   const double measurement[4] = {square(kPositionWeight * h), square(kPositionWeight * h),
                                  square(kAspectMeasurement), square(kPositionWeight * h)};
   // H selects the first four state entries: H P = P.topRows<4>() and P H' = P.leftCols<4>().
-  const Observation residual = to_observation(box) - x_.head<4>();
-  Eigen::Matrix4d s = p_.topLeftCorner<4, 4>();
+  const Observation residual = to_observation(box) - x.head<4>();
+  Eigen::Matrix4d s = p.topLeftCorner<4, 4>();
   for (int i = 0; i < 4; ++i) s(i, i) += measurement[i];
   // K = P H' S^-1, solved through S's Cholesky factor as ByteTrack does (S is symmetric positive
   // definite), not by inverting it.
-  const Eigen::Matrix<double, 8, 4> gain = s.llt().solve(p_.topRows<4>()).transpose();
-  x_ += gain * residual;
-  const Eigen::Matrix<double, 4, 8> hp = p_.topRows<4>();
-  p_.noalias() -= gain * hp;
-  p_ = 0.5 * (p_ + p_.transpose()).eval();
-}
-
-Box XyahKalmanPredictor::box() const {
-  return to_box(x_);
+  const Eigen::Matrix<double, 8, 4> gain = s.llt().solve(p.topRows<4>()).transpose();
+  x += gain * residual;
+  const Eigen::Matrix<double, 4, 8> hp = p.topRows<4>();
+  p.noalias() -= gain * hp;
+  p = 0.5 * (p + p.transpose()).eval();
 }
 
 }  // namespace rtmot::tracker

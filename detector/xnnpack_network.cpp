@@ -1,0 +1,789 @@
+#include "detector/xnnpack_network.hpp"
+
+#include <onnx/onnx_pb.h>
+#include <pthreadpool.h>
+#include <xnnpack.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <map>
+#include <set>
+#include <sstream>
+#include <vector>
+
+#include "common/input_error.hpp"
+#include "detector/model_files.hpp"
+
+namespace rtmot::detector {
+
+bool xnnpack_built() {
+  return true;
+}
+
+const char* xnnpack_supported_operators() {
+  return "Conv (any group count, dilation, explicit pads), Clip, Relu, Add (same shapes), "
+         "Transpose (NCHW -> NHWC), Reshape, Concat (of the graph's outputs, axis 1), Identity";
+}
+
+namespace {
+
+constexpr uint32_t kInputExternalId = 0;
+constexpr float kNoMin = -std::numeric_limits<float>::infinity();
+constexpr float kNoMax = std::numeric_limits<float>::infinity();
+
+struct SubgraphDeleter {
+  void operator()(xnn_subgraph_t subgraph) const { xnn_delete_subgraph(subgraph); }
+};
+struct RuntimeDeleter {
+  void operator()(xnn_runtime_t runtime) const { xnn_delete_runtime(runtime); }
+};
+struct PoolDeleter {
+  void operator()(pthreadpool_t pool) const { pthreadpool_destroy(pool); }
+};
+using SubgraphPtr = std::unique_ptr<xnn_subgraph, SubgraphDeleter>;
+using RuntimePtr = std::unique_ptr<xnn_runtime, RuntimeDeleter>;
+using PoolPtr = std::unique_ptr<pthreadpool, PoolDeleter>;
+
+/// A tensor as the builder tracks it.
+struct Value {
+  uint32_t id{XNN_INVALID_VALUE_ID};
+  std::vector<std::size_t> shape;  // as ONNX sees it
+  /// A 4-D feature map that ONNX sees as NCHW and XNNPACK holds as NHWC.
+  bool nchw{false};
+  /// False after a Reshape: XNNPACK still has the old shape (a reshape of contiguous data moves
+  /// nothing, so none is run); only host-side consumers (Concat, the graph's outputs) may read it.
+  bool xnn_shape{true};
+  /// Set on a Concat's result: the external outputs it joins, in order (host side).
+  std::vector<uint32_t> pieces;
+};
+
+std::size_t product(const std::vector<std::size_t>& dims, std::size_t from = 0) {
+  std::size_t n = 1;
+  for (std::size_t i = from; i < dims.size(); ++i) n *= dims[i];
+  return n;
+}
+
+std::string shape_text(const std::vector<std::size_t>& dims) {
+  std::string text;
+  for (std::size_t i = 0; i < dims.size(); ++i) text += (i ? "x" : "") + std::to_string(dims[i]);
+  return text;
+}
+
+const onnx::AttributeProto* attribute(const onnx::NodeProto& node, const char* name) {
+  for (const auto& a : node.attribute()) {
+    if (a.name() == name) return &a;
+  }
+  return nullptr;
+}
+
+std::int64_t int_attribute(const onnx::NodeProto& node, const char* name, std::int64_t fallback) {
+  const auto* a = attribute(node, name);
+  return a ? a->i() : fallback;
+}
+
+std::vector<std::int64_t> ints_attribute(const onnx::NodeProto& node, const char* name,
+                                         std::vector<std::int64_t> fallback) {
+  const auto* a = attribute(node, name);
+  if (!a) return fallback;
+  return {a->ints().begin(), a->ints().end()};
+}
+
+/// Builds one subgraph (one batch size) from the parsed model. The converted weights live in
+/// `weights`, shared by every subgraph built from the model and alive as long as the runtimes.
+class SubgraphBuilder {
+ public:
+  SubgraphBuilder(const std::filesystem::path& path, const onnx::GraphProto& graph,
+                  std::map<std::string, std::vector<float>>& weights,
+                  const std::map<std::string, uint32_t>& external_ids, std::size_t batch,
+                  std::size_t input_size)
+      : path_(path),
+        graph_(graph),
+        weights_(weights),
+        external_ids_(external_ids),
+        batch_(batch),
+        input_size_(input_size) {
+    for (const auto& tensor : graph_.initializer()) initializers_[tensor.name()] = &tensor;
+    for (int index = 0; index < graph_.node_size(); ++index) {
+      for (const auto& input : graph_.node(index).input()) {
+        ++consumers_[input];
+        reader_[input] = index;
+      }
+    }
+    for (const auto& output : graph_.output()) ++consumers_[output.name()];
+  }
+
+  /// The subgraph; `outputs` gets each graph output's value (pieces set).
+  SubgraphPtr build(std::map<std::string, Value>& outputs,
+                    std::map<uint32_t, std::size_t>& external_sizes) {
+    xnn_subgraph_t raw = nullptr;
+    check(xnn_create_subgraph(static_cast<uint32_t>(external_ids_.size()) + 1, 0, &raw),
+          "create the subgraph");
+    SubgraphPtr subgraph(raw);
+    subgraph_ = raw;
+    define_input();
+    const int count = graph_.node_size();
+    std::vector<bool> fused(static_cast<std::size_t>(count), false);
+    for (int index = 0; index < count; ++index) {
+      if (fused[static_cast<std::size_t>(index)]) continue;
+      const onnx::NodeProto& node = graph_.node(index);
+      const std::string& op = node.op_type();
+      if (op == "Conv") {
+        const int activation = fusable_activation(node);
+        if (activation >= 0) fused[static_cast<std::size_t>(activation)] = true;
+        conv(node, activation >= 0 ? &graph_.node(activation) : nullptr);
+      } else if (op == "Clip" || op == "Relu") {
+        clamp(node);
+      } else if (op == "Add") {
+        add(node);
+      } else if (op == "Transpose") {
+        transpose(node);
+      } else if (op == "Reshape") {
+        reshape(node);
+      } else if (op == "Concat") {
+        concat(node);
+      } else if (op == "Identity") {
+        values_[node.output(0)] = value_of(node, 0);
+      } else {
+        throw error(node, "operator '" + op +
+                              "' is not supported by the xnnpack backend (it builds " +
+                              std::string(xnnpack_supported_operators()) + "): use backend: cpu");
+      }
+    }
+    for (const auto& output : graph_.output()) {
+      const auto found = values_.find(output.name());
+      if (found == values_.end()) {
+        throw model_error("the graph output '" + output.name() + "' is computed by no node");
+      }
+      Value value = found->second;
+      if (value.pieces.empty()) value.pieces = {value.id};
+      if (!external_sizes_.count(value.pieces.front())) {
+        throw model_error("the graph output '" + output.name() + "' is not computed here");
+      }
+      outputs[output.name()] = value;
+    }
+    external_sizes = external_sizes_;
+    return subgraph;
+  }
+
+ private:
+  InputError model_error(const std::string& problem) const {
+    return InputError(path_.string(), 0, "", problem, ExitCode::bad_model);
+  }
+  InputError error(const onnx::NodeProto& node, const std::string& problem) const {
+    return model_error("node '" + node.name() + "' (" + node.op_type() + "): " + problem);
+  }
+  void check(xnn_status status, const std::string& what) const {
+    if (status != xnn_status_success) {
+      throw model_error("XNNPACK cannot " + what + " (status " +
+                        std::to_string(static_cast<int>(status)) + ")");
+    }
+  }
+
+  void define_input() {
+    const onnx::ValueInfoProto* input = nullptr;
+    for (const auto& candidate : graph_.input()) {
+      if (!initializers_.count(candidate.name())) {
+        if (input) throw model_error("the model has more than one input; the SSD takes one image");
+        input = &candidate;
+      }
+    }
+    if (!input) throw model_error("the model has no input");
+    const auto& dims = input->type().tensor_type().shape().dim();
+    const std::size_t want[] = {batch_, 3, input_size_, input_size_};
+    std::string seen;
+    bool ok = dims.size() == 4;
+    for (int i = 0; i < dims.size(); ++i) {
+      seen += (i ? "x" : "") +
+              (dims[i].has_dim_value() ? std::to_string(dims[i].dim_value()) : dims[i].dim_param());
+      if (ok && dims[i].has_dim_value() &&
+          static_cast<std::size_t>(dims[i].dim_value()) != want[i]) {
+        ok = false;
+      }
+    }
+    if (!ok) {
+      throw model_error("the model's input '" + input->name() + "' is " + seen +
+                        "; the detector feeds " + std::to_string(batch_) + "x3x" +
+                        std::to_string(input_size_) + "x" + std::to_string(input_size_) +
+                        (batch_ > 1 ? " (a batch needs a batch dimension: run "
+                                      "scripts/fetch_model.sh again)"
+                                    : ""));
+    }
+    const std::vector<std::size_t> nhwc{batch_, input_size_, input_size_, 3};
+    Value value;
+    check(xnn_define_tensor_value(subgraph_, xnn_datatype_fp32, nhwc.size(), nhwc.data(), nullptr,
+                                  kInputExternalId, XNN_VALUE_FLAG_EXTERNAL_INPUT, &value.id),
+          "define the input");
+    value.shape = {batch_, 3, input_size_, input_size_};
+    value.nchw = true;
+    values_[input->name()] = value;
+  }
+
+  const Value& value_of(const onnx::NodeProto& node, int input) const {
+    if (input >= node.input_size())
+      throw error(node, "input " + std::to_string(input) + " missing");
+    const auto found = values_.find(node.input(input));
+    if (found == values_.end()) {
+      throw error(node, "input '" + node.input(input) +
+                            "' is not computed by an earlier node (constant activations are not "
+                            "supported by the xnnpack backend)");
+    }
+    return found->second;
+  }
+
+  const Value& xnn_value_of(const onnx::NodeProto& node, int input) const {
+    const Value& value = value_of(node, input);
+    if (!value.xnn_shape || !value.pieces.empty()) {
+      throw error(node,
+                  "reads a reshaped or concatenated tensor; the xnnpack backend joins those "
+                  "only at the graph's outputs");
+    }
+    return value;
+  }
+
+  const onnx::TensorProto& initializer(const onnx::NodeProto& node, int input) const {
+    if (input >= node.input_size())
+      throw error(node, "input " + std::to_string(input) + " missing");
+    const auto found = initializers_.find(node.input(input));
+    if (found == initializers_.end()) {
+      throw error(node, "input '" + node.input(input) + "' must be a constant (initializer)");
+    }
+    return *found->second;
+  }
+
+  std::vector<float> floats(const onnx::NodeProto& node, const onnx::TensorProto& tensor) const {
+    if (tensor.data_type() != onnx::TensorProto::FLOAT) {
+      throw error(node, "weight tensor '" + tensor.name() + "' is not float32");
+    }
+    std::vector<float> data;
+    if (!tensor.raw_data().empty()) {
+      data.resize(tensor.raw_data().size() / sizeof(float));
+      std::memcpy(data.data(), tensor.raw_data().data(), data.size() * sizeof(float));
+    } else {
+      data.assign(tensor.float_data().begin(), tensor.float_data().end());
+    }
+    std::vector<std::size_t> dims(tensor.dims().begin(), tensor.dims().end());
+    if (data.size() != product(dims)) {
+      throw error(node, "weight tensor '" + tensor.name() + "' holds " +
+                            std::to_string(data.size()) + " values for shape " + shape_text(dims));
+    }
+    // NaN or infinite weights (a damaged or badly converted model) would make every score NaN,
+    // and NaN compares false with the threshold: the detector would silently find nothing.
+    if (!std::all_of(data.begin(), data.end(), [](float v) { return std::isfinite(v); })) {
+      throw error(node, "weight tensor '" + tensor.name() +
+                            "' holds NaN or infinite values (damaged model? run "
+                            "scripts/fetch_model.sh again)");
+    }
+    return data;
+  }
+
+  std::vector<std::int64_t> int64s(const onnx::NodeProto& node,
+                                   const onnx::TensorProto& tensor) const {
+    if (tensor.data_type() != onnx::TensorProto::INT64) {
+      throw error(node, "tensor '" + tensor.name() + "' is not int64");
+    }
+    std::vector<std::int64_t> data;
+    if (!tensor.raw_data().empty()) {
+      data.resize(tensor.raw_data().size() / sizeof(std::int64_t));
+      std::memcpy(data.data(), tensor.raw_data().data(), data.size() * sizeof(std::int64_t));
+    } else {
+      data.assign(tensor.int64_data().begin(), tensor.int64_data().end());
+    }
+    return data;
+  }
+
+  /// A static tensor on converted weights, made once per model and shared by every batch size.
+  uint32_t define_static(const std::string& key, const std::vector<std::size_t>& dims,
+                         const std::vector<float>& data) {
+    auto& stored = weights_[key];
+    if (stored.empty()) stored = data;
+    uint32_t id = XNN_INVALID_VALUE_ID;
+    check(xnn_define_tensor_value(subgraph_, xnn_datatype_fp32, dims.size(), dims.data(),
+                                  stored.data(), XNN_INVALID_VALUE_ID, 0, &id),
+          "define the weights '" + key + "'");
+    return id;
+  }
+
+  /// A computed tensor: an external output when it is (a piece of) a graph output.
+  uint32_t define_computed(const std::string& name, const std::vector<std::size_t>& xnn_dims) {
+    uint32_t external = XNN_INVALID_VALUE_ID;
+    uint32_t flags = 0;
+    const auto found = external_ids_.find(name);
+    if (found != external_ids_.end()) {
+      external = found->second;
+      flags = XNN_VALUE_FLAG_EXTERNAL_OUTPUT;
+      external_sizes_[external] = product(xnn_dims, 1);
+    }
+    uint32_t id = XNN_INVALID_VALUE_ID;
+    check(xnn_define_tensor_value(subgraph_, xnn_datatype_fp32, xnn_dims.size(), xnn_dims.data(),
+                                  nullptr, external, flags, &id),
+          "define the tensor '" + name + "'");
+    return id;
+  }
+
+  /// The bounds of a Clip or Relu node.
+  std::pair<float, float> clamp_bounds(const onnx::NodeProto& node) const {
+    if (node.op_type() == "Relu") return {0.F, kNoMax};
+    float low = kNoMin;
+    float high = kNoMax;
+    if (const auto* a = attribute(node, "min")) low = a->f();  // opset < 11
+    if (const auto* a = attribute(node, "max")) high = a->f();
+    for (int input = 1; input <= 2 && input < node.input_size(); ++input) {  // opset >= 11
+      if (node.input(input).empty()) continue;
+      const auto bound = floats(node, initializer(node, input));
+      if (bound.size() != 1) throw error(node, "a bound must be a scalar");
+      (input == 1 ? low : high) = bound[0];
+    }
+    if (std::isnan(low) || std::isnan(high) || low > high) throw error(node, "invalid bounds");
+    return {low, high};
+  }
+
+  /// The Clip/Relu right after a Conv that is its output's only reader: XNNPACK clamps in the
+  /// convolution's own output loop, saving a pass over the feature map.
+  /// Its node index, or -1.
+  int fusable_activation(const onnx::NodeProto& conv) const {
+    const std::string& out = conv.output(0);
+    const auto reader = reader_.find(out);
+    if (reader == reader_.end()) return -1;
+    const onnx::NodeProto& candidate = graph_.node(reader->second);
+    if ((candidate.op_type() != "Clip" && candidate.op_type() != "Relu") ||
+        candidate.input(0) != out || consumers_.at(out) != 1 || external_ids_.count(out)) {
+      return -1;
+    }
+    return reader->second;
+  }
+
+  void conv(const onnx::NodeProto& node, const onnx::NodeProto* activation) {
+    const Value& input = xnn_value_of(node, 0);
+    if (!input.nchw) throw error(node, "the input is not a 4-D feature map");
+    const auto auto_pad = attribute(node, "auto_pad");
+    if (auto_pad && auto_pad->s() != "NOTSET" && auto_pad->s() != "VALID") {
+      throw error(node, "auto_pad " + auto_pad->s() + " is not supported (explicit pads are)");
+    }
+    const onnx::TensorProto& weight_tensor = initializer(node, 1);
+    const std::vector<std::size_t> w(weight_tensor.dims().begin(), weight_tensor.dims().end());
+    if (w.size() != 4) throw error(node, "only 2-D convolutions are supported");
+    const auto weights = floats(node, weight_tensor);
+    const std::size_t out_channels = w[0];
+    const std::size_t group_in = w[1];
+    const std::size_t kh = w[2];
+    const std::size_t kw = w[3];
+    const auto groups = static_cast<std::size_t>(int_attribute(node, "group", 1));
+    const std::size_t in_channels = input.shape[1];
+    if (groups == 0 || group_in * groups != in_channels || out_channels % groups != 0) {
+      throw error(node, "weights " + shape_text(w) + " do not fit " + std::to_string(in_channels) +
+                            " input channels in " + std::to_string(groups) + " groups");
+    }
+    std::vector<float> bias(out_channels, 0.F);
+    if (node.input_size() > 2 && !node.input(2).empty()) {
+      bias = floats(node, initializer(node, 2));
+      if (bias.size() != out_channels) throw error(node, "bias size does not match the weights");
+    }
+    const auto strides = ints_attribute(node, "strides", {1, 1});
+    const auto dilations = ints_attribute(node, "dilations", {1, 1});
+    const auto pads = ints_attribute(node, "pads", {0, 0, 0, 0});  // top, left, bottom, right
+    if (strides.size() != 2 || dilations.size() != 2 || pads.size() != 4 ||
+        std::any_of(strides.begin(), strides.end(), [](auto v) { return v < 1; }) ||
+        std::any_of(dilations.begin(), dilations.end(), [](auto v) { return v < 1; }) ||
+        std::any_of(pads.begin(), pads.end(), [](auto v) { return v < 0; })) {
+      throw error(node, "invalid strides, dilations or pads");
+    }
+    const auto extent = [](std::size_t size, std::int64_t pad_a, std::int64_t pad_b,
+                           std::size_t kernel, std::int64_t dilation, std::int64_t stride) {
+      const auto padded = static_cast<std::int64_t>(size) + pad_a + pad_b;
+      const auto span = (static_cast<std::int64_t>(kernel) - 1) * dilation + 1;
+      return padded < span ? std::int64_t{0} : (padded - span) / stride + 1;
+    };
+    const auto oh = extent(input.shape[2], pads[0], pads[2], kh, dilations[0], strides[0]);
+    const auto ow = extent(input.shape[3], pads[1], pads[3], kw, dilations[1], strides[1]);
+    if (oh < 1 || ow < 1) throw error(node, "the kernel is larger than its padded input");
+    const auto [low, high] = activation ? clamp_bounds(*activation) : std::pair{kNoMin, kNoMax};
+    const std::string& out_name = activation ? activation->output(0) : node.output(0);
+    const std::vector<std::size_t> out_nhwc{batch_, static_cast<std::size_t>(oh),
+                                            static_cast<std::size_t>(ow), out_channels};
+    const uint32_t output = define_computed(out_name, out_nhwc);
+    const uint32_t bias_id =
+        define_static(node.input(1) + "#bias", {out_channels}, bias);  // keyed by the weights
+    const auto u32 = [](auto v) { return static_cast<uint32_t>(v); };
+    const bool depthwise = group_in == 1 && groups == in_channels && groups > 1;
+    if (depthwise) {
+      // ONNX [C*m, 1, KH, KW] -> XNNPACK [1, KH, KW, C*m].
+      std::vector<float> filter(weights.size());
+      for (std::size_t o = 0; o < out_channels; ++o) {
+        for (std::size_t k = 0; k < kh * kw; ++k)
+          filter[k * out_channels + o] = weights[o * kh * kw + k];
+      }
+      const uint32_t filter_id =
+          define_static(node.input(1) + "#1hwo", {1, kh, kw, out_channels}, filter);
+      check(xnn_define_depthwise_convolution_2d(
+                subgraph_, u32(pads[0]), u32(pads[3]), u32(pads[2]), u32(pads[1]), u32(kh), u32(kw),
+                u32(strides[0]), u32(strides[1]), u32(dilations[0]), u32(dilations[1]),
+                u32(out_channels / in_channels), in_channels, low, high, input.id, filter_id,
+                bias_id, output, 0),
+            "build node '" + node.name() + "'");
+    } else {
+      // ONNX [O, I/g, KH, KW] -> XNNPACK [O, KH, KW, I/g].
+      std::vector<float> filter(weights.size());
+      for (std::size_t o = 0; o < out_channels; ++o) {
+        for (std::size_t i = 0; i < group_in; ++i) {
+          for (std::size_t k = 0; k < kh * kw; ++k) {
+            filter[(o * kh * kw + k) * group_in + i] = weights[(o * group_in + i) * kh * kw + k];
+          }
+        }
+      }
+      const uint32_t filter_id =
+          define_static(node.input(1) + "#ohwi", {out_channels, kh, kw, group_in}, filter);
+      check(xnn_define_convolution_2d(subgraph_, u32(pads[0]), u32(pads[3]), u32(pads[2]),
+                                      u32(pads[1]), u32(kh), u32(kw), u32(strides[0]),
+                                      u32(strides[1]), u32(dilations[0]), u32(dilations[1]),
+                                      u32(groups), group_in, out_channels / groups, low, high,
+                                      input.id, filter_id, bias_id, output, 0),
+            "build node '" + node.name() + "'");
+    }
+    Value value;
+    value.id = output;
+    value.shape = {batch_, out_channels, static_cast<std::size_t>(oh),
+                   static_cast<std::size_t>(ow)};
+    value.nchw = true;
+    values_[out_name] = value;
+  }
+
+  void clamp(const onnx::NodeProto& node) {
+    const Value& input = xnn_value_of(node, 0);
+    const auto [low, high] = clamp_bounds(node);
+    Value value = input;
+    value.id = define_computed(node.output(0), xnn_dims(input));
+    check(xnn_define_clamp(subgraph_, low, high, input.id, value.id, 0),
+          "build node '" + node.name() + "'");
+    values_[node.output(0)] = value;
+  }
+
+  void add(const onnx::NodeProto& node) {
+    const Value& a = xnn_value_of(node, 0);
+    const Value& b = xnn_value_of(node, 1);
+    if (a.shape != b.shape || a.nchw != b.nchw) {
+      throw error(node, "adds " + shape_text(a.shape) + " and " + shape_text(b.shape) +
+                            "; the xnnpack backend adds tensors of one shape");
+    }
+    Value value = a;
+    value.id = define_computed(node.output(0), xnn_dims(a));
+    check(xnn_define_add2(subgraph_, kNoMin, kNoMax, a.id, b.id, value.id, 0),
+          "build node '" + node.name() + "'");
+    values_[node.output(0)] = value;
+  }
+
+  // NCHW -> NHWC is what XNNPACK holds already: nothing to run.
+  void transpose(const onnx::NodeProto& node) {
+    const Value& input = xnn_value_of(node, 0);
+    const auto perm = ints_attribute(node, "perm", {});
+    if (!input.nchw || perm != std::vector<std::int64_t>{0, 2, 3, 1}) {
+      throw error(node,
+                  "only the NCHW -> NHWC transpose (perm 0,2,3,1) of a feature map is "
+                  "supported by the xnnpack backend");
+    }
+    Value value = input;
+    value.shape = {input.shape[0], input.shape[2], input.shape[3], input.shape[1]};
+    value.nchw = false;
+    values_[node.output(0)] = value;
+  }
+
+  void reshape(const onnx::NodeProto& node) {
+    const Value& input = value_of(node, 0);
+    if (input.nchw || !input.pieces.empty()) {
+      throw error(node,
+                  "reshapes an NCHW feature map or a concatenation; the xnnpack backend "
+                  "reshapes NHWC tensors only");
+    }
+    const auto wanted = int64s(node, initializer(node, 1));
+    std::vector<std::size_t> shape(wanted.size(), 1);
+    int infer = -1;
+    std::size_t known = 1;
+    for (std::size_t i = 0; i < wanted.size(); ++i) {
+      if (wanted[i] == -1 && infer < 0) {
+        infer = static_cast<int>(i);
+        continue;
+      }
+      if (wanted[i] == 0 && i < input.shape.size()) {
+        shape[i] = input.shape[i];
+      } else if (wanted[i] > 0) {
+        shape[i] = static_cast<std::size_t>(wanted[i]);
+      } else {
+        throw error(node, "invalid target shape");
+      }
+      known *= shape[i];
+    }
+    const std::size_t total = product(input.shape);
+    if (infer >= 0) shape[static_cast<std::size_t>(infer)] = known ? total / known : 0;
+    if (product(shape) != total || shape.empty() || shape[0] != batch_) {
+      throw error(node, "cannot reshape " + shape_text(input.shape) + " to " + shape_text(shape) +
+                            " image by image");
+    }
+    Value value = input;
+    value.xnn_shape = value.xnn_shape && shape == input.shape;
+    value.shape = shape;
+    values_[node.output(0)] = value;
+  }
+
+  // Joined on the host (see XnnpackNetwork::run): each input is an external output. Axis 1 of
+  // [N, ...] keeps each image's rows of one input contiguous, so the join is a copy per image.
+  void concat(const onnx::NodeProto& node) {
+    auto axis = int_attribute(node, "axis", 1);
+    Value value;
+    for (int i = 0; i < node.input_size(); ++i) {
+      const Value& input = value_of(node, i);
+      if (input.nchw || !input.pieces.empty() || !external_sizes_.count(input.id)) {
+        throw error(node,
+                    "the xnnpack backend concatenates only NHWC tensors that are graph "
+                    "outputs' last computed values");
+      }
+      if (axis < 0) axis += static_cast<std::int64_t>(input.shape.size());
+      if (axis != 1) throw error(node, "only axis 1 (anchors) is supported");
+      if (i == 0) {
+        value.shape = input.shape;
+      } else {
+        std::vector<std::size_t> a = value.shape;
+        std::vector<std::size_t> b = input.shape;
+        if (a.size() != b.size()) throw error(node, "inputs of different ranks");
+        a[1] = b[1] = 0;
+        if (a != b) throw error(node, "inputs differ outside the concatenated axis");
+        value.shape[1] += input.shape[1];
+      }
+      value.pieces.push_back(input.id);
+    }
+    value.xnn_shape = false;
+    values_[node.output(0)] = value;
+  }
+
+  std::vector<std::size_t> xnn_dims(const Value& value) const {
+    if (!value.nchw) return value.shape;
+    return {value.shape[0], value.shape[2], value.shape[3], value.shape[1]};
+  }
+
+  const std::filesystem::path& path_;
+  const onnx::GraphProto& graph_;
+  std::map<std::string, std::vector<float>>& weights_;
+  const std::map<std::string, uint32_t>& external_ids_;
+  std::size_t batch_;
+  std::size_t input_size_;
+  std::map<std::string, const onnx::TensorProto*> initializers_;
+  std::map<std::string, int> consumers_;
+  std::map<std::string, int> reader_;  // a node reading the tensor (the only one where it matters)
+  std::map<std::string, Value> values_;
+  std::map<uint32_t, std::size_t> external_sizes_;
+  xnn_subgraph_t subgraph_{nullptr};
+};
+
+/// The tensors that must be XNNPACK external outputs: what the graph's outputs come from once
+/// the moves that run nothing here (Identity, Reshape, Transpose, Concat) are looked through.
+std::map<std::string, uint32_t> external_outputs(const onnx::GraphProto& graph) {
+  std::map<std::string, const onnx::NodeProto*> producer;
+  for (const auto& node : graph.node()) {
+    for (const auto& output : node.output()) producer[output] = &node;
+  }
+  std::map<std::string, uint32_t> ids;
+  std::vector<std::string> pending;
+  for (const auto& output : graph.output()) pending.push_back(output.name());
+  while (!pending.empty()) {
+    const std::string name = pending.back();
+    pending.pop_back();
+    const auto found = producer.find(name);
+    if (found == producer.end()) continue;  // reported by the builder
+    const onnx::NodeProto& node = *found->second;
+    const std::string& op = node.op_type();
+    if (op == "Concat") {
+      for (const auto& input : node.input()) pending.push_back(input);
+    } else if (op == "Identity" || op == "Reshape" || op == "Transpose") {
+      pending.push_back(node.input(0));
+    } else if (!ids.count(name)) {
+      const auto id = static_cast<uint32_t>(ids.size()) + 1;  // 0 is the input
+      ids[name] = id;
+    }
+  }
+  return ids;
+}
+
+/// An external output's buffer and where its rows go in the joined output.
+struct Piece {
+  uint32_t id;
+  std::size_t per_image;  // floats per image
+  std::vector<float> data;
+};
+
+struct JoinedOutput {
+  std::vector<std::size_t> piece_indices;
+  std::size_t per_image{0};
+  std::size_t width{0};  // the last dimension
+  std::vector<float> data;
+};
+
+}  // namespace
+
+struct XnnpackNetwork::Impl {
+  XnnpackNetworkConfig config;
+  onnx::ModelProto model;
+  std::map<std::string, std::vector<float>> weights;  // outlives the runtimes (declared first)
+  PoolPtr pool;
+  std::vector<float> input;
+  std::vector<Piece> pieces;
+  JoinedOutput boxes;
+  JoinedOutput logits;
+  RuntimePtr single;
+  RuntimePtr batched;
+  std::string summary;
+};
+
+XnnpackNetwork::XnnpackNetwork(const XnnpackNetworkConfig& config)
+    : impl_(std::make_unique<Impl>()) {
+  Impl& impl = *impl_;
+  impl.config = config;
+  const auto& path = config.model_path;
+  const auto model_error = [&](const std::string& problem) {
+    return InputError(path.string(), 0, "", problem, ExitCode::bad_model);
+  };
+  if (xnn_initialize(nullptr) != xnn_status_success) {
+    throw model_error("XNNPACK does not run on this processor");
+  }
+  std::string bytes;
+  try {
+    bytes = read_text_file(path, kMaxModelBytes);
+  } catch (const InputError& e) {
+    throw InputError(e.file(), e.line(), e.field(),
+                     std::string("cannot read the model: ") + e.what(),
+                     e.exit_code() == ExitCode::bad_input ? ExitCode::bad_model : e.exit_code());
+  }
+  if (!impl.model.ParseFromString(bytes)) {
+    throw model_error("not an ONNX model (truncated or corrupt? run scripts/fetch_model.sh again)");
+  }
+  bytes = std::string();
+  const onnx::GraphProto& graph = impl.model.graph();
+  const auto external_ids = external_outputs(graph);
+
+  const auto max_batch = static_cast<std::size_t>(std::max(1, config.max_batch));
+  const auto input_size = static_cast<std::size_t>(config.input_size);
+  const std::size_t image_floats = input_size * input_size * 3;
+  impl.input.assign(max_batch * image_floats + XNN_EXTRA_BYTES / sizeof(float), 0.F);
+  if (config.threads != 1) {
+    impl.pool.reset(pthreadpool_create(static_cast<std::size_t>(std::max(0, config.threads))));
+    if (!impl.pool) throw model_error("cannot start XNNPACK's thread pool");
+  }
+
+  std::map<uint32_t, std::size_t> piece_sizes;  // floats per image of each external output
+  const auto make_runtime = [&](std::size_t batch, std::map<std::string, Value>& outputs) {
+    SubgraphBuilder builder(path, graph, impl.weights, external_ids, batch, input_size);
+    SubgraphPtr subgraph = builder.build(outputs, piece_sizes);
+    xnn_runtime_t raw = nullptr;
+    const xnn_status status = xnn_create_runtime_v2(subgraph.get(), impl.pool.get(), 0, &raw);
+    if (status != xnn_status_success) {
+      throw model_error("XNNPACK cannot plan the network (status " +
+                        std::to_string(static_cast<int>(status)) + ")");
+    }
+    return RuntimePtr(raw);
+  };
+
+  // Batch 1 first: it names the outputs' pieces and sizes their buffers.
+  std::map<std::string, Value> outputs;
+  impl.single = make_runtime(1, outputs);
+  std::map<uint32_t, std::size_t> piece_of;
+  const auto join = [&](const std::string& name, JoinedOutput& joined) {
+    const auto found = outputs.find(name);
+    if (found == outputs.end()) throw model_error("the model has no output '" + name + "'");
+    const Value& value = found->second;
+    if (value.shape.size() < 2) throw model_error("the output '" + name + "' is not per anchor");
+    joined.width = value.shape.back();
+    joined.per_image = product(value.shape, 1);
+    for (const uint32_t id : value.pieces) {
+      if (!piece_of.count(id)) {
+        piece_of[id] = impl.pieces.size();
+        impl.pieces.push_back({id, 0, {}});
+      }
+      joined.piece_indices.push_back(piece_of[id]);
+    }
+    joined.data.assign(max_batch * joined.per_image, 0.F);
+  };
+  join(config.box_output, impl.boxes);
+  join(config.logit_output, impl.logits);
+  // Each piece's size per image: from the value the builder defined (its XNNPACK shape).
+  for (const auto& [name, id] : external_ids) {
+    (void)name;
+    if (!piece_of.count(id)) {
+      throw model_error("the model has outputs other than '" + config.box_output + "' and '" +
+                        config.logit_output + "'");
+    }
+  }
+  impl.batched = max_batch > 1 ? make_runtime(max_batch, outputs) : nullptr;
+  for (Piece& piece : impl.pieces) {
+    piece.per_image = piece_sizes.at(piece.id);
+    piece.data.assign(max_batch * piece.per_image, 0.F);
+  }
+  for (const JoinedOutput* joined : {&impl.boxes, &impl.logits}) {
+    std::size_t sum = 0;
+    for (const std::size_t index : joined->piece_indices) sum += impl.pieces[index].per_image;
+    if (sum != joined->per_image) throw model_error("the outputs' pieces do not add up");
+  }
+  // The buffers never move: set up once, each run only invokes.
+  std::vector<xnn_external_value> externals{{kInputExternalId, impl.input.data()}};
+  for (Piece& piece : impl.pieces) externals.push_back({piece.id, piece.data.data()});
+  for (xnn_runtime_t runtime : {impl.single.get(), impl.batched.get()}) {
+    if (runtime &&
+        xnn_setup_runtime(runtime, externals.size(), externals.data()) != xnn_status_success) {
+      throw model_error("XNNPACK cannot set up the network's buffers");
+    }
+  }
+  std::map<std::string, int> ops;
+  for (const auto& node : graph.node()) ++ops[node.op_type()];
+  std::ostringstream text;
+  text << "XNNPACK subgraph of " << graph.node_size() << " ONNX nodes (";
+  bool first = true;
+  for (const auto& [op, n] : ops) {
+    text << (first ? "" : ", ") << n << " " << op;
+    first = false;
+  }
+  text << "), batch 1" << (max_batch > 1 ? " and " + std::to_string(max_batch) : std::string())
+       << ", " << (impl.pool ? pthreadpool_get_threads_count(impl.pool.get()) : 1) << " thread(s)";
+  impl.summary = text.str();
+}
+
+XnnpackNetwork::~XnnpackNetwork() = default;
+
+float* XnnpackNetwork::input(int slot) {
+  const auto size = static_cast<std::size_t>(impl_->config.input_size);
+  return impl_->input.data() + static_cast<std::size_t>(slot) * size * size * 3;
+}
+
+void XnnpackNetwork::run(int count) {
+  Impl& impl = *impl_;
+  xnn_runtime_t runtime = count == 1 || !impl.batched ? impl.single.get() : impl.batched.get();
+  if (xnn_invoke_runtime(runtime) != xnn_status_success) {
+    throw std::runtime_error("XNNPACK failed to run the network");
+  }
+  // The concatenation the graph ends with, image by image.
+  for (JoinedOutput* joined : {&impl.boxes, &impl.logits}) {
+    for (int image = 0; image < count; ++image) {
+      float* to = joined->data.data() + static_cast<std::size_t>(image) * joined->per_image;
+      for (const std::size_t index : joined->piece_indices) {
+        const Piece& piece = impl.pieces[index];
+        const float* from = piece.data.data() + static_cast<std::size_t>(image) * piece.per_image;
+        to = std::copy(from, from + piece.per_image, to);
+      }
+    }
+  }
+}
+
+const float* XnnpackNetwork::boxes() const {
+  return impl_->boxes.data.data();
+}
+const float* XnnpackNetwork::logits() const {
+  return impl_->logits.data.data();
+}
+std::size_t XnnpackNetwork::anchors() const {
+  return impl_->boxes.width ? impl_->boxes.per_image / impl_->boxes.width : 0;
+}
+std::size_t XnnpackNetwork::classes() const {
+  return impl_->logits.width;
+}
+std::string XnnpackNetwork::summary() const {
+  return impl_->summary;
+}
+
+}  // namespace rtmot::detector

@@ -1,0 +1,60 @@
+#pragma once
+// The SSD's forward pass on XNNPACK: the ONNX model the OpenCV backend loads, read with ONNX's own
+// protobuf classes (libonnx) and rebuilt as an XNNPACK subgraph (NHWC, weights repacked once).
+// Only the forward pass: pre- and post-processing stay in SsdDetector. See docs/cpu-detector.md.
+#include <cstddef>
+#include <filesystem>
+#include <memory>
+#include <string>
+
+namespace rtmot::detector {
+
+/// True when this build has the XNNPACK backend (libxnnpack-dev and libonnx-dev were found).
+bool xnnpack_built();
+
+/// The ONNX operators the XNNPACK backend builds, for messages and docs.
+const char* xnnpack_supported_operators();
+
+struct XnnpackNetworkConfig {
+  std::filesystem::path model_path;
+  int input_size{300};  // the square input the detector feeds (3 channels)
+  int max_batch{1};
+  /// Worker threads (pthreadpool); 1 runs on the caller's thread; 0 = one per core.
+  int threads{0};
+  std::string box_output{"box_encodings"};
+  std::string logit_output{"class_logits"};
+};
+
+/// One thread at a time. Two runtimes of fixed shape share the repacked weights and the thread
+/// pool: one for one image, one for max_batch images (as the OpenCV backend, whose reasons hold
+/// here too: a shape is planned once, and the steady state allocates nothing).
+class XnnpackNetwork {
+ public:
+  /// Throws rtmot::InputError (ExitCode::bad_model) naming the file: unreadable or corrupt model,
+  /// an operator (or attribute) the backend does not build (named, with its node), an input shape
+  /// other than N x 3 x input_size x input_size, a fixed batch of 1 with max_batch > 1, non-float
+  /// or non-finite weights (naming the tensor), outputs missing.
+  explicit XnnpackNetwork(const XnnpackNetworkConfig& config);
+  ~XnnpackNetwork();
+  XnnpackNetwork(const XnnpackNetwork&) = delete;
+  XnnpackNetwork& operator=(const XnnpackNetwork&) = delete;
+
+  /// Image `slot`'s input: input_size x input_size x 3 floats, RGB, interleaved (HWC).
+  float* input(int slot);
+  /// Runs the first `count` images (1 or up to max_batch; above 1 all max_batch slots are
+  /// computed and slots count.. ignored). Allocates nothing.
+  void run(int count);
+  /// [images, anchors, 4] and [images, anchors, classes] of the last run.
+  const float* boxes() const;
+  const float* logits() const;
+  std::size_t anchors() const;
+  std::size_t classes() const;
+  /// What was built, for the log: operators and runtimes.
+  std::string summary() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace rtmot::detector

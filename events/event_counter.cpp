@@ -1,0 +1,339 @@
+#include "events/event_counter.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+namespace rtmot::events {
+namespace {
+
+// Enough anchor offsets for a stable median, few enough to follow a change of scene in seconds.
+constexpr std::size_t kNoiseWindow = 512;
+
+}  // namespace
+
+EventCounter::EventCounter(EventsConfig config)
+    : config_(std::move(config)), noise_window_(kNoiseWindow) {
+  const auto tracks = static_cast<std::size_t>(std::max(config_.max_tracks, 1));
+  slots_.resize(tracks);
+  line_states_.resize(tracks * config_.lines.size());
+  zone_states_.resize(tracks * config_.zones.size());
+  // An update decides at most one crossing per track and line, and per track and zone an enter
+  // and an exit (a move through it) plus one dwell: the list never grows past this.
+  events_.reserve(tracks * (config_.lines.size() + 3 * config_.zones.size()));
+  line_counts_.resize(config_.lines.size());
+  for (const LineSpec& line : config_.lines) {
+    const double dx = line.segment.to.x - line.segment.from.x;
+    const double dy = line.segment.to.y - line.segment.from.y;
+    const double squared = dx * dx + dy * dy;
+    lines_.push_back({line.segment.from, dx, dy, 1.0 / std::sqrt(squared), 1.0 / squared});
+  }
+  for (const ZoneSpec& zone : config_.zones) {
+    Bounds bounds{INFINITY, INFINITY, -INFINITY, -INFINITY};
+    for (const Point& p : zone.polygon) {
+      bounds.min_x = std::min(bounds.min_x, p.x);
+      bounds.min_y = std::min(bounds.min_y, p.y);
+      bounds.max_x = std::max(bounds.max_x, p.x);
+      bounds.max_y = std::max(bounds.max_y, p.y);
+    }
+    zone_bounds_.push_back(bounds);
+  }
+  zone_counts_.resize(config_.zones.size());
+  live_.reserve(tracks);
+  births_.reserve(tracks);
+  hints_.assign(tracks, kNone);
+  free_.reserve(tracks);
+  for (std::size_t i = tracks; i > 0; --i) free_.push_back(static_cast<std::uint32_t>(i - 1));
+}
+
+bool EventCounter::counts_class(std::int32_t class_id) const {
+  return config_.classes.empty() || std::find(config_.classes.begin(), config_.classes.end(),
+                                              class_id) != config_.classes.end();
+}
+
+Point EventCounter::anchor_of(const tracker::Box& box) const {
+  const double x = double{box.x} + 0.5 * box.w;
+  const double y =
+      config_.anchor == Anchor::bottom_centre ? double{box.y} + box.h : double{box.y} + 0.5 * box.h;
+  return {x, y};
+}
+
+std::uint32_t EventCounter::find_live(std::int32_t track_id, std::size_t position) const {
+  // A tracker reports its tracks in the same order update after update: the slot that held the
+  // report at this position last time is nearly always the one. Otherwise a scan of the live.
+  if (position < hints_.size()) {
+    const std::uint32_t hint = hints_[position];
+    if (hint < slots_.size() && slots_[hint].live && slots_[hint].track_id == track_id) return hint;
+  }
+  for (const std::uint32_t index : live_)
+    if (slots_[index].track_id == track_id) return index;
+  return kNone;
+}
+
+const std::vector<Event>& EventCounter::update(const std::vector<tracker::TrackReport>& reports,
+                                               double time_seconds) {
+  events_.clear();
+  births_.clear();
+  // Known tracks first, so that a track born now can only take over one that was not reported.
+  for (std::size_t r = 0; r < reports.size(); ++r) {
+    const tracker::TrackReport& report = reports[r];
+    if (!counts_class(report.class_id)) continue;
+    std::uint32_t index = find_live(report.id, r);
+    if (index != kNone && time_seconds - slots_[index].last_seen > config_.lost_after_seconds) {
+      forget(index, time_seconds);  // gone too long: this is a new life under the same id
+      index = kNone;
+    }
+    if (index == kNone) {
+      if (births_.size() == births_.capacity()) {
+        ++tracks_not_followed_;  // more births at once than tracks followed: never allocate
+      } else {
+        births_.push_back(static_cast<std::uint32_t>(r));
+      }
+      continue;
+    }
+    if (r < hints_.size()) hints_[r] = index;
+    follow(index, report, time_seconds);
+  }
+  for (const std::uint32_t r : births_) {
+    const tracker::TrackReport& report = reports[r];
+    std::uint32_t index = find_broken_off(report, time_seconds);
+    if (index != kNone) {
+      slots_[index].track_id = report.id;  // the same person under a new id: its state goes on
+    } else {
+      if (free_.empty()) {
+        ++tracks_not_followed_;
+        continue;
+      }
+      index = free_.back();
+      free_.pop_back();
+      live_.push_back(index);
+      slots_[index] = Slot{};
+      slots_[index].track_id = report.id;
+      slots_[index].live = true;
+      for (std::size_t l = 0; l < config_.lines.size(); ++l) line_state(index, l) = LineState{};
+      for (std::size_t z = 0; z < config_.zones.size(); ++z) zone_state(index, z) = ZoneState{};
+    }
+    if (r < hints_.size()) hints_[r] = index;
+    follow(index, report, time_seconds);
+  }
+  for (std::size_t i = live_.size(); i > 0; --i) {
+    const std::uint32_t index = live_[i - 1];
+    if (time_seconds - slots_[index].last_seen > config_.lost_after_seconds)
+      forget(index, time_seconds);
+  }
+  dwell(time_seconds);
+  ++updates_;
+  return events_;
+}
+
+std::uint32_t EventCounter::find_broken_off(const tracker::TrackReport& report, double time) const {
+  // A tracker that loses a person for a while often finds them again under a new id: the first
+  // track dies before the line, the second is born after it with no known side, and the crossing
+  // is lost. A birth close to where a track not reported now was last seen, with a similar size,
+  // continues that track's state. Nearest first; each such track continues one birth only.
+  if (!(config_.link_radius > 0.0)) return kNone;
+  const Point anchor = anchor_of(report.box);
+  const double h = report.box.h;
+  std::uint32_t best = kNone;
+  double best_distance = config_.link_radius * h;
+  for (const std::uint32_t index : live_) {
+    const Slot& slot = slots_[index];
+    if (slot.last_update == updates_ || time - slot.last_seen > config_.lost_after_seconds)
+      continue;
+    if (!(slot.size.h > 0.0) || h > 1.5 * slot.size.h || slot.size.h > 1.5 * h) continue;
+    const double distance = std::hypot(anchor.x - slot.anchor.x, anchor.y - slot.anchor.y);
+    if (distance <= best_distance) {
+      best_distance = distance;
+      best = index;
+    }
+  }
+  return best;
+}
+
+const std::vector<Event>& EventCounter::finish(double time_seconds) {
+  events_.clear();
+  dwell(time_seconds);
+  while (!live_.empty()) forget(live_.back(), time_seconds);
+  return events_;
+}
+
+void EventCounter::measure_noise(const Slot& slot, const tracker::Box& box) {
+  // The box's size, not its position: between processed frames a person (or the camera) moves
+  // far, but the size changes smoothly, so what its second difference shows is the detector's
+  // jitter, the same that moves the anchor. Three sizes from consecutive updates only.
+  if (slot.last_update != updates_ - 1 || slot.previous_update != updates_ - 2) return;
+  if (!(box.w > 0.F) || !(box.h > 0.F)) return;
+  const double residual =
+      0.5 * (std::abs(double{box.w} - 2.0 * slot.size.w + slot.previous_size.w) / box.w +
+             std::abs(double{box.h} - 2.0 * slot.size.h + slot.previous_size.h) / box.h);
+  if (!std::isfinite(residual)) return;
+  noise_window_.push(static_cast<float>(residual));
+  if (noise_window_.due()) {
+    noise_window_.snapshot();
+    box_noise_ = noise_window_.order_statistic(0.5);
+  }
+}
+
+void EventCounter::follow(std::uint32_t index, const tracker::TrackReport& report, double time) {
+  Slot& slot = slots_[index];
+  const Point to = anchor_of(report.box);
+  const bool first = slot.last_update < 0;
+  measure_noise(slot, report.box);
+  const double band = std::max(config_.dead_band.min_px,
+                               config_.dead_band.noise_factor * box_noise_ * report.box.h);
+  slot.class_id = report.class_id;
+  const Point from = first ? to : slot.anchor;
+  cross_lines(index, from, to, band, first, time);
+  visit_zones(index, from, to, band, first, time);
+  slot.previous_size = first ? Size{report.box.w, report.box.h} : slot.size;
+  slot.size = {report.box.w, report.box.h};
+  slot.previous_update = slot.last_update;
+  slot.anchor = to;
+  slot.last_update = updates_;
+  slot.last_seen = time;
+}
+
+void EventCounter::cross_lines(std::uint32_t index, const Point& from, const Point& to, double band,
+                               bool first, double time) {
+  for (std::size_t l = 0; l < lines_.size(); ++l) {
+    const PreparedLine& line = lines_[l];
+    LineState& state = line_state(index, l);
+    // signed_distance() and crossing_position() of geometry.hpp, with the line's constants
+    // prepared and the previous position's distance remembered: one cross product per line and
+    // update, the crossing point only when the move changes sides.
+    const double distance =
+        (line.dx * (to.y - line.from.y) - line.dy * (to.x - line.from.x)) * line.inverse_length;
+    if (!first) {
+      const double previous = state.distance;
+      const bool meets =
+          (previous <= 0.0 && distance >= 0.0) || (previous >= 0.0 && distance <= 0.0);
+      if (meets && !(previous == 0.0 && distance == 0.0)) {
+        const double t = previous / (previous - distance);
+        const double mx = from.x + t * (to.x - from.x) - line.from.x;
+        const double my = from.y + t * (to.y - from.y) - line.from.y;
+        const double position = (mx * line.dx + my * line.dy) * line.inverse_squared_length;
+        if (position >= 0.0 && position <= 1.0) state.met_within_ends = true;
+      }
+    }
+    state.distance = distance;
+    const std::int8_t side = distance > band ? 1 : distance < -band ? -1 : 0;
+    if (side == 0) continue;  // in the dead band: keeps the side it had
+    if (state.side != 0 && side != state.side && state.met_within_ends)
+      count_crossing(l, slots_[index], side, to, time);
+    state.side = side;
+    state.met_within_ends = false;
+  }
+}
+
+void EventCounter::count_crossing(std::size_t line, const Slot& slot, int side, const Point& where,
+                                  double time) {
+  const bool in = (side < 0) == config_.lines[line].in_is_left;
+  emit(in ? EventKind::line_in : EventKind::line_out, line, slot, where, time);
+  auto& counts = line_counts_[line];
+  ++(in ? counts.in : counts.out);
+}
+
+void EventCounter::visit_zones(std::uint32_t index, const Point& from, const Point& to, double band,
+                               bool first, double time) {
+  for (std::size_t z = 0; z < config_.zones.size(); ++z) {
+    const ZoneSpec& zone = config_.zones[z];
+    ZoneState& state = zone_state(index, z);
+    const Bounds& bounds = zone_bounds_[z];
+    // Most tracks are far from most zones: a move whose box, grown by the band, misses the zone's
+    // box is outside by more than the band at both ends and cannot pass through.
+    if (std::max(from.x, to.x) + band < bounds.min_x ||
+        std::min(from.x, to.x) - band > bounds.max_x ||
+        std::max(from.y, to.y) + band < bounds.min_y ||
+        std::min(from.y, to.y) - band > bounds.max_y) {
+      if (state.inside) leave(index, z, to, time, /*lost=*/false);
+      continue;
+    }
+    const bool inside = inside_polygon(zone.polygon, to);
+    if (inside != state.inside) {
+      if (distance_to_boundary(zone.polygon, to) <= band) continue;  // the dead band
+      if (inside) {
+        enter(index, z, to, time);
+      } else {
+        leave(index, z, to, time, /*lost=*/false);
+      }
+    } else if (!inside && !first && move_meets_boundary(zone.polygon, from, to) &&
+               distance_to_boundary(zone.polygon, to) > band &&
+               distance_to_boundary(zone.polygon, from) > band) {
+      // Through the zone between two processed frames: it was inside, for an unknown while.
+      enter(index, z, to, time);
+      leave(index, z, to, time, /*lost=*/false);
+    }
+  }
+}
+
+void EventCounter::enter(std::uint32_t index, std::size_t zone, const Point& where, double time) {
+  ZoneState& state = zone_state(index, zone);
+  state = ZoneState{true, false, time};
+  emit(EventKind::zone_enter, zone, slots_[index], where, time);
+  ++zone_counts_[zone].entered;
+  ++zone_counts_[zone].occupancy;
+}
+
+void EventCounter::leave(std::uint32_t index, std::size_t zone, const Point& where, double time,
+                         bool lost) {
+  ZoneState& state = zone_state(index, zone);
+  emit(EventKind::zone_exit, zone, slots_[index], where, time, time - state.entered_at, lost);
+  state.inside = false;
+  auto& counts = zone_counts_[zone];
+  ++counts.exited;
+  if (lost) ++counts.lost_inside;
+  --counts.occupancy;
+}
+
+void EventCounter::dwell(double time) {
+  for (std::size_t z = 0; z < config_.zones.size(); ++z) {
+    const double threshold = config_.zones[z].dwell_seconds;
+    if (!(threshold > 0.0)) continue;
+    for (const std::uint32_t index : live_) {
+      ZoneState& state = zone_state(index, z);
+      if (!state.inside || state.dwell_sent || time - state.entered_at < threshold) continue;
+      state.dwell_sent = true;
+      emit(EventKind::zone_dwell, z, slots_[index], slots_[index].anchor, time,
+           time - state.entered_at);
+      ++zone_counts_[z].dwelled;
+    }
+  }
+}
+
+void EventCounter::forget(std::uint32_t index, double time) {
+  // A track that ends inside the dead band of a line, on the other side from the one it had, after
+  // meeting the line: it crossed, and no jitter can take it back now. Its last position decides.
+  const Point& last = slots_[index].anchor;
+  for (std::size_t l = 0; l < config_.lines.size(); ++l) {
+    const LineState& state = line_state(index, l);
+    const double distance = signed_distance(config_.lines[l].segment, last);
+    const int side = (distance > 0.0) - (distance < 0.0);
+    if (state.side != 0 && side != 0 && side != state.side && state.met_within_ends)
+      count_crossing(l, slots_[index], side, last, time);
+  }
+  // A track that dies inside a zone leaves it now, marked lost: occupancy must not keep the dead.
+  for (std::size_t z = 0; z < config_.zones.size(); ++z)
+    if (zone_state(index, z).inside) leave(index, z, slots_[index].anchor, time, /*lost=*/true);
+  slots_[index].live = false;
+  const auto at = std::find(live_.begin(), live_.end(), index);
+  *at = live_.back();
+  live_.pop_back();
+  free_.push_back(index);
+}
+
+void EventCounter::emit(EventKind kind, std::size_t index, const Slot& slot, const Point& where,
+                        double time, double dwell_seconds, bool lost) {
+  Event event;
+  event.kind = kind;
+  event.index = static_cast<std::uint16_t>(index);
+  event.track_id = slot.track_id;
+  event.class_id = slot.class_id;
+  event.time = time;
+  event.dwell_seconds = dwell_seconds;
+  event.x = static_cast<float>(where.x);
+  event.y = static_cast<float>(where.y);
+  event.lost = lost;
+  events_.push_back(event);
+}
+
+}  // namespace rtmot::events

@@ -1,0 +1,127 @@
+#pragma once
+// Counts line crossings and zone visits from a tracker's reports, update by update. Decides on the
+// path of each track between its reported positions, so a crossing between two processed frames
+// far apart (a detector slower than the camera) counts once, and with a dead band that grows with
+// the stream's own box jitter, so a box wobbling on a line does not count again and again.
+// Allocation-free after construction: the track table, the per-line and per-zone state and the
+// event list are sized once for config.max_tracks tracks.
+#include <cstdint>
+#include <vector>
+
+#include "events/event.hpp"
+#include "events/events_config.hpp"
+#include "tracker/box.hpp"
+#include "tracker/recent_window.hpp"
+
+namespace rtmot::events {
+
+class EventCounter {
+ public:
+  /// `config` must be valid (events/events_yaml.hpp checks a user's).
+  explicit EventCounter(EventsConfig config);
+
+  /// One processed frame's reports, at `time_seconds` (the pipeline's timestamp, increasing).
+  /// Returns the events it decided; the reference stays valid until the next call.
+  const std::vector<Event>& update(const std::vector<tracker::TrackReport>& reports,
+                                   double time_seconds);
+
+  /// The end of the stream: every track still followed is lost now (zone exits with lost set).
+  const std::vector<Event>& finish(double time_seconds);
+
+  const EventsConfig& config() const { return config_; }
+  const std::vector<LineCounts>& line_counts() const { return line_counts_; }
+  const std::vector<ZoneCounts>& zone_counts() const { return zone_counts_; }
+  /// The box jitter the dead band scales with: the median second difference of a track's box
+  /// size over three consecutive updates, (|ddw| / w + |ddh| / h) / 2 (the tracker's BoxNoise
+  /// units: a share of the box size).
+  double box_noise() const { return box_noise_; }
+  /// Reports skipped because max_tracks tracks were already followed.
+  std::int64_t tracks_not_followed() const { return tracks_not_followed_; }
+
+ private:
+  struct PreparedLine {
+    Point from;
+    double dx;
+    double dy;
+    double inverse_length;
+    double inverse_squared_length;
+  };
+  struct Bounds {
+    double min_x;
+    double min_y;
+    double max_x;
+    double max_y;
+  };
+  struct LineState {
+    double distance{0.0};         // signed distance of the last position
+    std::int8_t side{0};          // -1 left, +1 right, 0 not yet known
+    bool met_within_ends{false};  // the path since the last decided side met the segment
+  };
+  struct ZoneState {
+    bool inside{false};
+    bool dwell_sent{false};
+    double entered_at{0.0};
+  };
+  struct Size {
+    double w{0.0};
+    double h{0.0};
+  };
+  struct Slot {
+    bool live{false};
+    std::int32_t track_id{0};
+    std::int32_t class_id{0};
+    double last_seen{0.0};
+    std::int64_t last_update{-1};
+    std::int64_t previous_update{-1};
+    Point anchor;
+    Size size;
+    Size previous_size;
+  };
+
+  static constexpr std::uint32_t kNone = ~std::uint32_t{0};
+
+  bool counts_class(std::int32_t class_id) const;
+  std::uint32_t find_live(std::int32_t track_id, std::size_t position) const;
+  std::uint32_t find_broken_off(const tracker::TrackReport& report, double time) const;
+  Point anchor_of(const tracker::Box& box) const;
+  void measure_noise(const Slot& slot, const tracker::Box& box);
+  void count_crossing(std::size_t line, const Slot& slot, int side, const Point& where,
+                      double time);
+  void follow(std::uint32_t index, const tracker::TrackReport& report, double time);
+  void cross_lines(std::uint32_t index, const Point& from, const Point& to, double band, bool first,
+                   double time);
+  void visit_zones(std::uint32_t index, const Point& from, const Point& to, double band, bool first,
+                   double time);
+  void enter(std::uint32_t index, std::size_t zone, const Point& where, double time);
+  void leave(std::uint32_t index, std::size_t zone, const Point& where, double time, bool lost);
+  void dwell(double time);
+  void forget(std::uint32_t index, double time);
+  void emit(EventKind kind, std::size_t index, const Slot& slot, const Point& where, double time,
+            double dwell_seconds = 0.0, bool lost = false);
+  LineState& line_state(std::size_t slot, std::size_t line) {
+    return line_states_[slot * config_.lines.size() + line];
+  }
+  ZoneState& zone_state(std::size_t slot, std::size_t zone) {
+    return zone_states_[slot * config_.zones.size() + zone];
+  }
+
+  EventsConfig config_;
+  std::vector<PreparedLine> lines_;
+  std::vector<Bounds> zone_bounds_;
+  std::vector<Slot> slots_;
+  std::vector<std::uint32_t> live_;  // slots in use, in no order
+  std::vector<std::uint32_t> free_;
+  std::vector<std::uint32_t> hints_;   // the slot of the report at each position last update
+  std::vector<std::uint32_t> births_;  // this update's reports of ids not followed yet
+  std::vector<LineState> line_states_;
+  std::vector<ZoneState> zone_states_;
+  std::vector<Event> events_;
+  std::vector<LineCounts> line_counts_;
+  std::vector<ZoneCounts> zone_counts_;
+  tracker::RecentWindow noise_window_;
+  double box_noise_{0.0};
+  std::int64_t updates_{0};
+  std::int64_t tracks_not_followed_{0};
+};
+
+}  // namespace rtmot::events

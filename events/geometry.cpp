@@ -1,0 +1,123 @@
+#include "events/geometry.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+
+namespace rtmot::events {
+namespace {
+
+double cross(const Point& o, const Point& a, const Point& b) {
+  return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x);
+}
+
+int sign(double v) {
+  return (v > 0.0) - (v < 0.0);
+}
+
+bool within_box(const Point& p, const Segment& s) {
+  return p.x >= std::min(s.from.x, s.to.x) && p.x <= std::max(s.from.x, s.to.x) &&
+         p.y >= std::min(s.from.y, s.to.y) && p.y <= std::max(s.from.y, s.to.y);
+}
+
+Segment edge(const std::vector<Point>& polygon, std::size_t i) {
+  return {polygon[i], polygon[(i + 1) % polygon.size()]};
+}
+
+}  // namespace
+
+double Segment::length() const {
+  return std::hypot(to.x - from.x, to.y - from.y);
+}
+
+double signed_distance(const Segment& s, const Point& p) {
+  // cross > 0 is clockwise on a y-down image: the right of from -> to.
+  return cross(s.from, s.to, p) / s.length();
+}
+
+bool crossing_position(const Segment& s, const Point& p, const Point& q, double& position) {
+  const double dp = cross(s.from, s.to, p);
+  const double dq = cross(s.from, s.to, q);
+  if ((dp > 0.0 && dq > 0.0) || (dp < 0.0 && dq < 0.0) || (dp == 0.0 && dq == 0.0)) return false;
+  const double t = dp / (dp - dq);
+  const Point meet{p.x + t * (q.x - p.x), p.y + t * (q.y - p.y)};
+  const double dx = s.to.x - s.from.x;
+  const double dy = s.to.y - s.from.y;
+  position = ((meet.x - s.from.x) * dx + (meet.y - s.from.y) * dy) / (dx * dx + dy * dy);
+  return true;
+}
+
+double distance_to_segment(const Point& p, const Segment& s) {
+  const double dx = s.to.x - s.from.x;
+  const double dy = s.to.y - s.from.y;
+  const double squared = dx * dx + dy * dy;
+  double t = squared > 0.0 ? ((p.x - s.from.x) * dx + (p.y - s.from.y) * dy) / squared : 0.0;
+  t = std::clamp(t, 0.0, 1.0);
+  return std::hypot(p.x - (s.from.x + t * dx), p.y - (s.from.y + t * dy));
+}
+
+bool segments_intersect(const Segment& a, const Segment& b) {
+  const int d1 = sign(cross(b.from, b.to, a.from));
+  const int d2 = sign(cross(b.from, b.to, a.to));
+  const int d3 = sign(cross(a.from, a.to, b.from));
+  const int d4 = sign(cross(a.from, a.to, b.to));
+  if (d1 * d2 < 0 && d3 * d4 < 0) return true;
+  return (d1 == 0 && within_box(a.from, b)) || (d2 == 0 && within_box(a.to, b)) ||
+         (d3 == 0 && within_box(b.from, a)) || (d4 == 0 && within_box(b.to, a));
+}
+
+bool inside_polygon(const std::vector<Point>& polygon, const Point& p) {
+  bool inside = false;
+  for (std::size_t i = 0, j = polygon.size() - 1; i < polygon.size(); j = i++) {
+    const Point& a = polygon[i];
+    const Point& b = polygon[j];
+    if ((a.y > p.y) != (b.y > p.y) && p.x < (b.x - a.x) * (p.y - a.y) / (b.y - a.y) + a.x)
+      inside = !inside;
+  }
+  return inside;
+}
+
+double distance_to_boundary(const std::vector<Point>& polygon, const Point& p) {
+  double nearest = INFINITY;
+  for (std::size_t i = 0; i < polygon.size(); ++i)
+    nearest = std::min(nearest, distance_to_segment(p, edge(polygon, i)));
+  return nearest;
+}
+
+bool move_meets_boundary(const std::vector<Point>& polygon, const Point& p, const Point& q) {
+  for (std::size_t i = 0; i < polygon.size(); ++i)
+    if (segments_intersect({p, q}, edge(polygon, i))) return true;
+  return false;
+}
+
+bool is_simple_polygon(const std::vector<Point>& polygon) {
+  const std::size_t n = polygon.size();
+  if (n < 3) return false;
+  double twice_area = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const Segment e = edge(polygon, i);
+    if (e.length() == 0.0) return false;
+    twice_area += e.from.x * e.to.y - e.to.x * e.from.y;
+  }
+  if (twice_area == 0.0) return false;
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t j = i + 1; j < n; ++j) {
+      const bool neighbours = j == i + 1 || (i == 0 && j == n - 1);
+      if (neighbours) {
+        // Neighbours share one corner; they must not fold back onto each other.
+        const Point& shared = j == i + 1 ? polygon[j] : polygon[i];
+        const Point& a = j == i + 1 ? polygon[i] : polygon[j];
+        const Point& b = j == i + 1 ? polygon[(j + 1) % n] : polygon[1];
+        const bool collinear = cross(shared, a, b) == 0.0;
+        const bool folds = collinear && ((a.x - shared.x) * (b.x - shared.x) +
+                                         (a.y - shared.y) * (b.y - shared.y)) > 0.0;
+        if (folds) return false;
+        continue;
+      }
+      if (segments_intersect(edge(polygon, i), edge(polygon, j))) return false;
+    }
+  }
+  return true;
+}
+
+}  // namespace rtmot::events

@@ -1,0 +1,149 @@
+// The XNNPACK backend on models it cannot build: a clear start-up error naming what (operator and
+// node, input shape, weight tensor), exit code bad_model; under backend auto the detector runs on
+// OpenCV's CPU path instead and says why. The bad models are the real one changed through ONNX's
+// own protobuf classes (libonnx), as a re-export would change it.
+#include <gtest/gtest.h>
+#include <onnx/onnx_pb.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+
+#include "common/input_error.hpp"
+#include "detector/ssd_detector.hpp"
+#include "shared_data.hpp"
+
+namespace rtmot::detector {
+namespace {
+
+namespace fs = std::filesystem;
+
+class XnnpackModelErrors : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const fs::path model = test::source_path("models/ssdlite_mobilenet_v2_coco.onnx");
+    if (!fs::exists(model)) FAIL() << "missing model " << model << ": run scripts/fetch_model.sh";
+    std::ifstream in(model, std::ios::binary);
+    ASSERT_TRUE(model_.ParseFromIstream(&in));
+    dir_ = fs::temp_directory_path() /
+           ("rtmot-xnnpack-" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
+            "-" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  /// Writes the changed model; the config reads it with the real anchors (no checksum file).
+  SsdConfig write(BackendRequest backend) {
+    const fs::path path = dir_ / "changed.onnx";
+    std::ofstream out(path, std::ios::binary);
+    EXPECT_TRUE(model_.SerializeToOstream(&out));
+    out.close();
+    SsdConfig config;
+    config.model_path = path;
+    config.anchors_path = test::source_path("models/ssdlite_mobilenet_v2_coco.anchors.csv");
+    config.backend = backend;
+    config.threads = 1;
+    config.verify_checksums = false;
+    return config;
+  }
+
+  static InputError expect_error(const SsdConfig& config) {
+    try {
+      SsdDetector detector(config);
+    } catch (const InputError& e) {
+      return e;
+    }
+    ADD_FAILURE() << "no error";
+    return InputError("", 0, "", "none");
+  }
+
+  onnx::NodeProto& first_node(const std::string& op) {
+    for (auto& node : *model_.mutable_graph()->mutable_node()) {
+      if (node.op_type() == op) return node;
+    }
+    throw std::logic_error("no " + op);
+  }
+
+  onnx::ModelProto model_;
+  fs::path dir_;
+};
+
+TEST_F(XnnpackModelErrors, UnsupportedOperatorIsNamedAndAutoFallsBackToOpenCv) {
+  if (!xnnpack_built()) GTEST_SKIP() << "this build has no XNNPACK backend";
+  // Sum of two inputs is Add to ONNX (and to OpenCV's importer), but not an operator the XNNPACK
+  // backend builds.
+  onnx::NodeProto& node = first_node("Add");
+  node.set_op_type("Sum");
+  const std::string name = node.name();
+  const InputError e = expect_error(write(BackendRequest::xnnpack));
+  EXPECT_EQ(e.exit_code(), ExitCode::bad_model);
+  EXPECT_NE(std::string(e.what()).find("'Sum'"), std::string::npos) << e.what();
+  EXPECT_NE(std::string(e.what()).find(name), std::string::npos) << e.what();
+  EXPECT_NE(std::string(e.what()).find("changed.onnx"), std::string::npos) << e.what();
+
+  SsdDetector fallback(write(BackendRequest::automatic));
+  EXPECT_EQ(fallback.backend().engine, Engine::opencv);
+  EXPECT_EQ(fallback.backend().name, "cpu");
+  EXPECT_NE(fallback.backend().reason.find("'Sum'"), std::string::npos)
+      << fallback.backend().reason;
+  EXPECT_NE(fallback.describe().find("xnnpack cannot run the model"), std::string::npos)
+      << fallback.describe();
+  // And it detects: the same network, on OpenCV.
+  cv::Mat image(576, 768, CV_8UC3, cv::Scalar(90, 120, 150));
+  std::vector<tracker::Detection> out;
+  EXPECT_NO_THROW(fallback.detect(image, 1, out));
+}
+
+TEST_F(XnnpackModelErrors, WrongInputShapeIsAStartUpError) {
+  if (!xnnpack_built()) GTEST_SKIP() << "this build has no XNNPACK backend";
+  auto* dims = model_.mutable_graph()
+                   ->mutable_input(0)
+                   ->mutable_type()
+                   ->mutable_tensor_type()
+                   ->mutable_shape()
+                   ->mutable_dim();
+  ASSERT_EQ(dims->size(), 4);
+  dims->Mutable(2)->set_dim_value(320);
+  dims->Mutable(3)->set_dim_value(320);
+  const InputError e = expect_error(write(BackendRequest::xnnpack));
+  EXPECT_EQ(e.exit_code(), ExitCode::bad_model);
+  EXPECT_NE(std::string(e.what()).find("x3x320x320"), std::string::npos) << e.what();
+  EXPECT_NE(std::string(e.what()).find("300x300"), std::string::npos) << e.what();
+}
+
+TEST_F(XnnpackModelErrors, NonFiniteWeightsNameTheTensor) {
+  if (!xnnpack_built()) GTEST_SKIP() << "this build has no XNNPACK backend";
+  onnx::NodeProto& conv = first_node("Conv");
+  const std::string weights = conv.input(1);
+  for (auto& tensor : *model_.mutable_graph()->mutable_initializer()) {
+    if (tensor.name() != weights) continue;
+    ASSERT_FALSE(tensor.raw_data().empty());
+    std::string raw = tensor.raw_data();
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    std::memcpy(raw.data() + 4 * 7, &nan, sizeof nan);  // one weight of many
+    tensor.set_raw_data(raw);
+  }
+  const InputError e = expect_error(write(BackendRequest::xnnpack));
+  EXPECT_EQ(e.exit_code(), ExitCode::bad_model);
+  EXPECT_NE(std::string(e.what()).find("'" + weights + "'"), std::string::npos) << e.what();
+  EXPECT_NE(std::string(e.what()).find("NaN"), std::string::npos) << e.what();
+}
+
+TEST_F(XnnpackModelErrors, UnsupportedAttributeIsNamed) {
+  if (!xnnpack_built()) GTEST_SKIP() << "this build has no XNNPACK backend";
+  onnx::NodeProto& transpose = first_node("Transpose");
+  for (auto& attribute : *transpose.mutable_attribute()) {
+    if (attribute.name() == "perm") {
+      attribute.clear_ints();
+      for (const int axis : {0, 3, 1, 2}) attribute.add_ints(axis);
+    }
+  }
+  const InputError e = expect_error(write(BackendRequest::xnnpack));
+  EXPECT_EQ(e.exit_code(), ExitCode::bad_model);
+  EXPECT_NE(std::string(e.what()).find(transpose.name()), std::string::npos) << e.what();
+  EXPECT_NE(std::string(e.what()).find("perm"), std::string::npos) << e.what();
+}
+
+}  // namespace
+}  // namespace rtmot::detector
