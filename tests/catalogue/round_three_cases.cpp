@@ -148,7 +148,8 @@ std::string jpeg_header(std::uint16_t width, std::uint16_t height) {
 // plain bytes) and then `bad` under `name`.
 std::function<void(Workspace&, Vars&)> image_folder_with(const std::string& name,
                                                          const std::string& bad) {
-  return [=](Workspace& ws, Vars&) {
+  return [=](Workspace& ws, Vars& vars) {
+    if (!fs::exists(ws.path("run.yaml"))) replay_config()(ws, vars);
     // 8x8 24-bit BMP, bottom-up, grey.
     std::string bmp = "BM";
     const auto le32 = [](std::uint32_t v) {
@@ -183,32 +184,50 @@ std::vector<CatalogueCase> round_three_cases() {
   // ---- 1. Files read outside the one input reader ------------------------------------------
   cases.push_back({"run_video_source_is_fifo",
                    "a video source path naming a FIFO (filesrc would block)",
-                   [](Workspace& ws, Vars&) {
-                     ws.copy_sequence(seq, "data/TUD-Campus");
+                   [](Workspace& ws, Vars& vars) {
+                     replay_config()(ws, vars);
                      make_fifo(ws, "video.mp4");
                    },
-                   {"run", "--source", "{dir}/video.mp4", "--det-file",
-                    "{dir}/data/TUD-Campus/det/det.txt", "--jsonl", "{dir}/out.jsonl"},
+                   with(run_yaml, {"--source", "{dir}/video.mp4", "--jsonl", "{dir}/out.jsonl"}),
                    ExitCode::source_failed,
                    {"video.mp4", "FIFO"},
                    absent("out.jsonl"),
                    with_time_limit(30)});
   cases.push_back({"run_video_source_is_device",
                    "a video source path naming /dev/zero (never ends)",
-                   [](Workspace& ws, Vars&) { ws.copy_sequence(seq, "data/TUD-Campus"); },
-                   {"run", "--source", "/dev/zero", "--det-file",
-                    "{dir}/data/TUD-Campus/det/det.txt", "--jsonl", "{dir}/out.jsonl"},
+                   [](Workspace& ws, Vars& vars) { replay_config()(ws, vars); },
+                   with(run_yaml, {"--source", "/dev/zero", "--jsonl", "{dir}/out.jsonl"}),
                    ExitCode::source_failed,
                    {"/dev/zero", "device"},
                    absent("out.jsonl"),
                    with_time_limit(30)});
-  cases.push_back(
-      {"run_image_folder_empty_image",
-       "an image folder whose first image is an empty file",
-       image_folder_with("000000.png", ""),
-       {"run", "--source", "images://{dir}/frames", "--det-file", "{dir}/frames/none.txt"},
-       ExitCode::source_failed,
-       {"000000.png", "not a PNG"}});
+  cases.push_back({"run_image_folder_empty_image",
+                   "an image folder whose first image is an empty file",
+                   image_folder_with("000000.png", ""),
+                   with(run_yaml, {"--source", "images://{dir}/frames"}),
+                   ExitCode::source_failed,
+                   {"000000.png", "not a PNG"}});
+
+  cases.push_back({"count_lines_file_is_fifo",
+                   "count --lines naming a FIFO (YAML::LoadFile blocked on it)",
+                   [](Workspace& ws, Vars&) {
+                     ws.copy_sequence(seq, "data/TUD-Campus");
+                     make_fifo(ws, "lines.yaml");
+                   },
+                   {"count", "--dataset", "{dir}/data", "--lines", "{dir}/lines.yaml"},
+                   ExitCode::bad_input,
+                   {"lines.yaml", "FIFO"},
+                   {},
+                   with_time_limit(30)});
+  cases.push_back({"count_lines_file_is_dev_zero",
+                   "count --lines /dev/zero (read without end)",
+                   [](Workspace& ws, Vars&) { ws.copy_sequence(seq, "data/TUD-Campus"); },
+                   {"count", "--dataset", "{dir}/data", "--lines", "/dev/zero"},
+                   ExitCode::bad_input,
+                   {"/dev/zero", "device"},
+                   {},
+                   with_memory_of(1ULL << 30),
+                   300});
 
   // ---- 3. An output that names an input or another output ----------------------------------
   cases.push_back({"run_jsonl_names_the_det_file",
@@ -295,26 +314,24 @@ std::vector<CatalogueCase> round_three_cases() {
                    unchanged("data/TUD-Campus/det/TUD-Campus.txt", shared_det)});
 
   // ---- 6. Memory out of proportion to the input --------------------------------------------
-  cases.push_back(
-      {"run_image_folder_png_declares_20000_square",
-       "an image folder with a 100-byte PNG declaring 20000x20000 pixels",
-       image_folder_with("000000.png", png_header(20000, 20000)),
-       {"run", "--source", "images://{dir}/frames", "--det-file", "{dir}/frames/none.txt"},
-       ExitCode::source_failed,
-       {"000000.png", "20000x20000"},
-       {},
-       with_memory_of(1ULL << 30),
-       400});
-  cases.push_back(
-      {"run_image_folder_jpeg_declares_60000_wide",
-       "an image folder whose first image is a JPEG header declaring 60000x9000",
-       image_folder_with("000000.jpg", jpeg_header(60000, 9000)),
-       {"run", "--source", "images://{dir}/frames", "--det-file", "{dir}/frames/none.txt"},
-       ExitCode::source_failed,
-       {"000000.jpg", "60000x9000"},
-       {},
-       with_memory_of(1ULL << 30),
-       400});
+  cases.push_back({"run_image_folder_png_declares_20000_square",
+                   "an image folder with a 100-byte PNG declaring 20000x20000 pixels",
+                   image_folder_with("000000.png", png_header(20000, 20000)),
+                   with(run_yaml, {"--source", "images://{dir}/frames"}),
+                   ExitCode::source_failed,
+                   {"000000.png", "20000x20000"},
+                   {},
+                   with_memory_of(1ULL << 30),
+                   400});
+  cases.push_back({"run_image_folder_jpeg_declares_60000_wide",
+                   "an image folder whose first image is a JPEG header declaring 60000x9000",
+                   image_folder_with("000000.jpg", jpeg_header(60000, 9000)),
+                   with(run_yaml, {"--source", "images://{dir}/frames"}),
+                   ExitCode::source_failed,
+                   {"000000.jpg", "60000x9000"},
+                   {},
+                   with_memory_of(1ULL << 30),
+                   400});
   cases.push_back({"track_det_file_of_blank_lines",
                    "det.txt: 96 MB of blank lines before the rows, under a 2 GB address limit",
                    [](Workspace& ws, Vars&) {
@@ -442,15 +459,15 @@ std::vector<CatalogueCase> round_three_cases() {
                    {"--mqtt", "topic filter"}});
 
   // ---- 10. Rates that are positive but absurd ------------------------------------------------
-  cases.push_back({"run_images_fps_1e_300",
-                   "images://DIR?fps=1e-300",
-                   image_folder_with("000002.bmp.txt", ""),
-                   {"run", "--source", "images://{dir}/frames?fps=1e-300", "--det-file",
-                    "{dir}/frames/none.txt", "--playback", "realtime"},
-                   ExitCode::source_failed,
-                   {"fps", "1e-300"},
-                   {},
-                   with_time_limit(30)});
+  cases.push_back(
+      {"run_images_fps_1e_300",
+       "images://DIR?fps=1e-300",
+       image_folder_with("000002.bmp.txt", ""),
+       with(run_yaml, {"--source", "images://{dir}/frames?fps=1e-300", "--playback", "realtime"}),
+       ExitCode::source_failed,
+       {"fps", "1e-300"},
+       {},
+       with_time_limit(30)});
   cases.push_back({"run_test_source_fps_1e_300",
                    "test://ball?fps=1e-300",
                    replay_config(),
@@ -493,42 +510,39 @@ std::vector<CatalogueCase> round_three_cases() {
   // ---- 11. Smaller ones --------------------------------------------------------------------
   cases.push_back({"run_file_uri_with_percent_00",
                    "file:// URI holding %00 (decoded, it cut the path at the NUL)",
-                   [](Workspace& ws, Vars&) {
-                     ws.copy_sequence(seq, "data/TUD-Campus");
+                   [](Workspace& ws, Vars& vars) {
+                     replay_config()(ws, vars);
                      ws.write("video", "not a video");
                    },
-                   {"run", "--source", "file://{dir}/video%00.mp4", "--det-file",
-                    "{dir}/data/TUD-Campus/det/det.txt"},
+                   with(run_yaml, {"--source", "file://{dir}/video%00.mp4"}),
                    ExitCode::source_failed,
                    {"%00", "NUL"}});
-  cases.push_back(
-      {"run_images_uri_with_percent_00",
-       "images:// URI holding %00",
-       image_folder_with("000002.bmp.txt", ""),
-       {"run", "--source", "images://{dir}/frames%00x", "--det-file", "{dir}/frames/none.txt"},
-       ExitCode::source_failed,
-       {"%00"}});
-  cases.push_back({"run_v4l2_names_a_regular_file",
-                   "v4l2:// naming a regular file (was retried forever as a cold start)",
-                   [](Workspace& ws, Vars&) {
-                     ws.copy_sequence(seq, "data/TUD-Campus");
-                     ws.write("video0", "not a device");
-                   },
-                   {"run", "--source", "v4l2://{dir}/video0", "--det-file",
-                    "{dir}/data/TUD-Campus/det/det.txt", "--jsonl", "{dir}/out.jsonl"},
+  cases.push_back({"run_images_uri_with_percent_00",
+                   "images:// URI holding %00",
+                   image_folder_with("000002.bmp.txt", ""),
+                   with(run_yaml, {"--source", "images://{dir}/frames%00x"}),
                    ExitCode::source_failed,
-                   {"video0", "not a device"},
-                   absent("out.jsonl"),
-                   with_time_limit(30)});
+                   {"%00"}});
   cases.push_back(
-      {"run_v4l2_names_a_folder",
-       "v4l2:// naming a folder",
-       [](Workspace& ws, Vars&) { ws.copy_sequence(seq, "data/TUD-Campus"); },
-       {"run", "--source", "v4l2://{dir}/data", "--det-file", "{dir}/data/TUD-Campus/det/det.txt"},
+      {"run_v4l2_names_a_regular_file",
+       "v4l2:// naming a regular file (was retried forever as a cold start)",
+       [](Workspace& ws, Vars& vars) {
+         replay_config()(ws, vars);
+         ws.write("video0", "not a device");
+       },
+       with(run_yaml, {"--source", "v4l2://{dir}/video0", "--jsonl", "{dir}/out.jsonl"}),
        ExitCode::source_failed,
-       {"a folder"},
-       {},
+       {"video0", "not a device"},
+       absent("out.jsonl"),
        with_time_limit(30)});
+  cases.push_back({"run_v4l2_names_a_folder",
+                   "v4l2:// naming a folder",
+                   [](Workspace& ws, Vars& vars) { replay_config()(ws, vars); },
+                   with(run_yaml, {"--source", "v4l2://{dir}/data"}),
+                   ExitCode::source_failed,
+                   {"a folder"},
+                   {},
+                   with_time_limit(30)});
   {
     CatalogueCase full{
         "eval_stdout_on_a_full_device",
