@@ -168,6 +168,11 @@ int run(const RunOverrides& overrides) {
                               runner::make_options(config));
   const pipeline::PipelineReport report = pipeline.run(signals.stop_flag());
 
+  // The final report is the run's result: shown whatever --log-level says (warn hid it).
+  const auto level = spdlog::get_level();
+  if (level > spdlog::level::info && level != spdlog::level::off) {
+    spdlog::set_level(spdlog::level::info);
+  }
   spdlog::info("{}", pipeline::summary_line(report));
   if (report.streams.size() > 1) {
     for (const auto& stream : report.streams) spdlog::info("{}", pipeline::summary_line(stream));
@@ -187,6 +192,7 @@ int run(const RunOverrides& overrides) {
   const bool files_written = !config.output.jsonl_file.empty() ||
                              !config.output.binary_file.empty() ||
                              !config.output.video_file.empty();
+  spdlog::set_level(level);
   if (delivered.nothing_delivered && !files_written) {
     spdlog::error("no output delivered any message: the tracks of this run went nowhere (exit {})",
                   to_int(ExitCode::network));

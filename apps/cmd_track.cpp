@@ -14,6 +14,7 @@
 #include "common/exit_codes.hpp"
 #include "common/input_error.hpp"
 #include "motio/mot_files.hpp"
+#include "motio/processed_frames.hpp"
 #include "motio/results_writer.hpp"
 #include "motio/sequence_folders.hpp"
 #include "motio/track_runner.hpp"
@@ -108,6 +109,9 @@ int run_track(const TrackCommandOptions& options) {
     }
     const fs::path out_file = motio::sequence_file(options.out_dir, run.info.name, ".txt");
     motio::write_results(out_file, run.tracks);
+    // Which frames were processed, for `rtmot eval --processed-frames`.
+    motio::write_processed_frames(motio::processed_frames_file(options.out_dir, run.info.name),
+                                  run.processed_frames);
     ++written;
     fmt::print("{:<16} {:>6} frames {:>7} boxes  tracker {:>9.0f} Hz  -> {}\n", run.info.name,
                run.frames_processed, run.tracks.size(),
@@ -133,7 +137,8 @@ Subcommand add_track_command(CLI::App& parent) {
   CLI::App* cli = parent.add_subcommand(
       "track",
       "Run the tracker on MOTChallenge sequences' detections; writes OUT/<sequence>.txt in the "
-      "MOTChallenge results format");
+      "MOTChallenge results format and OUT/<sequence>.frames, the frames processed (for `rtmot "
+      "eval --processed-frames`)");
   cli->add_option("--dataset", options->dataset,
                   "a sequence folder (with seqinfo.ini) or a folder of them")
       ->required();

@@ -88,7 +88,8 @@ BackendChoice checked_backend(const SsdConfig& config) {
         std::to_string(config.max_batch) + " is outside 1.." + std::to_string(kMaxBatchLimit),
         ExitCode::usage);
   }
-  BackendChoice choice = choose_backend(config.backend, config.fp16, probe_backend_capabilities());
+  BackendChoice choice =
+      choose_backend(config.backend, config.fp16, probe_backend_capabilities(), config.threads);
   if (config.verify_checksums) {
     require_readable_file(config.model_path, "model");
     verify_model_checksums(checksum_path_of(config.model_path), config.model_path,
@@ -195,6 +196,8 @@ void SsdDetector::warm_up(int count) {
     forward(count);
   } catch (const cv::Exception& e) {
     throw model_error(config_.model_path, "the model does not run: " + e.msg);
+  } catch (const InputError&) {
+    throw;  // already says what and where (a CUDA failure at run time)
   } catch (const std::runtime_error& e) {  // XNNPACK's
     throw model_error(config_.model_path, std::string("the model does not run: ") + e.what());
   }

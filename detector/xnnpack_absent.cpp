@@ -11,6 +11,10 @@ bool xnnpack_built() {
   return false;
 }
 
+bool xnnpack_runs_here() {
+  return false;
+}
+
 const char* xnnpack_supported_operators() {
   return "none (this build has no XNNPACK)";
 }

@@ -22,6 +22,10 @@ bool xnnpack_built() {
   return true;
 }
 
+bool xnnpack_runs_here() {
+  return xnn_initialize(nullptr) == xnn_status_success;
+}
+
 const char* xnnpack_supported_operators() {
   return "Conv (any group count, dilation, explicit pads), Clip, Relu, Add (same shapes), "
          "Transpose (NCHW -> NHWC), Reshape, Concat (of the graph's outputs, axis 1), Identity";

@@ -11,6 +11,10 @@ namespace rtmot::detector {
 
 /// True when this build has the XNNPACK backend (libxnnpack-dev and libonnx-dev were found).
 bool xnnpack_built();
+/// True when XNNPACK also initializes on this processor (it refuses ones it has no kernels for;
+/// under emulation its CPU probe may fail too). Where not, building the network is a bad_model
+/// error, which backend auto falls back from.
+bool xnnpack_runs_here();
 
 /// The ONNX operators the XNNPACK backend builds, for messages and docs.
 const char* xnnpack_supported_operators();

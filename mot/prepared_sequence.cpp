@@ -76,12 +76,40 @@ std::map<int, int> dense_ids(const std::vector<const motio::MotRow*>& rows) {
   return ids;
 }
 
+// Which frames are scored, and as which timestep: every interval-th, or those of a list.
+class FrameSteps {
+ public:
+  explicit FrameSteps(const PrepareOptions& options)
+      : interval_(options.interval), frames_(options.frames) {}
+  bool scored(int frame) const {
+    if (frames_.empty()) return (frame - 1) % interval_ == 0;
+    return std::binary_search(frames_.begin(), frames_.end(), frame);
+  }
+  /// The timestep of a scored frame.
+  int step(int frame) const {
+    if (frames_.empty()) return (frame - 1) / interval_;
+    return static_cast<int>(std::lower_bound(frames_.begin(), frames_.end(), frame) -
+                            frames_.begin());
+  }
+  /// Timesteps up to and including `last_frame`.
+  int steps_through(int last_frame) const {
+    if (last_frame < 1) return 0;
+    if (frames_.empty()) return (last_frame - 1) / interval_ + 1;
+    return static_cast<int>(std::upper_bound(frames_.begin(), frames_.end(), last_frame) -
+                            frames_.begin());
+  }
+
+ private:
+  int interval_;
+  const std::vector<int>& frames_;
+};
+
 std::vector<TimestepBoxes> to_timesteps(const std::vector<const motio::MotRow*>& rows,
-                                        const std::map<int, int>& ids, int interval, int timesteps,
-                                        const std::string& file) {
+                                        const std::map<int, int>& ids, const FrameSteps& steps_of,
+                                        int timesteps, const std::string& file) {
   std::vector<std::vector<const motio::MotRow*>> per_step(static_cast<std::size_t>(timesteps));
   for (const motio::MotRow* row : rows)
-    per_step[static_cast<std::size_t>((row->frame - 1) / interval)].push_back(row);
+    per_step[static_cast<std::size_t>(steps_of.step(row->frame))].push_back(row);
   std::vector<TimestepBoxes> steps(static_cast<std::size_t>(timesteps));
   for (std::size_t t = 0; t < per_step.size(); ++t) {
     auto& in_step = per_step[t];
@@ -113,7 +141,8 @@ PreparedSequence prepare_sequence(const std::vector<motio::MotRow>& gt_rows,
   if (options.interval < 1) {
     throw InputError("", 0, "interval", "must be at least 1", ExitCode::usage);
   }
-  const auto scored = [&](int frame) { return (frame - 1) % options.interval == 0; };
+  const FrameSteps steps_of(options);
+  const auto scored = [&](int frame) { return steps_of.scored(frame); };
   const bool with_classes = has_class_column(gt_rows);
   const std::vector<bool> keep_result =
       with_classes ? results_to_keep(gt_rows, result_rows, options.min_visibility)
@@ -140,14 +169,13 @@ PreparedSequence prepare_sequence(const std::vector<motio::MotRow>& gt_rows,
   }
 
   PreparedSequence sequence;
-  const int timesteps = last_frame < 1 ? 0 : (last_frame - 1) / options.interval + 1;
+  const int timesteps = steps_of.steps_through(last_frame);
   const auto gt_ids = dense_ids(gt);
   const auto result_ids = dense_ids(results);
   sequence.num_gt_ids = static_cast<int>(gt_ids.size());
   sequence.num_result_ids = static_cast<int>(result_ids.size());
-  sequence.gt = to_timesteps(gt, gt_ids, options.interval, timesteps, options.gt_file);
-  sequence.results =
-      to_timesteps(results, result_ids, options.interval, timesteps, options.results_file);
+  sequence.gt = to_timesteps(gt, gt_ids, steps_of, timesteps, options.gt_file);
+  sequence.results = to_timesteps(results, result_ids, steps_of, timesteps, options.results_file);
   for (int t = timesteps - 1; t >= 0; --t) {
     if (!sequence.results[static_cast<std::size_t>(t)].ids.empty()) {
       sequence.last_result_timestep = t;

@@ -27,6 +27,9 @@ struct PreparedSequence {
 struct PrepareOptions {
   /// Score frames 1, 1 + interval, 1 + 2 * interval, ... only.
   int interval{1};
+  /// When not empty: score exactly these frames (ascending; motio/processed_frames.hpp), each a
+  /// timestep, instead of by `interval`.
+  std::vector<int> frames;
   /// MOT16/17 gt: result boxes matched to a gt box less visible than this are removed (devkit's
   /// minvis, 0 in the benchmark).
   double min_visibility{0.0};

@@ -43,8 +43,8 @@ Counts count_everything(const std::vector<LoadedSequence>& dataset,
       const std::size_t d = (run / (n_s * n_i)) % n_d;
       const std::size_t c = run / (n_s * n_i * n_d);
       try {
-        counts[c][d][i][s] =
-            track_and_count(dataset[s], inputs[d], candidates[c].config, intervals[i]);
+        counts[c][d][i][s] = track_and_count(dataset[s], inputs[d], candidates[c].config,
+                                             intervals[i], candidates[c].knobs);
       } catch (...) {
         const std::lock_guard<std::mutex> lock(failure_mutex);
         if (!failure) failure = std::current_exception();

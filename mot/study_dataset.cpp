@@ -86,9 +86,11 @@ std::vector<LoadedSequence> load_study_dataset(const fs::path& dataset) {
 }
 
 SequenceCounts track_and_count(const LoadedSequence& sequence, StudyInput input,
-                               const tracker::TrackerConfig& config, int interval) {
+                               const tracker::TrackerConfig& config, int interval,
+                               const StudyKnobs& knobs) {
   motio::TrackOptions options;
   options.config = config;
+  options.extension = study_extension(knobs, config);
   options.interval = interval;
   const motio::FrameDetections& detections =
       input.kind == StudyInput::Kind::detections ? sequence.detections
@@ -105,9 +107,11 @@ SequenceCounts track_and_count(const LoadedSequence& sequence, StudyInput input,
 }
 
 Metrics track_and_score(const std::vector<LoadedSequence>& dataset, StudyInput input,
-                        const tracker::TrackerConfig& config, int interval) {
+                        const tracker::TrackerConfig& config, int interval,
+                        const StudyKnobs& knobs) {
   SequenceCounts total;
-  for (const auto& sequence : dataset) total += track_and_count(sequence, input, config, interval);
+  for (const auto& sequence : dataset)
+    total += track_and_count(sequence, input, config, interval, knobs);
   return summarize(total);
 }
 

@@ -40,6 +40,13 @@ StudyConfiguration option(
           tracker::with_options(grid_config(PredictorKind::kalman, AffinityKind::iou), values)};
 }
 
+// DeepSORT's cascade: a rule of the study's own (mot/study_knobs.hpp), not a tracker option.
+StudyConfiguration cascade_option() {
+  StudyConfiguration configuration = option("cascade", {});
+  configuration.knobs.recent_tracks_first = true;
+  return configuration;
+}
+
 std::vector<StudyConfiguration> option_configurations() {
   return {
       // det.txt scores are 0.5..1: split the pool at 0.7.
@@ -50,7 +57,7 @@ std::vector<StudyConfiguration> option_configurations() {
       option("frame-gap-gate", {{"time_widened_gate", "true"}, {"gate_clock", "frame_gap"}}),
       option("keep-confirmation", {{"keep_confirmation", "true"}}),
       option("tentative-dies", {{"tentative_dies_on_miss", "true"}}),
-      option("cascade", {{"recent_tracks_first", "true"}}),
+      cascade_option(),
       option("confirm-by-duration", {{"confirm_by_duration", "true"}}),
       option("coast-1", {{"min_coast_updates", "1"}}),
       option("max-age-3", {{"max_age", "3"}}),
@@ -65,6 +72,19 @@ StudyConfiguration ablation(const std::string& suffix, Change change) {
   TrackerConfig config = *tracker::find_preset(tracker::default_preset_name());
   change(config);
   return {std::string(tracker::default_preset_name()) + suffix, "ablation", config};
+}
+
+// The default preset with one of the study's own rules added.
+StudyConfiguration study_rule(const std::string& suffix, const StudyKnobs& knobs) {
+  StudyConfiguration configuration = ablation(suffix, [](TrackerConfig&) {});
+  configuration.knobs = knobs;
+  return configuration;
+}
+
+StudyKnobs knobs_with(void (*set)(StudyKnobs&)) {
+  StudyKnobs knobs;
+  set(knobs);
+  return knobs;
 }
 
 // The default preset with one of its parts taken back to SORT's, or one more option added: what
@@ -95,9 +115,9 @@ std::vector<StudyConfiguration> ablation_configurations() {
       ablation("-keep", [](TrackerConfig& c) { c.keep_confirmation = false; }),
       ablation("-dies", [](TrackerConfig& c) { c.tentative_dies_on_miss = false; }),
       ablation("+oru", [](TrackerConfig& c) { c.observation_centric_reupdate = true; }),
-      ablation("+cascade", [](TrackerConfig& c) { c.recent_tracks_first = true; }),
+      study_rule("+cascade", knobs_with([](StudyKnobs& k) { k.recent_tracks_first = true; })),
       ablation("+confirmed-first", [](TrackerConfig& c) { c.confirmed_tracks_first = true; }),
-      ablation("+track-score", [](TrackerConfig& c) { c.confirm_score_cut = 0.5; }),
+      study_rule("+track-score", knobs_with([](StudyKnobs& k) { k.confirm_score_cut = 0.5; })),
       // The runners-up of the cross-validation: every birth reported from its second detection,
       // or a weak one from its third at every rate; and every birth from its third.
       ablation("-weak-birth-proof",
@@ -105,7 +125,8 @@ std::vector<StudyConfiguration> ablation_configurations() {
                  c.min_hits = 1;
                  c.strong_birth_range_cut = 0.0;
                }),
-      ablation("+weak-births-by-count", [](TrackerConfig& c) { c.weak_births_by_count = true; }),
+      study_rule("+weak-births-by-count",
+                 knobs_with([](StudyKnobs& k) { k.weak_births_by_count = true; })),
       ablation("-strong-birth", [](TrackerConfig& c) { c.strong_birth_range_cut = 0.0; }),
       ablation("-noise-gate", [](TrackerConfig& c) { c.noise_gate_factor = 0.0; }),
   };
@@ -147,13 +168,20 @@ std::vector<StudyConfiguration> cv_candidates(bool quick) {
   struct Choice {
     std::string name;
     std::vector<std::pair<std::string_view, std::string_view>> options;
+    StudyKnobs knobs{};  // the study's own rules (mot/study_knobs.hpp)
   };
   const auto split = [](std::string name, std::string_view option, std::string_view value) {
     return Choice{std::move(name) + "-split",
                   {{option, value}, {"second_round", "true"}, {"low_score", "-1e30"}}};
   };
+  // The quantile cut is a study rule: the split's other settings with it as a knob.
+  const auto quantile_split = [](std::string name, double quantile) {
+    Choice choice{std::move(name) + "-split", {{"second_round", "true"}, {"low_score", "-1e30"}}};
+    choice.knobs.score_quantile = quantile;
+    return choice;
+  };
   const std::vector<Choice> cuts =
-      quick ? std::vector<Choice>{{"none", {}}, split("quantile-0.3", "score_quantile", "0.3")}
+      quick ? std::vector<Choice>{{"none", {}}, quantile_split("quantile-0.3", 0.3)}
             : std::vector<Choice>{{"none", {}},
                                   split("range-0.3", "score_range_cut", "0.3"),
                                   split("range-0.4", "score_range_cut", "0.4"),
@@ -176,9 +204,10 @@ std::vector<StudyConfiguration> cv_candidates(bool quick) {
     confirmations.push_back({"hits-2", {{"min_hits", "2"}}});
     confirmations.push_back(
         {"hits-2-strong-0.5", {{"min_hits", "2"}, {"strong_birth_range_cut", "0.5"}}});
-    confirmations.push_back(
-        {"hits-2-strong-0.5-count",
-         {{"min_hits", "2"}, {"strong_birth_range_cut", "0.5"}, {"weak_births_by_count", "true"}}});
+    Choice by_count{"hits-2-strong-0.5-count",
+                    {{"min_hits", "2"}, {"strong_birth_range_cut", "0.5"}}};
+    by_count.knobs.weak_births_by_count = true;
+    confirmations.push_back(by_count);
   }
   // Every combination of one choice per dimension, on top of SORT with elapsed time steps, one
   // update of coasting, confirmation as long in time, the widened gate, 30 frames kept and
@@ -188,7 +217,7 @@ std::vector<StudyConfiguration> cv_candidates(bool quick) {
   const std::vector<std::vector<Choice>> dimensions = {
       cuts,
       values("gate", "gate_clock", {"since_match", "frame_gap"}),
-      // The track-level confidence (confirm_score_cut) stays an option but not a candidate: a
+      // The track-level confidence (confirm_score_cut) stays a study rule but not a candidate: a
       // fraction of the score range as the bar for reporting a track assumes how a detector's
       // true and false detections separate; on a weak one (synthetic DPM) it removed true tracks
       // wholesale (docs/study/reading.md).
@@ -214,7 +243,8 @@ std::vector<StudyConfiguration> cv_candidates(bool quick) {
     for (const auto& partial : candidates) {
       for (const auto& choice : dimension) {
         grown.push_back({partial.name.empty() ? choice.name : partial.name + "_" + choice.name,
-                         "cv", tracker::with_options(partial.config, choice.options)});
+                         "cv", tracker::with_options(partial.config, choice.options),
+                         merged(partial.knobs, choice.knobs)});
       }
     }
     candidates = std::move(grown);

@@ -3,6 +3,7 @@
 #include <string>
 #include <vector>
 
+#include "mot/study_knobs.hpp"
 #include "tracker/tracker_config.hpp"
 
 namespace rtmot::mot {
@@ -12,6 +13,7 @@ struct StudyConfiguration {
   std::string
       group;  // "grid" (predictor x affinity), "options" (one change each), "ablation", "presets"
   tracker::TrackerConfig config;
+  StudyKnobs knobs{};  // the study's own rules on top of `config`
 };
 
 /// The predictor x affinity grid (SORT's track life, elapsed time steps), each option of the

@@ -36,8 +36,8 @@ std::vector<StudyTable> run_study(const std::vector<LoadedSequence>& dataset,
       StudyTable& table = tables[static_cast<std::size_t>(run / runs_per_table)];
       StudyRow& row = table.rows[static_cast<std::size_t>(run % runs_per_table)];
       try {
-        row.metrics =
-            track_and_score(dataset, table.input, table.configuration.config, row.interval);
+        row.metrics = track_and_score(dataset, table.input, table.configuration.config,
+                                      row.interval, table.configuration.knobs);
         if (progress) progress(++done, total, table, row.interval);
       } catch (...) {
         const std::lock_guard<std::mutex> lock(failure_mutex);

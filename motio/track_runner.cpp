@@ -47,7 +47,9 @@ TrackRun track_detections(const FrameDetections& detections, const SequenceInfo&
   config.frame_rate = info.frame_rate;
   config.image_width = static_cast<float>(info.width);
   config.image_height = static_cast<float>(info.height);
-  tracker::Tracker tracker(config);
+  tracker::Tracker tracker(config, options.extension
+                                       ? options.extension()
+                                       : std::unique_ptr<tracker::TrackerExtension>());
 
   using Clock = std::chrono::steady_clock;
   Clock::duration in_update{};
@@ -75,6 +77,7 @@ TrackRun track_detections(const FrameDetections& detections, const SequenceInfo&
       run.tracks.push_back(row);
     }
     ++run.frames_processed;
+    run.processed_frames.push_back(static_cast<int>(frame));
     if (progress) progress(static_cast<int>(frame), info.length);
   }
   run.seconds_in_update = std::chrono::duration<double>(in_update).count();

@@ -10,6 +10,7 @@
 #include "motio/frame_detections.hpp"
 #include "motio/mot_files.hpp"
 #include "tracker/tracker_config.hpp"
+#include "tracker/tracker_extension.hpp"
 
 namespace rtmot::motio {
 
@@ -23,14 +24,17 @@ struct TrackOptions {
   int interval{1};
   /// When set and true, the run stops before its next frame (TrackRun::stopped).
   const std::atomic<bool>* stop{nullptr};
+  /// The study's rules (mot/study_knobs.hpp) for the Tracker; empty in the product.
+  tracker::TrackerExtensionFactory extension;
 };
 
 struct TrackRun {
   SequenceInfo info;
   std::vector<MotRow> tracks;  // one row per reported track and frame
   int frames_processed{0};
-  double seconds_in_update{0.0};  // time spent inside Tracker::update only
-  bool stopped{false};            // by TrackOptions::stop, before the sequence's end
+  std::vector<int> processed_frames;  // their numbers, ascending (motio/processed_frames.hpp)
+  double seconds_in_update{0.0};      // time spent inside Tracker::update only
+  bool stopped{false};                // by TrackOptions::stop, before the sequence's end
   /// Frames with more detections than the tracker's max_detections (it used the first ones of
   /// each), and the most detections one frame had: the caller says so rather than cut silently.
   int frames_over_capacity{0};

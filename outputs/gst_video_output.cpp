@@ -98,6 +98,13 @@ std::string describe_pipeline(const VideoTarget& target, int width, int height, 
 GstVideoOutput::GstVideoOutput(VideoTarget target, double fps)
     : target_(std::move(target)), fps_(fps > 0.0 ? fps : 30.0) {
   platform::gst::ensure_initialized();
+  if (target_.kind == VideoTargetKind::rtp) {
+    // RTP carries no description of itself: a player needs this (a file, or pasted into VLC).
+    spdlog::info(
+        "{}: the SDP a player needs (save as stream.sdp; ffplay -protocol_whitelist "
+        "file,udp,rtp stream.sdp):\n{}",
+        target_.text, rtp_sdp(target_));
+  }
 }
 
 GstVideoOutput::~GstVideoOutput() {

@@ -39,6 +39,17 @@ struct OverlayStats {
   double latency_ms{0.0};  // capture -> sent of the latest processed frame
 };
 
+/// Sizes of the drawing for a frame height: text, lines and padding scale with the frame.
+struct OverlayStyle {
+  double font_scale{0.5};
+  int font_thickness{1};
+  int line_thickness{2};
+  int pad{2};
+  int baseline{0};
+  int text_height{0};
+  static OverlayStyle for_height(int rows);
+};
+
 class Overlay {
  public:
   /// `max_tracks` trails are kept (more tracks draw no trail), `trail_length` points each; both
@@ -60,14 +71,26 @@ class Overlay {
     std::vector<cv::Point> points;
   };
   Trail* trail_of(std::int32_t id, std::int64_t frame);
+  cv::Size label_size(const std::string& text) const;
+  static cv::Rect box_of(const tracker::TrackReport& track);
 
   OverlayFlags flags_;
   messages::ClassLabelFn labels_;
   std::vector<Trail> trails_;
-  std::string text_;  // reused for each label
+  std::string text_;              // reused for each label
+  std::vector<cv::Rect> placed_;  // this frame's labels so far (reserved: no allocation per frame)
+  OverlayStyle style_;
+  int style_rows_{-1};  // the frame height style_ was made for
 };
 
-/// A stable, distinct colour per track id (golden-ratio hue steps), BGR.
+/// A stable, distinct colour per track id (golden-ratio hue steps), BGR: the trails.
 cv::Scalar colour_of(std::int32_t id);
+/// Where a label of `size` for `box` goes in an image of `image` size so that it overlaps none of
+/// `placed`: above the box, inside its top, below it, else the nearest free place above or below.
+cv::Rect place_label(const cv::Size& size, const cv::Rect& box, const cv::Size& image,
+                     const std::vector<cv::Rect>& placed);
+
+/// The colour of a class (COCO id), BGR: boxes and labels (DeepStream's convention).
+cv::Scalar class_colour(std::int32_t class_id);
 
 }  // namespace rtmot::outputs

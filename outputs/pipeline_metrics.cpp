@@ -156,6 +156,7 @@ std::string PipelineMetrics::render() const {
     fmt::format_to(to, "rtmot_output_messages_total{{output=\"{}\",outcome=\"dropped\"}} {}\n",
                    probes_[i].name, outputs_[i].dropped.load(relaxed));
   }
+  if (events_ != nullptr) events_->render(out);
   return out;
 }
 

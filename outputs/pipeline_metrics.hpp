@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "messages/frame_result.hpp"
+#include "outputs/event_metrics.hpp"
 
 namespace rtmot::outputs {
 
@@ -63,6 +64,8 @@ class PipelineMetrics {
   void observe(const messages::FrameResult& result);
   /// Any thread: the Prometheus text exposition (version 0.0.4).
   std::string render() const;
+  /// The events' series (outputs/event_metrics.hpp), rendered after these; set before the run.
+  void set_event_metrics(const EventMetrics* events) { events_ = events; }
 
  private:
   struct OutputCounters {
@@ -89,6 +92,7 @@ class PipelineMetrics {
   std::vector<std::uint32_t> stream_ids_;
   std::vector<StreamCounters> streams_;  // parallel to stream_ids_
   std::array<LatencyBuckets, stage_count> stages_;
+  const EventMetrics* events_{nullptr};
 };
 
 /// The sink that feeds PipelineMetrics: put it last, so the other outputs' counters include this

@@ -117,4 +117,21 @@ std::string prepare_video_file(const VideoTarget& target) {
   return "";
 }
 
+std::string rtp_sdp(const VideoTarget& target) {
+  // RFC 4566 session, RFC 6184 H.264 payload; the receiver listens on the port we send to.
+  const bool v6 = target.host.find(':') != std::string::npos;
+  const char* family = v6 ? "IP6" : "IP4";
+  return "v=0\n"
+         "o=- 0 0 IN " +
+         std::string(family) + " " + target.host + "\n" +
+         "s=rtmot annotated video\n"
+         "c=IN " +
+         family + " " + target.host + "\n" +
+         "t=0 0\n"
+         "m=video " +
+         std::to_string(target.port) + " RTP/AVP 96\n" +
+         "a=rtpmap:96 H264/90000\n"
+         "a=fmtp:96 packetization-mode=1\n";
+}
+
 }  // namespace rtmot::outputs

@@ -25,6 +25,11 @@ struct VideoTarget {
 /// Parses `text`; nullopt with `problem` set (one phrase) if malformed.
 std::optional<VideoTarget> parse_video_target(const std::string& text, std::string& problem);
 
+/// The SDP a player needs for an rtp:// target (H.264, payload type 96, as our rtph264pay sends):
+/// save it as FILE.sdp and `ffplay -protocol_whitelist file,udp,rtp FILE.sdp` (or VLC) plays the
+/// stream. Lines end with "\n".
+std::string rtp_sdp(const VideoTarget& target);
+
 /// For a file target: creates its missing folders and checks that the file can be created and
 /// written (a temporary beside it is created and removed; an existing file is left until the
 /// finished video replaces it). Returns "" or the reason it cannot

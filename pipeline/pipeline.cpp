@@ -60,7 +60,7 @@ struct Pipeline::Stages {
           std::make_unique<CaptureStage>(std::move(input.source), capture, &frames_ready));
       captures.back()->set_tap(input.tap);
       slots.push_back(&captures.back()->slot());
-      trackers.push_back({input.tracker, input.stream_id});
+      trackers.push_back({input.tracker, input.events, input.stream_id});
       stream_ids.push_back(input.stream_id);
       max_detections =
           std::max(max_detections, static_cast<std::size_t>(input.tracker.max_detections));

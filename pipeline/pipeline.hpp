@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "detector/detector.hpp"
+#include "events/events_config.hpp"
 #include "messages/frame_result.hpp"
 #include "pipeline/frame_consumer.hpp"
 #include "pipeline/frame_tap.hpp"
@@ -59,6 +60,7 @@ struct PipelineOptions {
 struct PipelineInput {
   std::unique_ptr<platform::VideoSource> source;
   tracker::TrackerConfig tracker;
+  events::EventsConfig events;  // lines and zones counted on this source (docs/events.md)
   std::uint32_t stream_id{0};
   /// Sees every frame of this source (pipeline/frame_tap.hpp); not owned, must outlive run().
   FrameTap* tap{nullptr};

@@ -93,19 +93,27 @@ nlohmann::json to_json(const PipelineReport& report) {
   return json;
 }
 
+// One vocabulary for frames not processed, everywhere a person reads it (this line, the progress
+// line, the metrics' rtmot_frames_skipped_total, `rtmot listen`): "skipped" = captured but not
+// processed because the detector was busy; "lost by the source" = gaps in the source's own frame
+// numbers, before we saw them. (The wire and JSON keep their field names: frames_dropped, dropped.)
 std::string summary_line(const PipelineReport& report) {
+  // The headline is what was delivered (processed per second, which for a real-time source cannot
+  // exceed the source's own rate); the capacity is what the detector alone could do. A newcomer
+  // read "10.01 fps" as the speed of the tracker, when it was the video's rate.
   return fmt::format(
-      "frames captured {} processed {} dropped {} lost {} | source outages {} | {:.2f} fps "
-      "(detector {:.2f} fps) over {:.2f} s | {}",
+      "frames captured {} processed {} skipped {} (detector busy) lost by the source {} | source "
+      "outages {} | output rate {:.2f} fps over {:.2f} s; capacity {:.2f} fps (what the detector "
+      "alone could process) | {}",
       report.frames_captured, report.frames_processed, report.frames_dropped, report.frames_lost,
-      report.source_outages, report.fps, report.detector_fps, report.wall_seconds,
+      report.source_outages, report.fps, report.wall_seconds, report.detector_fps,
       latency_text(report.latency.end_to_end));
 }
 
 std::string summary_line(const StreamReport& stream) {
   return fmt::format(
-      "stream {} ({}): frames captured {} processed {} dropped {} lost {} | source outages {} | "
-      "{:.2f} fps | {}{}",
+      "stream {} ({}): frames captured {} processed {} skipped {} lost by the source {} | source "
+      "outages {} | output rate {:.2f} fps | {}{}",
       stream.stream_id, stream.source, stream.frames_captured, stream.frames_processed,
       stream.frames_dropped, stream.frames_lost, stream.source_outages, stream.fps,
       latency_text(stream.latency.end_to_end),

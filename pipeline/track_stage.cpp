@@ -8,6 +8,8 @@
 namespace rtmot::pipeline {
 namespace {
 
+constexpr std::size_t kEventsPerFrame = 64;
+
 int most_tracks(const std::vector<TrackInput>& inputs) {
   int most = 0;
   for (const auto& input : inputs) most = std::max(most, input.tracker.max_tracks);
@@ -22,12 +24,16 @@ TrackStage::TrackStage(const std::vector<TrackInput>& inputs, SpscQueue<Detected
       keep_images_(keep_images),
       output_(std::max(queue_capacity, inputs.size()), [&](TrackedFrame& item) {
         item.result.tracks.reserve(static_cast<std::size_t>(most_tracks(inputs)));
+        // Events are rare; a burst beyond this grows the slot once and it keeps the capacity.
+        item.result.events.reserve(kEventsPerFrame);
       }) {
   streams_.reserve(inputs.size());
   for (const auto& wanted : inputs) {
     Stream stream;
     stream.tracker = std::make_unique<tracker::Tracker>(wanted.tracker);
     stream.stream_id = wanted.stream_id;
+    if (!wanted.events.lines.empty() || !wanted.events.zones.empty())
+      stream.counter = std::make_unique<events::EventCounter>(wanted.events);
     streams_.push_back(std::move(stream));
   }
 }
@@ -41,6 +47,12 @@ void TrackStage::run(const std::atomic<bool>& abort) {
     const auto& reports = stream.tracker->update(in->detections, seconds);
     messages::FrameResult& result = out->result;
     result.tracks.assign(reports.begin(), reports.end());  // within the reserved capacity
+    result.events.clear();
+    if (stream.counter && !in->outage) {
+      // Counted on the pipeline's timestamps, so dwell and the lost timeout run on time.
+      const auto& decided = stream.counter->update(reports, seconds);
+      result.events.assign(decided.begin(), decided.end());
+    }
     result.stream_id = stream.stream_id;
     result.run_id = messages::this_process_run_id();  // a restarted board: a new run id
     result.sequence = static_cast<std::uint64_t>(stream.messages++);

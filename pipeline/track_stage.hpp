@@ -6,6 +6,7 @@
 #include <memory>
 #include <vector>
 
+#include "events/event_counter.hpp"
 #include "pipeline/spsc_queue.hpp"
 #include "pipeline/stage_items.hpp"
 #include "tracker/tracker.hpp"
@@ -15,6 +16,8 @@ namespace rtmot::pipeline {
 
 struct TrackInput {
   tracker::TrackerConfig tracker;
+  /// Lines and zones counted on this source's tracks (docs/events.md); none: nothing counted.
+  events::EventsConfig events;
   std::uint32_t stream_id{0};
 };
 
@@ -33,6 +36,7 @@ class TrackStage {
  private:
   struct Stream {
     std::unique_ptr<tracker::Tracker> tracker;
+    std::unique_ptr<events::EventCounter> counter;  // null: no lines or zones
     std::uint32_t stream_id{0};
     std::int64_t messages{0};          // frames and outage ticks sent
     std::int64_t frames_processed{0};  // real frames

@@ -62,6 +62,14 @@ ThreadSetup configure_current_thread(const ThreadSettings& settings) {
   if (settings.fifo_priority != 0) {
     setup.realtime = make_realtime(settings.name, settings.fifo_priority);
   }
+  // What was applied is said too (a refusal is warned about above): an operator checking a
+  // board's threads reads it in the journal.
+  if (setup.pinned || setup.realtime) {
+    spdlog::info("thread '{}':{}{}", settings.name,
+                 setup.pinned ? " pinned to CPU " + std::to_string(settings.cpu) : std::string(),
+                 setup.realtime ? " SCHED_FIFO priority " + std::to_string(settings.fifo_priority)
+                                : std::string());
+  }
   return setup;
 }
 

@@ -35,6 +35,8 @@ constexpr std::uint64_t kMaxConfigBytes = 1 << 20;
 
 void read_source(Section section, SourceConfig& source) {
   section.read("uri", source.uri);
+  source.events =
+      events::read_events_spec(section.child("events"), section.file(), section.field("events"));
   read_checked(section, "width", source.width, within(0, kMaxImageSide),
                "a size in [0, " + std::to_string(kMaxImageSide) + "]");
   read_checked(section, "height", source.height, within(0, kMaxImageSide),

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "events/events_yaml.hpp"
 #include "pipeline/pipeline.hpp"
 #include "pipeline/playback_mode.hpp"
 #include "tracker/tracker_config.hpp"
@@ -21,6 +22,8 @@ struct SourceConfig {
   double fps{0.0};
   /// Stream id in this source's messages; -1 = the top-level stream_id + the source's index.
   std::int64_t stream_id{-1};
+  /// `events:` lines and zones (docs/events.md), resolved against the frame once it is open.
+  events::EventsSpec events;
 };
 
 struct PlaybackConfig {

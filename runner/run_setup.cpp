@@ -55,6 +55,9 @@ std::vector<pipeline::PipelineInput> make_inputs(const RunConfig& config) {
     inputs[i].source = open_configured(sources[i]);
     inputs[i].tracker = complete_tracker_config(config, inputs[i].source->info());
     inputs[i].stream_id = stream_id_of(config, i);
+    inputs[i].events =
+        events::resolve_events(sources[i].events, static_cast<int>(inputs[i].tracker.image_width),
+                               static_cast<int>(inputs[i].tracker.image_height));
   }
   return inputs;
 }
@@ -193,13 +196,31 @@ RunOutputs make_outputs(const RunConfig& config, std::vector<pipeline::PipelineI
     outputs.destinations.push_back(file_line("report", output.report_file));
   }
   if (config.stats_interval_s > 0.0 && inputs.size() == 1) {
-    sinks.push_back(std::make_unique<ProgressSink>(config.stats_interval_s, first.frame_count));
+    // The run ends at --max-frames when that comes first: the progress and its ETA say so.
+    std::int64_t total = first.frame_count;
+    if (config.max_frames > 0 && (total <= 0 || config.max_frames < total)) {
+      total = config.max_frames;
+    }
+    sinks.push_back(std::make_unique<ProgressSink>(config.stats_interval_s, total));
   }
   outputs.deliveries = probes;  // for the final report
   if (output.metrics_port > 0) {
     std::vector<std::uint32_t> streams;
     for (const auto& input : inputs) streams.push_back(input.stream_id);
     outputs.metrics = std::make_unique<outputs::PipelineMetrics>(std::move(probes), streams);
+    std::vector<outputs::EventMetrics::Source> counted;
+    for (const auto& input : inputs) {
+      if (input.events.lines.empty() && input.events.zones.empty()) continue;
+      outputs::EventMetrics::Source source{input.stream_id, {}, {}};
+      for (const auto& line : input.events.lines) source.lines.push_back(line.name);
+      for (const auto& zone : input.events.zones) source.zones.push_back(zone.name);
+      counted.push_back(std::move(source));
+    }
+    if (!counted.empty()) {
+      outputs.event_metrics = std::make_unique<outputs::EventMetrics>(std::move(counted));
+      outputs.metrics->set_event_metrics(outputs.event_metrics.get());
+      sinks.push_back(std::make_unique<outputs::EventMetricsSink>(*outputs.event_metrics));
+    }
     outputs.metrics_server = std::make_unique<outputs::MetricsServer>(
         *outputs.metrics, output.metrics_bind, static_cast<std::uint16_t>(output.metrics_port));
     sinks.push_back(std::make_unique<outputs::MetricsSink>(*outputs.metrics));

@@ -30,6 +30,7 @@ struct RunOutputs {
   /// With output.metrics_port: the numbers (fed by the MetricsSink) and the HTTP endpoint. Keep
   /// both alive longer than the Pipeline that owns the consumers.
   std::unique_ptr<outputs::PipelineMetrics> metrics;
+  std::unique_ptr<outputs::EventMetrics> event_metrics;  // with metrics_port and lines or zones
   std::unique_ptr<outputs::MetricsServer> metrics_server;
   /// One line per destination ("udp -> [::1]:5600", "jsonl -> tracks.jsonl (replaces an existing
   /// file)"), for the start-up log.

@@ -166,6 +166,19 @@ packages() {
         for p in ${packages//,/ }; do
           for lib in $(package_libraries "$p"); do [[ -e $lib ]] && seed[$(readlink -f "$lib")]=1; done
         done
+        # and every file its exported targets name (CMake checks they all exist, e.g. ONNX's
+        # onnxifi libraries, which another package ships)
+        dir="$(cache "$build_dir" "${name}_DIR")"
+        if [[ $kind == find_package && -n $dir && -d $dir ]]; then
+          local prefix="${dir%%/lib/*}"
+          prefix="${prefix%%/share/*}"
+          for lib in $(grep -ho '${_IMPORT_PREFIX}/[^" ;)]*' "$dir"/*.cmake 2>/dev/null | sort -u); do
+            lib="$prefix${lib#\$\{_IMPORT_PREFIX\}}"
+            [[ -f $lib ]] || continue
+            for p in $(owner "$lib" | tr ',' ' '); do want[$p]=1; done
+            [[ $lib == *.so* ]] && seed[$(readlink -f "$lib")]=1
+          done
+        fi
         ;;
     esac
   done <<<"$resolved"

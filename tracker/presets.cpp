@@ -17,13 +17,13 @@ namespace {
 // tracker/box_noise.hpp) as well as by the frames skipped; a track never confirmed
 // dies at its first miss; a confirmed one is reported again at its first match after a miss.
 // No score decides alone that a track is not reported: a track-level confidence cut
-// (confirm_score_cut) removed the true tracks of a weak detector whose true and false detections
-// score alike (held-out synthetic DPM, interval 1: MOTA 31.1 against SORT's 39.8), so it is left
-// out of the grid.
-// The open numbers (split, gate clock, IoU, confirmation) are the candidate that cross-validation
-// over MOT15-train's sequences and six detectors (the public one and five synthetic ones) chooses
-// on everything (`rtmot study`, docs/study.md "cross-validation"): the most (detector, interval)
-// cells at or above both SORT and ByteTrack, then the mean of (MOTA + IDF1) / 2.
+// (the study's confirm_score_cut) removed the true tracks of a weak detector whose true and false
+// detections score alike (held-out synthetic DPM, interval 1: MOTA 31.1 against SORT's 39.8), so it
+// is left out of the grid. The open numbers (split, gate clock, IoU, confirmation) are the
+// candidate that cross-validation over MOT15-train's sequences and six detectors (the public one
+// and five synthetic ones) chooses on everything (`rtmot study`, docs/study.md "cross-validation"):
+// the most (detector, interval) cells at or above both SORT and ByteTrack, then the mean of (MOTA +
+// IDF1) / 2.
 tracker::TrackerConfig rtmot_preset() {
   tracker::TrackerConfig config = tracker::TrackerConfig::sort_preset();
   config.time_step = tracker::TimeStep::elapsed;

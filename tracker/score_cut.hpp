@@ -16,6 +16,10 @@
 
 namespace rtmot::tracker {
 
+/// The Tracker's score window: about 100 frames of a MOT15 scene, enough for a stable quantile,
+/// short enough to follow a scene that changes.
+inline constexpr int kScoreWindow = 1024;
+
 class ScoreCut {
  public:
   /// `quantile` and `range_fraction` in [0, 1); 0 disables that cut. `window`: how many recent

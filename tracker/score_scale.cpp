@@ -37,7 +37,7 @@ std::optional<std::string> score_scale_warning(const TrackerConfig& config,
   if (cuts.str().empty()) return std::nullopt;  // relative cuts only: any scale fits
   if (scores.low < 0.F || scores.high > 1.F) {
     return describe(scores) + ", not [0, 1]: the absolute cut (" + cuts.str() +
-           ") assumes another detector's scale; use score_quantile or score_range_cut instead";
+           ") assumes another detector's scale; use score_range_cut instead";
   }
   if (highest_cut > scores.high) {
     return describe(scores) + ": no detection reaches the absolute cut (" + cuts.str() + ")";

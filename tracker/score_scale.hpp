@@ -1,6 +1,6 @@
 #pragma once
 // Whether a detector's scores fit the absolute score cuts of a configuration. The relative cuts
-// (score_quantile, score_range_cut) fit any scale; an absolute one (detection_threshold, the
+// (score_range_cut) fit any scale; an absolute one (detection_threshold, the
 // second round's low_score, a replay detector's score_threshold) is a number on one detector's
 // scale, and on another it silently drops everything or nothing.
 #include <optional>

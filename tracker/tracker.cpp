@@ -12,14 +12,12 @@
 #include "tracker/predictor.hpp"
 #include "tracker/score_cut.hpp"
 #include "tracker/track.hpp"
+#include "tracker/tracker_extension.hpp"
 
 namespace rtmot::tracker {
 namespace {
 
 constexpr int kTypicalSceneSize = 64;
-// The relative score cut remembers this many recent scores: about 100 frames of a MOT15 scene,
-// enough for a stable quantile, short enough to follow a scene that changes.
-constexpr int kScoreWindow = 1024;
 // The box noise is measured on matches about one nominal frame ahead: a live camera's timestamps
 // jitter, and two frames ahead the offset is mostly motion (the time-widened gate's business).
 constexpr double kOneFrameSlack = 0.5;
@@ -42,16 +40,17 @@ bool usable(const Detection& detection) {
 // The update is a sequence of named passes over a table of track slots (see update()). Every
 // buffer below is sized at construction; a pass only clears and refills them.
 struct Tracker::State {
-  explicit State(const TrackerConfig& c)
+  State(const TrackerConfig& c, std::unique_ptr<TrackerExtension> e)
       : config(validated(c)),
+        extension(std::move(e)),
         confirmation(ConfirmationPolicy::from(c)),
         // MOT15 peaks at 16 detections a frame: a 64 x 64 workspace rarely has to grow.
         associator(std::min(c.max_detections, kTypicalSceneSize),
                    std::min(c.max_tracks, kTypicalSceneSize)),
         box_noise(c.noise_gate_factor > 0.0 ? kBoxNoiseWindow : 0),
-        score_cut(c.score_quantile, c.score_range_cut, kScoreWindow,
-                  c.birth_range_cut > 0.0 || c.strong_birth_range_cut > 0.0 ||
-                      c.confirm_score_cut > 0.0) {
+        score_cut(0.0, c.score_range_cut, kScoreWindow,
+                  c.strong_birth_range_cut > 0.0 || (extension && extension->needs_score_range())),
+        cascades(c.confirmed_tracks_first || (extension && extension->cascades())) {
     const auto tracks = static_cast<std::size_t>(config.max_tracks);
     const auto detections = static_cast<std::size_t>(config.max_detections);
     slots.resize(tracks);
@@ -84,6 +83,7 @@ struct Tracker::State {
     has_previous_time = false;
     score_cut.reset();
     box_noise.reset();
+    if (extension) extension->reset();
     reports.clear();
   }
 
@@ -97,7 +97,7 @@ struct Tracker::State {
     split_by_score(detections);
     predict_tracks(dt);
     first_round();
-    if (config.recent_tracks_first || config.confirmed_tracks_first) cascade_round();
+    if (cascades) cascade_round();
     if (config.second_round && !low.empty()) second_round();
     start_tracks();
     settle_and_report();
@@ -118,7 +118,8 @@ struct Tracker::State {
   void split_by_score(const std::vector<Detection>& detections) {
     high.clear();
     low.clear();
-    const float cut = std::max(config.detection_threshold, score_cut.observe(detections));
+    float cut = std::max(config.detection_threshold, score_cut.observe(detections));
+    if (extension) cut = std::max(cut, extension->split_cut(detections));
     for (const Detection& detection : detections) {
       if (!usable(detection)) continue;
       if (detection.score >= cut) {
@@ -161,8 +162,8 @@ struct Tracker::State {
     positions.clear();
     for (int t = 0; t < static_cast<int>(order.size()); ++t) {
       const Track& track = slots[order[t]];
-      if (config.recent_tracks_first && track.steps_since_update != 1) continue;
       if (config.confirmed_tracks_first && !track.life.ever_confirmed()) continue;
+      if (extension && extension->defers(track.facts())) continue;
       positions.push_back(t);
     }
     associate(high, [&](int d) { high_taken[static_cast<std::size_t>(d)] = 1; });
@@ -276,10 +277,9 @@ struct Tracker::State {
   // Every high-score detection that no round took starts a tentative track (with a birth cut,
   // only the confident ones: a continuation needs less evidence than a new object).
   void start_tracks() {
-    const float relative_birth = config.birth_range_cut > 0.0
-                                     ? score_cut.range_point(config.birth_range_cut)
-                                     : std::numeric_limits<float>::lowest();
-    const float birth = std::max(config.birth_threshold, relative_birth);
+    const float birth = extension
+                            ? std::max(config.birth_threshold, extension->birth_cut(score_cut))
+                            : config.birth_threshold;
     for (std::size_t d = 0; d < high.size(); ++d) {
       if (!high_taken[d] && high[d].score >= birth) start_track(high[d]);
     }
@@ -363,18 +363,13 @@ struct Tracker::State {
   }
 
   bool confirmed(const Track& track) const {
-    if (!confident(track)) return false;
-    const bool duration_allowed = !(config.weak_births_by_count &&
-                                    config.strong_birth_range_cut > 0.0 && !track.strong_birth);
-    return confirmation.confirms(track.facts(), StreamClock{frame_count, elapsed_frames},
-                                 duration_allowed);
-  }
-
-  // The track-level confidence: a false positive that recurs at one place is matched often but
-  // scores low on average; a person seen half-occluded scores low only for a while.
-  bool confident(const Track& track) const {
-    if (config.confirm_score_cut <= 0.0 || track.matches == 0) return true;
-    return track.score_sum / track.matches >= score_cut.range_point(config.confirm_score_cut);
+    const TrackFacts facts = track.facts();
+    if (!extension) {
+      return confirmation.confirms(facts, StreamClock{frame_count, elapsed_frames}, true);
+    }
+    if (!extension->may_confirm(facts, score_cut)) return false;
+    return confirmation.confirms(facts, StreamClock{frame_count, elapsed_frames},
+                                 extension->may_confirm_by_duration(facts));
   }
 
   void release(int slot) {
@@ -390,6 +385,7 @@ struct Tracker::State {
   }
 
   TrackerConfig config;
+  std::unique_ptr<TrackerExtension> extension;  // the study's rules; null in the product
   ConfirmationPolicy confirmation;
   // The track table: slots, the free ones, and the live ones oldest first (sort.py's list order).
   std::vector<Track> slots;
@@ -410,6 +406,7 @@ struct Tracker::State {
   Associator associator;
   BoxNoise box_noise;
   ScoreCut score_cut;
+  bool cascades;  // the cascade round runs
   std::int32_t next_id{1};
   int frame_count{0};
   double elapsed_frames{0.0};  // nominal frames since the first update
@@ -418,7 +415,9 @@ struct Tracker::State {
   bool has_previous_time{false};
 };
 
-Tracker::Tracker(const TrackerConfig& config) : state_(std::make_unique<State>(config)) {}
+Tracker::Tracker(const TrackerConfig& config) : Tracker(config, nullptr) {}
+Tracker::Tracker(const TrackerConfig& config, std::unique_ptr<TrackerExtension> extension)
+    : state_(std::make_unique<State>(config, std::move(extension))) {}
 Tracker::~Tracker() = default;
 Tracker::Tracker(Tracker&&) noexcept = default;
 Tracker& Tracker::operator=(Tracker&&) noexcept = default;

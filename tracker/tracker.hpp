@@ -9,9 +9,13 @@
 
 namespace rtmot::tracker {
 
+class TrackerExtension;
+
 class Tracker {
  public:
   explicit Tracker(const TrackerConfig& config);
+  /// With the study's rules (tracker/tracker_extension.hpp); null: none, as above.
+  Tracker(const TrackerConfig& config, std::unique_ptr<TrackerExtension> extension);
   ~Tracker();
   Tracker(Tracker&&) noexcept;
   Tracker& operator=(Tracker&&) noexcept;

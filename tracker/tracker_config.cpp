@@ -11,12 +11,10 @@ TrackerConfig with_every_option(TrackerConfig base) {
   base.second_round = true;
   base.detection_threshold = 0.6F;
   base.low_score = 0.3F;
-  base.score_quantile = 0.2;
   base.score_range_cut = 0.5;
   base.observation_centric_reupdate = true;
   base.time_widened_gate = true;
   base.gate_clock = GateClock::frame_gap;
-  base.recent_tracks_first = true;
   base.confirmed_tracks_first = true;
   base.confirm_by_duration = true;
   base.min_coast_updates = 1;
@@ -25,11 +23,8 @@ TrackerConfig with_every_option(TrackerConfig base) {
   base.keep_confirmation = true;
   base.tentative_dies_on_miss = true;
   base.second_round_recent_only = true;
-  base.birth_range_cut = 0.6;
   base.strong_birth_range_cut = 0.7;
-  base.weak_births_by_count = true;
   base.birth_threshold = 0.65F;
-  base.confirm_score_cut = 0.3;
   base.second_round_threshold = 0.5;
   base.max_gate_margin = 0.4;
   base.noise_gate_factor = 3.0;
@@ -42,7 +37,6 @@ TrackerConfig TrackerConfig::sort_preset() {
   config.affinity = AffinityKind::iou;
   config.affinity_threshold = default_threshold(AffinityKind::iou);
   config.detection_threshold = std::numeric_limits<float>::lowest();  // sort.py keeps every row
-  config.score_quantile = 0.0;
   config.score_range_cut = 0.0;
   config.max_age = 1;
   config.min_hits = 3;
@@ -89,8 +83,6 @@ std::optional<std::string> config_problem(const TrackerConfig& config) {
   if (std::isnan(config.detection_threshold) || std::isnan(config.low_score) ||
       std::isnan(config.birth_threshold))
     return "detection_threshold, low_score and birth_threshold must be numbers";
-  if (!(config.score_quantile >= 0.0 && config.score_quantile <= limits::kMaxScoreQuantile))
-    return "score_quantile must be in [0, " + std::to_string(limits::kMaxScoreQuantile) + "]";
   if (!(config.score_range_cut >= 0.0 && config.score_range_cut <= limits::kMaxScoreQuantile))
     return "score_range_cut must be in [0, " + std::to_string(limits::kMaxScoreQuantile) + "]";
   if (!(config.strong_birth_range_cut >= 0.0 &&

@@ -51,9 +51,6 @@ struct TrackerConfig {
   /// Detections scoring below this absolute score are low (dropped, or second-round only). The
   /// lowest float by default: an absolute cut assumes one detector's score scale.
   float detection_threshold{std::numeric_limits<float>::lowest()};
-  /// Detections scoring below this quantile of the stream's recent scores (tracker/score_cut.hpp)
-  /// are low too: a cut that holds on any score scale. 0 = off.
-  double score_quantile{0.0};
   /// Detections scoring below low + f x (high - low) of the recent scores' 1st..99th percentile
   /// range are low too (tracker/score_cut.hpp): a cut that holds on any affine score scale. 0 =
   /// off.
@@ -81,9 +78,6 @@ struct TrackerConfig {
   /// Widen the association gate with time: `gate_clock` says which time.
   bool time_widened_gate{false};
   GateClock gate_clock{GateClock::since_match};
-  /// DeepSORT's matching cascade (two levels): tracks matched in the previous processed frame
-  /// are associated first; the tracks lost longer only get the detections left over.
-  bool recent_tracks_first{false};
   /// ByteTrack's order: confirmed tracks are associated first; the tracks not yet confirmed only
   /// get the detections left over, so a newborn false positive cannot take a person's detection.
   bool confirmed_tracks_first{false};
@@ -112,21 +106,13 @@ struct TrackerConfig {
 
   // --- ByteTrack's and our own guards against tracks made of clutter (fractions of the recent
   // 1st..99th percentile score range, tracker/score_cut.hpp; 0 = off) ---
-  /// A detection no round took starts a track only at or above this fraction (ByteTrack starts
-  /// tracks above track_thresh + 0.1 only).
-  double birth_range_cut{0.0};
   /// A detection no round took starts a track only at or above this absolute score (ByteTrack's
   /// track_thresh + 0.1 = 0.6). The lowest float by default: it assumes a score scale.
   float birth_threshold{std::numeric_limits<float>::lowest()};
   /// A track born of a detection at or above this fraction is reported from its second detection
-  /// in a row (ByteTrack's count); one born weaker needs min_hits matches. Unlike birth_range_cut,
-  /// no birth is refused: a weak one only has to prove itself longer.
+  /// in a row (ByteTrack's count); one born weaker needs min_hits matches. No birth is refused: a
+  /// weak one only has to prove itself longer.
   double strong_birth_range_cut{0.0};
-  /// With strong_birth_range_cut, a track born below it is confirmed by min_hits matches only,
-  /// never by duration: at reduced rates one more processed frame of proof.
-  bool weak_births_by_count{false};
-  /// A track is confirmed only once the mean score of its matches reaches this fraction.
-  double confirm_score_cut{0.0};
   /// Minimum affinity in the second round; 0 = affinity_threshold (ByteTrack: IoU 0.5).
   double second_round_threshold{0.0};
   /// The widened gate's largest margin, as a fraction of the box's size on each side.
@@ -148,10 +134,10 @@ struct TrackerConfig {
   static TrackerConfig sort_preset();
 };
 
-/// `base` with every optional mechanism switched on (both relative score cuts, second round,
-/// re-update, widened gate, recent
-/// tracks first, confirmation by duration, minimum coasting): the costliest configuration, for
-/// benchmarks and the allocation tests.
+/// `base` with every optional mechanism of the product switched on (the relative score cut,
+/// second round, re-update, widened and noise gates, confirmed tracks first, confirmation by
+/// duration, strong births, minimum coasting): the costliest configuration, for benchmarks and the
+/// allocation tests. The study's own rules (mot/study_knobs.hpp) are not settings.
 TrackerConfig with_every_option(TrackerConfig base);
 
 /// The usual threshold for an affinity, as in C++SORT.

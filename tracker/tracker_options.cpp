@@ -125,9 +125,6 @@ std::vector<TrackerOption> make_table() {
            kHuge),
       real("detection_threshold", "absolute score cut: detections below it are low (any scale)",
            &C::detection_threshold, -kHuge, kHuge),
-      real("score_quantile",
-           "relative score cut: detections below this quantile of the recent scores are low",
-           &C::score_quantile, 0.0, limits::kMaxScoreQuantile),
       real("score_range_cut",
            "relative score cut: detections below this fraction of the recent 1st..99th percentile "
            "score range are low",
@@ -159,8 +156,6 @@ std::vector<TrackerOption> make_table() {
             "what widens the gate: the time since the track's last match, or the time between "
             "processed frames",
             &C::gate_clock, kGateClockNames),
-      flag("recent_tracks_first", "DeepSORT's cascade: tracks matched in the previous update first",
-           &C::recent_tracks_first),
       flag("confirmed_tracks_first",
            "ByteTrack's order: tracks not yet confirmed only get the detections the confirmed "
            "ones leave",
@@ -182,9 +177,6 @@ std::vector<TrackerOption> make_table() {
            "the second round continues only confirmed tracks matched in the previous update "
            "(ByteTrack)",
            &C::second_round_recent_only),
-      real("birth_range_cut",
-           "only detections above this fraction of the recent score range start tracks (0: all)",
-           &C::birth_range_cut, 0.0, limits::kMaxScoreQuantile),
       real("birth_threshold",
            "only detections scoring at least this (absolute) start tracks (any scale)",
            &C::birth_threshold, -kHuge, kHuge),
@@ -192,14 +184,6 @@ std::vector<TrackerOption> make_table() {
            "a track born above this fraction of the recent score range is reported from its "
            "second detection; weaker births need min_hits (0: off)",
            &C::strong_birth_range_cut, 0.0, limits::kMaxScoreQuantile),
-      flag("weak_births_by_count",
-           "with strong_birth_range_cut, weaker births are confirmed by min_hits matches, never "
-           "by duration",
-           &C::weak_births_by_count),
-      real("confirm_score_cut",
-           "a track is confirmed only once its mean match score reaches this fraction of the "
-           "recent score range (0: off)",
-           &C::confirm_score_cut, 0.0, limits::kMaxScoreQuantile),
       real("second_round_threshold", "minimum affinity in the second round (0: affinity_threshold)",
            &C::second_round_threshold, 0.0, kHuge),
       real("max_gate_margin", "largest margin (of the box size per side) of the widened gate",

@@ -18,7 +18,10 @@
 #             nvidia-smi sampling the GPU's busy share
 # Environment: RTMOT_CARRY (the carried folder), RTMOT_SOURCE (the rtmot source tree to build and
 # run, default this checkout: e.g. an older commit to compare), RTMOT_PASSES (bench passes, 3),
-# RTMOT_OPENCV_DIR (where the OpenCV install is or goes, /tmp/rtmot-opencv; its install/ folder).
+# RTMOT_OPENCV_DIR (where the OpenCV install is or goes, /tmp/rtmot-opencv; its install/ folder),
+# RTMOT_PIPELINE_BACKENDS ("cpu cuda cuda-fp16"), RTMOT_PIPELINE_SOURCES ("1 2 4 8"),
+# RTMOT_PIPELINE_FORMAT (png, or bmp: the same pixels without a PNG decode per frame in the capture
+# thread), RTMOT_PIPELINE_TAG (added to the pipeline logs' names, e.g. pass2).
 set -euo pipefail
 out="${1:?usage: gpu_machine.sh OUT_DIR [stages]}"
 stages="${2:-opencv rtmot tests bench profile pipeline}"
@@ -67,6 +70,12 @@ rm -rf "$deps" && mkdir -p "$deps/pkgconfig"
 for f in "$carry"/debs/*.deb; do dpkg -x "$f" "$deps"; done
 triplet="$(gcc -dumpmachine)"
 lib="$deps/usr/lib/$triplet"
+# Absolute symlinks of the packages (zlib1g-dev's libz.so -> /lib/.../libz.so.1.2.13) point into
+# this machine's / : re-pointed into the unpacked tree.
+while IFS= read -r link; do
+  target="$(readlink "$link")"
+  [[ -e $deps$target ]] && ln -sfn "$deps$target" "$link"
+done < <(find "$deps" -type l -lname '/*')
 # The carried .pc files name include folders as on Debian 12; one that no carried package ships
 # (e.g. the multiarch /usr/include/<triplet>) is dropped: CMake refuses imported targets with
 # non-existent include folders.
@@ -209,25 +218,41 @@ fi
 
 if has pipeline; then
   [[ -x $build/apps/rtmot ]] || die "$build/apps/rtmot: not built (run the rtmot stage)"
-  for backend in cpu cuda cuda-fp16; do
+  format="${RTMOT_PIPELINE_FORMAT:-png}"
+  pipeline_frames="$frames"
+  if [[ $format == bmp ]]; then
+    pipeline_frames="$frames-bmp"
+    mkdir -p "$pipeline_frames"
+    python3 - "$frames" "$pipeline_frames" <<'PY' || die "PNG to BMP conversion failed"
+import sys, glob, os, cv2
+for path in glob.glob(sys.argv[1] + '/*.png'):
+    image = cv2.imread(path, cv2.IMREAD_COLOR)
+    assert image is not None, path
+    assert cv2.imwrite(os.path.join(sys.argv[2], os.path.basename(path)[:-4] + '.bmp'), image)
+PY
+  elif [[ $format != png ]]; then
+    die "RTMOT_PIPELINE_FORMAT: png or bmp, not '$format'"
+  fi
+  suffix="$format${RTMOT_PIPELINE_TAG:+-$RTMOT_PIPELINE_TAG}"
+  for backend in ${RTMOT_PIPELINE_BACKENDS:-cpu cuda cuda-fp16}; do
     config="/tmp/rtmot-$tag-$backend.yaml"
     sed -e "s|^  model: .*|  model: $source_dir/models/ssdlite_mobilenet_v2_coco.onnx|" \
       -e "s|^  backend: auto|  backend: ${backend%-fp16}\n  fp16: $([[ $backend == *fp16 ]] && echo on || echo off)|" \
       -e "s|^  udp: .*|  udp: 127.0.0.1:5600|" -e "s|^  jsonl_file: .*|  jsonl_file: /tmp/tracks-$backend.jsonl|" \
       "$source_dir/configs/desktop.yaml" >"$config"
-    for n in 1 2 4 8; do
-      step "pipeline ($tag) every-frame on $backend, $n sources"
+    for n in ${RTMOT_PIPELINE_SOURCES:-1 2 4 8}; do
+      step "pipeline ($tag, $suffix) every-frame on $backend, $n sources"
       args=()
-      for ((i = 0; i < n; ++i)); do args+=(--source "images://$frames?fps=10&loop=25"); done
+      for ((i = 0; i < n; ++i)); do args+=(--source "images://$pipeline_frames?fps=10&loop=25"); done
       nvidia-smi --query-gpu=utilization.gpu --format=csv,noheader,nounits -lms 100 >"/tmp/smi-$n.txt" &
       smi=$!
       "${run_env[@]}" "$build/apps/rtmot" run --config "$config" "${args[@]}" --playback every-frame \
-        --report "$out/pipeline-$tag-$backend-$n.json" >"$out/pipeline-$tag-$backend-$n.log" 2>&1 ||
-        { kill "$smi"; tail -n 20 "$out/pipeline-$tag-$backend-$n.log"; die "rtmot run failed ($backend, $n sources)"; }
+        --report "$out/pipeline-$tag-$suffix-$backend-$n.json" >"$out/pipeline-$tag-$suffix-$backend-$n.log" 2>&1 ||
+        { kill "$smi"; tail -n 20 "$out/pipeline-$tag-$suffix-$backend-$n.log"; die "rtmot run failed ($backend, $n sources)"; }
       kill "$smi" && wait "$smi" 2>/dev/null || true
       busy="$(awk '{s += $1; n++} END {if (n) printf "%.0f", s / n; else print 0}' "/tmp/smi-$n.txt")"
-      echo "gpu busy (mean of 100 ms nvidia-smi samples over the whole run, start-up included): $busy %" | tee -a "$out/pipeline-$tag-$backend-$n.log"
-      grep -E "detector:|frames captured" "$out/pipeline-$tag-$backend-$n.log" | cut -c 40- | tail -n 3
+      echo "gpu busy (mean of 100 ms nvidia-smi samples over the whole run, start-up included): $busy %" | tee -a "$out/pipeline-$tag-$suffix-$backend-$n.log"
+      grep -E "\] frames captured" "$out/pipeline-$tag-$suffix-$backend-$n.log" | grep -v "stream " | cut -c 40-
     done
   done
 fi

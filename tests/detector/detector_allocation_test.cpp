@@ -155,6 +155,7 @@ void* xnn_counted_aligned(void* /*context*/, std::size_t alignment, std::size_t 
 }
 
 TEST(DetectorAllocation, XnnpackAllocatesNothingInSteadyState) {
+  if (!xnnpack_runs_here()) GTEST_SKIP() << "XNNPACK does not initialize on this processor";
   const auto model = test::source_path("models/ssdlite_mobilenet_v2_coco.onnx");
   if (!std::filesystem::exists(model)) {
     FAIL() << "missing model " << model << ": run scripts/fetch_model.sh";
@@ -175,7 +176,7 @@ TEST(DetectorAllocation, XnnpackAllocatesNothingInSteadyState) {
   SsdDetector detector(config);
   std::vector<tracker::Detection> one;
   std::vector<std::vector<tracker::Detection>> many;
-  detector.detect(*images[0], 1, one);  // the outputs grow once
+  detector.detect(*images[0], 1, one);                            // the outputs grow once
   detector.detect_batch(images.data(), numbers.data(), 4, many);  // every slot used once
   // After start-up (which initialized XNNPACK): every later XNNPACK allocation is counted.
   const xnn_allocator counting{nullptr,   &xnn_counted,         &xnn_counted_realloc,

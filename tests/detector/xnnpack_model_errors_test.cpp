@@ -71,6 +71,7 @@ class XnnpackModelErrors : public ::testing::Test {
 
 TEST_F(XnnpackModelErrors, UnsupportedOperatorIsNamedAndAutoFallsBackToOpenCv) {
   if (!xnnpack_built()) GTEST_SKIP() << "this build has no XNNPACK backend";
+  if (!xnnpack_runs_here()) GTEST_SKIP() << "XNNPACK does not initialize on this processor";
   // Sum of two inputs is Add to ONNX (and to OpenCV's importer), but not an operator the XNNPACK
   // backend builds.
   onnx::NodeProto& node = first_node("Add");
@@ -82,7 +83,7 @@ TEST_F(XnnpackModelErrors, UnsupportedOperatorIsNamedAndAutoFallsBackToOpenCv) {
   EXPECT_NE(std::string(e.what()).find(name), std::string::npos) << e.what();
   EXPECT_NE(std::string(e.what()).find("changed.onnx"), std::string::npos) << e.what();
 
-  SsdDetector fallback(write(BackendRequest::automatic));
+  SsdDetector fallback(write(BackendRequest::automatic));  // one thread: auto picks xnnpack
   EXPECT_EQ(fallback.backend().engine, Engine::opencv);
   EXPECT_EQ(fallback.backend().name, "cpu");
   EXPECT_NE(fallback.backend().reason.find("'Sum'"), std::string::npos)
@@ -97,6 +98,7 @@ TEST_F(XnnpackModelErrors, UnsupportedOperatorIsNamedAndAutoFallsBackToOpenCv) {
 
 TEST_F(XnnpackModelErrors, WrongInputShapeIsAStartUpError) {
   if (!xnnpack_built()) GTEST_SKIP() << "this build has no XNNPACK backend";
+  if (!xnnpack_runs_here()) GTEST_SKIP() << "XNNPACK does not initialize on this processor";
   auto* dims = model_.mutable_graph()
                    ->mutable_input(0)
                    ->mutable_type()
@@ -114,6 +116,7 @@ TEST_F(XnnpackModelErrors, WrongInputShapeIsAStartUpError) {
 
 TEST_F(XnnpackModelErrors, NonFiniteWeightsNameTheTensor) {
   if (!xnnpack_built()) GTEST_SKIP() << "this build has no XNNPACK backend";
+  if (!xnnpack_runs_here()) GTEST_SKIP() << "XNNPACK does not initialize on this processor";
   onnx::NodeProto& conv = first_node("Conv");
   const std::string weights = conv.input(1);
   for (auto& tensor : *model_.mutable_graph()->mutable_initializer()) {
@@ -132,6 +135,7 @@ TEST_F(XnnpackModelErrors, NonFiniteWeightsNameTheTensor) {
 
 TEST_F(XnnpackModelErrors, UnsupportedAttributeIsNamed) {
   if (!xnnpack_built()) GTEST_SKIP() << "this build has no XNNPACK backend";
+  if (!xnnpack_runs_here()) GTEST_SKIP() << "XNNPACK does not initialize on this processor";
   onnx::NodeProto& transpose = first_node("Transpose");
   for (auto& attribute : *transpose.mutable_attribute()) {
     if (attribute.name() == "perm") {

@@ -46,7 +46,7 @@ tracker:
   affinity: exponential
   affinity_threshold: 0.4
   detection_threshold: -0.5
-  score_quantile: 0.2
+  strong_birth_range_cut: 0.2
   score_range_cut: 0.5
   max_age: 7
   min_hits: 2
@@ -58,7 +58,7 @@ tracker:
   low_score: -1e30
   observation_centric_reupdate: on
   time_widened_gate: false
-  recent_tracks_first: yes
+  confirmed_tracks_first: yes
   confirm_by_duration: true
   min_coast_updates: 1
   particle_count: 50

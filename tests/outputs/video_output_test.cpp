@@ -69,18 +69,51 @@ int push_test_frames(VideoStream& stream, std::chrono::milliseconds pace) {
   return pushed;
 }
 
-// The overlay survived the encoding: the box's left edge has the track's colour, the pixels just
+// The overlay survived the encoding: the box's left edge has the class's colour, the pixels just
 // inside and outside it do not (the test pattern's background is black, its ball white).
 void expect_overlay(const cv::Mat& frame, const std::filesystem::path& png) {
   ASSERT_FALSE(frame.empty());
   ASSERT_TRUE(cv::imwrite(png.string(), frame));
   const cv::Mat reread = cv::imread(png.string());
   ASSERT_EQ(reread.size(), cv::Size(320, 240));
-  const cv::Scalar colour = colour_of(7);
+  const cv::Scalar colour = class_colour(1);              // the box has its class's colour
   const cv::Vec3b edge = reread.at<cv::Vec3b>(150, 100);  // left edge, mid-height, 2 px thick
   for (int c = 0; c < 3; ++c) EXPECT_NEAR(edge[c], colour[c], 40.0) << "channel " << c;
   const cv::Vec3b outside = reread.at<cv::Vec3b>(150, 90);
   EXPECT_GT(cv::norm(cv::Vec3d(outside) - cv::Vec3d(colour[0], colour[1], colour[2])), 100.0);
+}
+
+// Three people side by side, close enough that their labels ("#12 person 0.83") would cover each
+// other above their boxes: every label gets its own place, none overlaps another, all inside the
+// image; a label with room stays just above its box.
+TEST(Overlay, LabelsOfClosePeopleDoNotHideEachOther) {
+  const cv::Size image(768, 576);
+  const cv::Size label(130, 20);
+  std::vector<cv::Rect> placed;
+  for (const int x : {300, 330, 360}) {
+    placed.push_back(place_label(label, cv::Rect(x, 200, 40, 110), image, placed));
+  }
+  EXPECT_EQ(placed[0], cv::Rect(300, 180, 130, 20));
+  for (std::size_t i = 0; i < placed.size(); ++i) {
+    EXPECT_EQ(placed[i] & cv::Rect(cv::Point(0, 0), image), placed[i]) << i;
+    for (std::size_t j = 0; j < i; ++j) EXPECT_EQ((placed[i] & placed[j]).area(), 0) << i << j;
+  }
+  // A box at the top edge: its label goes inside the image, not above it.
+  std::vector<cv::Rect> none;
+  EXPECT_GE(place_label(label, cv::Rect(10, 0, 40, 80), image, none).y, 0);
+}
+
+// Text and lines grow with the frame: a 1080p frame's labels are as readable as a 576p one's.
+TEST(Overlay, StyleScalesWithFrameHeight) {
+  const OverlayStyle small = OverlayStyle::for_height(240);
+  const OverlayStyle demo = OverlayStyle::for_height(576);
+  const OverlayStyle full_hd = OverlayStyle::for_height(1080);
+  EXPECT_DOUBLE_EQ(demo.font_scale, 0.5);
+  EXPECT_LT(small.font_scale, demo.font_scale);
+  EXPECT_GT(full_hd.font_scale, demo.font_scale);
+  EXPECT_GT(full_hd.text_height, demo.text_height);
+  EXPECT_GT(full_hd.line_thickness, demo.line_thickness);
+  EXPECT_NE(class_colour(1), class_colour(3));  // person and car differ
 }
 
 class VideoOutputs : public ::testing::Test {
@@ -193,6 +226,34 @@ TEST_F(VideoOutputs, RtpStreamReachesAReceiver) {
   stream->close();
   EXPECT_EQ(back.frames, frame_count);
   expect_overlay(back.saved, folder_ / "rtp.png");
+}
+
+// The SDP the log prints is all a player needs: GStreamer's sdpdemux (what a player does with a
+// .sdp file) receives and decodes the stream from it alone.
+TEST_F(VideoOutputs, RtpSdpIsEnoughForAPlayer) {
+  const unsigned short port = test::free_tcp_port();
+  const VideoTarget target = target_of("rtp://127.0.0.1:" + std::to_string(port));
+  const std::string sdp = rtp_sdp(target);
+  EXPECT_NE(sdp.find("m=video " + std::to_string(port) + " RTP/AVP 96\n"), std::string::npos);
+  EXPECT_NE(sdp.find("c=IN IP4 127.0.0.1\n"), std::string::npos);
+  EXPECT_NE(rtp_sdp(target_of("rtp://[::1]:5004")).find("c=IN IP6 ::1\n"), std::string::npos);
+  const auto file = folder_ / "stream.sdp";
+  { std::ofstream(file) << sdp; }
+  auto stream = open_video_stream(target, 30.0);
+  std::thread pusher;
+  const ReadBack back =
+      read_back("filesrc location=" + file.string() +
+                    " ! sdpdemux latency=0 ! rtph264depay ! avdec_h264" + to_bgr_sink,
+                frame_count / 2, frame_count, 30s, [&] {
+                  pusher = std::thread([&] {
+                    std::this_thread::sleep_for(500ms);
+                    push_test_frames(*stream, 33ms);
+                  });
+                });
+  pusher.join();
+  stream->close();
+  EXPECT_GE(back.frames, frame_count / 2);
+  expect_overlay(back.saved, folder_ / "sdp.png");
 }
 
 TEST_F(VideoOutputs, RtspServerIsPulledByAClient) {

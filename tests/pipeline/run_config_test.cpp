@@ -199,10 +199,10 @@ TEST(RunConfig, TrackerRangesAreCheckedWhereRead) {
 
 TEST(RunConfig, EveryTrackerOptionCanBeSetFromYaml) {
   const auto config = runner::parse_run_config(
-      "tracker:\n  preset: sort\n  recent_tracks_first: true\n  confirm_by_duration: true\n"
+      "tracker:\n  preset: sort\n  confirmed_tracks_first: true\n  confirm_by_duration: true\n"
       "  min_coast_updates: 2\n  time_step: elapsed\n",
       "t.yaml");
-  EXPECT_TRUE(config.tracker.recent_tracks_first);
+  EXPECT_TRUE(config.tracker.confirmed_tracks_first);
   EXPECT_TRUE(config.tracker.confirm_by_duration);
   EXPECT_EQ(config.tracker.min_coast_updates, 2);
   EXPECT_EQ(config.tracker.time_step, tracker::TimeStep::elapsed);

@@ -29,7 +29,7 @@ class PresetVsSort : public ::testing::Test {
   static Metrics score(const std::string& preset, int interval) {
     const auto config = tracker::find_preset(preset);
     EXPECT_TRUE(config.has_value()) << preset;
-    return track_and_score(*dataset_, StudyInput::detections, *config, interval);
+    return track_and_score(*dataset_, StudyInput::detections, *config, interval, {});
   }
 
   static std::unique_ptr<std::vector<LoadedSequence>>
@@ -91,9 +91,9 @@ TEST_F(PresetVsSort, DefaultTracksDoNotDependOnTheScoreScale) {
   const auto config = *tracker::find_preset(tracker::default_preset_name());
   for (const int interval : {1, 5}) {
     const Metrics original =
-        summarize(track_and_count((*dataset_)[8], StudyInput::detections, config, interval));
+        summarize(track_and_count((*dataset_)[8], StudyInput::detections, config, interval, {}));
     const Metrics dpm =
-        summarize(track_and_count(rescaled, StudyInput::detections, config, interval));
+        summarize(track_and_count(rescaled, StudyInput::detections, config, interval, {}));
     EXPECT_EQ(original.false_positives, dpm.false_positives) << interval;
     EXPECT_EQ(original.false_negatives, dpm.false_negatives) << interval;
     EXPECT_EQ(original.id_switches, dpm.id_switches) << interval;

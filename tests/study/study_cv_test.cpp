@@ -30,10 +30,15 @@ std::vector<LoadedSequence> two_sequences() {
   return dataset;
 }
 
+SequenceCounts score_counts(const LoadedSequence& sequence, StudyInput input,
+                            const StudyConfiguration& c, int interval) {
+  return track_and_count(sequence, input, c.config, interval, c.knobs);
+}
+
 Metrics score(const std::vector<const LoadedSequence*>& sequences, StudyInput input,
-              const tracker::TrackerConfig& config, int interval) {
+              const StudyConfiguration& c, int interval) {
   SequenceCounts total;
-  for (const auto* s : sequences) total += track_and_count(*s, input, config, interval);
+  for (const auto* s : sequences) total += track_and_count(*s, input, c.config, interval, c.knobs);
   return summarize(total);
 }
 
@@ -52,10 +57,10 @@ TEST(CrossValidation, FoldsChooseOnWhatTheyMaySeeAndScoreWhatTheyLeftOut) {
   ASSERT_EQ(cv.tables.size(), 4U);  // held-out and in-sample, per detector
   const auto find = [&](const std::string& name) {
     for (const auto& c : candidates) {
-      if (c.name == name) return c.config;
+      if (c.name == name) return c;
     }
     ADD_FAILURE() << name;
-    return candidates.front().config;
+    return candidates.front();
   };
 
   // The fold that leaves out TUD-Campus through the public detections sees only TUD-Stadtmitte
@@ -67,8 +72,7 @@ TEST(CrossValidation, FoldsChooseOnWhatTheyMaySeeAndScoreWhatTheyLeftOut) {
   std::string best_name;
   for (const auto& c : candidates) {
     std::vector<Metrics> by_interval;
-    for (const int i : intervals)
-      by_interval.push_back(score({&dataset[1]}, inputs[1], c.config, i));
+    for (const int i : intervals) by_interval.push_back(score({&dataset[1]}, inputs[1], c, i));
     const double s = selection_score(by_interval);
     if (s > best) best = s, best_name = c.name;
   }
@@ -80,8 +84,8 @@ TEST(CrossValidation, FoldsChooseOnWhatTheyMaySeeAndScoreWhatTheyLeftOut) {
   EXPECT_EQ(held_out.input, StudyInput::detections);
   for (std::size_t i = 0; i < intervals.size(); ++i) {
     SequenceCounts total =
-        track_and_count(dataset[0], inputs[0], find(cv.folds[0].chosen), intervals[i]);
-    total += track_and_count(dataset[1], inputs[0], find(cv.folds[1].chosen), intervals[i]);
+        score_counts(dataset[0], inputs[0], find(cv.folds[0].chosen), intervals[i]);
+    total += score_counts(dataset[1], inputs[0], find(cv.folds[1].chosen), intervals[i]);
     const Metrics expected = summarize(total);
     EXPECT_DOUBLE_EQ(held_out.rows[i].metrics.mota, expected.mota);
     EXPECT_DOUBLE_EQ(held_out.rows[i].metrics.idf1, expected.idf1);
@@ -111,7 +115,7 @@ TEST(CrossValidation, WithReferencesTheMostCellsHeldComeBeforeTheMean) {
 
   const auto held_and_mean = [&](const std::vector<const LoadedSequence*>& sequences,
                                  const std::vector<StudyInput>& seen,
-                                 const tracker::TrackerConfig& config) {
+                                 const StudyConfiguration& config) {
     int held = 0;
     std::vector<Metrics> pooled_by_interval;
     for (const int i : intervals) {
@@ -120,11 +124,11 @@ TEST(CrossValidation, WithReferencesTheMostCellsHeldComeBeforeTheMean) {
         const Metrics mine = score(sequences, input, config, i);
         bool holds = true;
         for (const auto& r : references) {
-          const Metrics theirs = score(sequences, input, r.config, i);
+          const Metrics theirs = score(sequences, input, r, i);
           holds = holds && mine.mota >= theirs.mota && mine.idf1 >= theirs.idf1;
         }
         held += holds ? 1 : 0;
-        for (const auto* s : sequences) pooled += track_and_count(*s, input, config, i);
+        for (const auto* s : sequences) pooled += score_counts(*s, input, config, i);
       }
       pooled_by_interval.push_back(summarize(pooled));
     }
@@ -135,7 +139,7 @@ TEST(CrossValidation, WithReferencesTheMostCellsHeldComeBeforeTheMean) {
   std::pair<int, double> best{-1, -1e300};
   std::string best_name;
   for (const auto& c : candidates) {
-    const auto mine = held_and_mean({&dataset[1]}, {inputs[1]}, c.config);
+    const auto mine = held_and_mean({&dataset[1]}, {inputs[1]}, c);
     if (mine > best) best = mine, best_name = c.name;
   }
   EXPECT_EQ(cv.folds[0].chosen, best_name);
@@ -143,7 +147,7 @@ TEST(CrossValidation, WithReferencesTheMostCellsHeldComeBeforeTheMean) {
 
   ASSERT_EQ(cv.in_sample_scores.size(), candidates.size());
   for (std::size_t c = 0; c < candidates.size(); ++c) {
-    const auto expected = held_and_mean({&dataset[0], &dataset[1]}, inputs, candidates[c].config);
+    const auto expected = held_and_mean({&dataset[0], &dataset[1]}, inputs, candidates[c]);
     EXPECT_EQ(cv.in_sample_scores[c].cells_held, expected.first) << candidates[c].name;
     EXPECT_NEAR(cv.in_sample_scores[c].mean, expected.second, 1e-9) << candidates[c].name;
   }

@@ -29,8 +29,8 @@ TEST(StudyRunner, ParallelRunsEqualSerialScoresOnARealSequence) {
   for (const auto& table : tables) {
     ASSERT_EQ(table.rows.size(), 2U);
     for (const auto& row : table.rows) {
-      const Metrics alone =
-          track_and_score(dataset, table.input, table.configuration.config, row.interval);
+      const Metrics alone = track_and_score(dataset, table.input, table.configuration.config,
+                                            row.interval, table.configuration.knobs);
       EXPECT_EQ(row.metrics.false_positives, alone.false_positives);
       EXPECT_EQ(row.metrics.id_switches, alone.id_switches);
       EXPECT_DOUBLE_EQ(row.metrics.mota, alone.mota);

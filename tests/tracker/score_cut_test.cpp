@@ -98,7 +98,7 @@ TEST(ScoreCut, TheTrackerUsesItAndStaysExactSortWithoutIt) {
   TrackerConfig config = TrackerConfig::sort_preset();
   config.min_hits = 1;
   TrackerConfig cut = config;
-  cut.score_quantile = 0.6;  // half the scores are 0.1: the cut sits on 0.9
+  cut.score_range_cut = 0.5;  // scores 0.1 and 0.9: the cut sits at 0.5
   Tracker plain(config);
   Tracker with_cut(cut);
   int plain_reports = 0;
@@ -139,7 +139,6 @@ TEST(ScoreScale, WarnsWhenAnAbsoluteCutMeetsAnotherScale) {
 
   // Relative cuts and no cut fit every scale.
   TrackerConfig relative = TrackerConfig::sort_preset();
-  relative.score_quantile = 0.2;
   relative.score_range_cut = 0.7;
   EXPECT_FALSE(score_scale_warning(relative, dpm).has_value());
   EXPECT_FALSE(score_scale_warning(TrackerConfig::sort_preset(), dpm).has_value());

@@ -1,5 +1,6 @@
-// ByteTrack's birth and second-round rules and the track-level confidence: each on a small scene
-// of a walker and clutter where it changes which tracks start, match or are reported.
+// ByteTrack's birth and second-round rules: each on a small scene of a walker and clutter where it
+// changes which tracks start, match or are reported (the study's own birth and confidence rules:
+// tests/study/study_knobs_test.cpp).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -12,42 +13,6 @@ namespace rtmot::tracker {
 namespace {
 using test::detection;
 using test::reports_id;
-
-// A walker scoring 0.9, a recurring false positive in one place scoring `clutter_score`, and a
-// faint detection far away scoring 0.1: the stream's score range is 0.1..0.9.
-std::vector<Detection> walker_and_clutter(int frame, float clutter_score) {
-  return {detection(100.F + 3.F * frame, 200.F, 40.F, 80.F, 0.9F),
-          detection(600.F, 300.F, 40.F, 80.F, clutter_score),
-          detection(1200.F, 600.F, 40.F, 80.F, 0.1F)};
-}
-
-// The ids reported in any of `frames` frames of the scene.
-std::vector<int> reported_ids(const TrackerConfig& config, float clutter_score, int frames = 12) {
-  Tracker tracker(config);
-  std::vector<int> ids;
-  for (int f = 1; f <= frames; ++f) {
-    for (const TrackReport& report :
-         tracker.update(walker_and_clutter(f, clutter_score), f / 30.0)) {
-      if (std::find(ids.begin(), ids.end(), report.id) == ids.end()) ids.push_back(report.id);
-    }
-  }
-  return ids;
-}
-
-TEST(BirthRangeCut, OnlyConfidentDetectionsStartTracks) {
-  // Split at half the range (0.5): the clutter at 0.55 is a high detection and starts a track,
-  // unless a birth needs 0.6 of the range (0.58).
-  TrackerConfig config = TrackerConfig::sort_preset();
-  config.score_range_cut = 0.5;
-  config.second_round = true;
-  config.low_score = 0.F;
-  const auto open = reported_ids(config, 0.55F);
-  config.birth_range_cut = 0.6;
-  const auto strict = reported_ids(config, 0.55F);
-  EXPECT_EQ(open.size(), 2U);  // walker and clutter (the 0.1 detection is low: no track)
-  ASSERT_EQ(strict.size(), 1U);
-  EXPECT_EQ(strict.front(), 1);  // the walker, born first
-}
 
 // The processed frame (1-based, every `step` frames) at which a newcomer scoring `score`, which
 // appears at the 4th processed frame, is first reported; 0 if never. A walker at 0.9 and a faint
@@ -96,36 +61,6 @@ TEST(StrongBirthRangeCut, OnlyTheRunThatStartsAtTheBirthIsShortened) {
     }
   }
   EXPECT_EQ(reported_frames, (std::vector<int>{5, 8, 9}));
-}
-
-TEST(WeakBirthsByCount, AtReducedRatesAWeakBirthIsNotConfirmedByDurationAlone) {
-  // Every 5th frame with elapsed steps: confirmation by duration reports any newcomer at its
-  // second detection (5 frames >= min_hits 2).
-  TrackerConfig config = TrackerConfig::sort_preset();
-  config.time_step = TimeStep::elapsed;
-  config.frame_rate = 30.0;
-  config.min_hits = 2;
-  config.max_age = 30;
-  config.confirm_by_duration = true;
-  config.strong_birth_range_cut = 0.5;
-  EXPECT_EQ(newcomer_reported_at(config, 0.8F, 5), 5);
-  EXPECT_EQ(newcomer_reported_at(config, 0.4F, 5), 5);
-  config.weak_births_by_count = true;
-  EXPECT_EQ(newcomer_reported_at(config, 0.8F, 5), 5);
-  EXPECT_EQ(newcomer_reported_at(config, 0.4F, 5), 6);  // min_hits matches, counted
-}
-
-TEST(ConfirmScoreCut, AFalsePositiveThatRecursScoresTooLowOnAverage) {
-  // Every detection may start a track (SORT); the clutter at 0.4 is matched every frame.
-  TrackerConfig config = TrackerConfig::sort_preset();
-  const auto every = reported_ids(config, 0.4F);
-  config.confirm_score_cut = 0.5;  // mean score >= 0.5 of the range 0.1..0.9, i.e. 0.5
-  const auto confident = reported_ids(config, 0.4F);
-  EXPECT_EQ(every.size(), 3U);
-  ASSERT_EQ(confident.size(), 1U);
-  EXPECT_EQ(confident.front(), 1);
-  // A clutter score above the cut is confirmed again: the rule is the score, not the place.
-  EXPECT_EQ(reported_ids(config, 0.6F).size(), 2U);
 }
 
 // A stationary object scoring 0.9 in frames 1..5 and, in frame 6, a low-score (0.3) detection

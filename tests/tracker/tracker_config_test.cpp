@@ -23,7 +23,7 @@ TEST(TrackerConfig, EveryOptionSwitchesOnEachOptionAndKeepsTheModel) {
   base.predictor = PredictorKind::particle;
   const TrackerConfig config = with_every_option(base);
   EXPECT_TRUE(config.second_round && config.observation_centric_reupdate &&
-              config.time_widened_gate && config.recent_tracks_first && config.confirm_by_duration);
+              config.time_widened_gate && config.confirm_by_duration);
   EXPECT_TRUE(config.confirmed_tracks_first && config.keep_confirmation &&
               config.tentative_dies_on_miss && config.second_round_recent_only);
   EXPECT_GT(config.min_coast_updates, 0);

@@ -28,7 +28,6 @@ TEST(TrackerOptions, EveryKnobOfTheConfigCanBeSet) {
                                      {"affinity", "exponential"},
                                      {"affinity_threshold", "0.4"},
                                      {"detection_threshold", "0.25"},
-                                     {"score_quantile", "0.2"},
                                      {"score_range_cut", "0.6"},
                                      {"max_age", "7"},
                                      {"min_hits", "4"},
@@ -41,7 +40,6 @@ TEST(TrackerOptions, EveryKnobOfTheConfigCanBeSet) {
                                      {"observation_centric_reupdate", "true"},
                                      {"time_widened_gate", "true"},
                                      {"gate_clock", "frame_gap"},
-                                     {"recent_tracks_first", "true"},
                                      {"confirmed_tracks_first", "true"},
                                      {"keep_confirmation", "true"},
                                      {"tentative_dies_on_miss", "true"},
@@ -50,10 +48,7 @@ TEST(TrackerOptions, EveryKnobOfTheConfigCanBeSet) {
                                      {"confirm_by_duration", "true"},
                                      {"min_coast_updates", "2"},
                                      {"duration_min_hits", "3"},
-                                     {"birth_range_cut", "0.65"},
                                      {"strong_birth_range_cut", "0.55"},
-                                     {"weak_births_by_count", "true"},
-                                     {"confirm_score_cut", "0.35"},
                                      {"second_round_threshold", "0.45"},
                                      {"max_gate_margin", "0.25"},
                                      {"noise_gate_factor", "2.5"},
@@ -65,7 +60,6 @@ TEST(TrackerOptions, EveryKnobOfTheConfigCanBeSet) {
   EXPECT_EQ(config.affinity, AffinityKind::exponential);
   EXPECT_DOUBLE_EQ(config.affinity_threshold, 0.4);
   EXPECT_FLOAT_EQ(config.detection_threshold, 0.25F);
-  EXPECT_DOUBLE_EQ(config.score_quantile, 0.2);
   EXPECT_DOUBLE_EQ(config.score_range_cut, 0.6);
   EXPECT_EQ(config.max_age, 7);
   EXPECT_EQ(config.min_hits, 4);
@@ -78,7 +72,6 @@ TEST(TrackerOptions, EveryKnobOfTheConfigCanBeSet) {
   EXPECT_TRUE(config.observation_centric_reupdate);
   EXPECT_TRUE(config.time_widened_gate);
   EXPECT_EQ(config.gate_clock, GateClock::frame_gap);
-  EXPECT_TRUE(config.recent_tracks_first);
   EXPECT_TRUE(config.confirmed_tracks_first);
   EXPECT_TRUE(config.keep_confirmation);
   EXPECT_TRUE(config.tentative_dies_on_miss);
@@ -87,10 +80,7 @@ TEST(TrackerOptions, EveryKnobOfTheConfigCanBeSet) {
   EXPECT_TRUE(config.confirm_by_duration);
   EXPECT_EQ(config.min_coast_updates, 2);
   EXPECT_EQ(config.duration_min_hits, 3);
-  EXPECT_DOUBLE_EQ(config.birth_range_cut, 0.65);
   EXPECT_DOUBLE_EQ(config.strong_birth_range_cut, 0.55);
-  EXPECT_TRUE(config.weak_births_by_count);
-  EXPECT_DOUBLE_EQ(config.confirm_score_cut, 0.35);
   EXPECT_DOUBLE_EQ(config.second_round_threshold, 0.45);
   EXPECT_DOUBLE_EQ(config.max_gate_margin, 0.25);
   EXPECT_DOUBLE_EQ(config.noise_gate_factor, 2.5);
@@ -98,7 +88,7 @@ TEST(TrackerOptions, EveryKnobOfTheConfigCanBeSet) {
   EXPECT_EQ(config.seed, 18446744073709551615ULL);
   EXPECT_EQ(config.max_tracks, 20);
   EXPECT_EQ(config.max_detections, 30);
-  EXPECT_EQ(tracker_options().size(), 37U) << "a new TrackerConfig field needs a line here too";
+  EXPECT_EQ(tracker_options().size(), 32U) << "a new TrackerConfig field needs a line here too";
 }
 
 TEST(TrackerOptions, AnAffinityBringsItsUsualThresholdUnlessOneFollows) {

@@ -265,39 +265,5 @@ TEST(MinCoastUpdates, LetsATrackSurviveOneMissedProcessedFrameAtLowRate) {
 
 }  // namespace rate_invariance
 
-// --- DeepSORT's matching cascade -----------------------------------------------------------------
-
-TEST(RecentTracksFirst, AnOldLostTrackCannotStealTheDetectionOfATrackMatchedLastFrame) {
-  // Track A walks right and is seen every frame. Track B, lost since frame 6 with a widened gate,
-  // was last seen where A's detection lands at frame 12: B's (widened) IoU with it is 1, A's
-  // 0.9, so the optimal assignment gives it to B; the cascade gives it to A, which was matched
-  // in the previous frame.
-  TrackerConfig config = TrackerConfig::sort_preset();
-  config.max_age = 10;
-  config.min_hits = 1;
-  config.time_widened_gate = true;
-  for (const bool cascade : {false, true}) {
-    config.recent_tracks_first = cascade;
-    Tracker tracker(config);
-    int a_id = 0;
-    for (int f = 1; f <= 12; ++f) {
-      // At frame 12 A lands exactly where B was last seen, 2 px past A's prediction.
-      const float a_x = f < 12 ? 100.F + 4.F * f : 150.F;
-      std::vector<Detection> detections = {detection(a_x, 200.F)};
-      if (f <= 5) detections.push_back(detection(150.F, 200.F));  // B, then unseen
-      const auto& reports = tracker.update(detections, f / 30.0);
-      if (f == 3) {
-        for (const auto& r : reports) {
-          if (r.box.x < 125.F) a_id = r.id;
-        }
-      }
-      if (f == 12) {
-        EXPECT_EQ(reports_id(reports, a_id), cascade) << "cascade " << cascade;
-      }
-    }
-    EXPECT_NE(a_id, 0);
-  }
-}
-
 }  // namespace
 }  // namespace rtmot::tracker

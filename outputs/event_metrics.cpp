@@ -1,0 +1,119 @@
+#include "outputs/event_metrics.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <iterator>
+
+namespace rtmot::outputs {
+namespace {
+
+constexpr auto relaxed = std::memory_order_relaxed;
+constexpr std::size_t kZoneFields = 4;  // enter, exit, lost inside, dwell
+
+// A label value as the text format wants it: backslash, double quote and newline escaped.
+std::string label_value(const std::string& text) {
+  std::string out;
+  for (const char c : text) {
+    if (c == '\\' || c == '"') out += '\\';
+    out += c == '\n' ? 'n' : c;
+    if (c == '\n') out.insert(out.size() - 1, 1, '\\');
+  }
+  return out;
+}
+
+std::unique_ptr<std::atomic<std::uint64_t>[]> zeroed(std::size_t n) {
+  auto values = std::make_unique<std::atomic<std::uint64_t>[]>(n);
+  for (std::size_t i = 0; i < n; ++i) values[i].store(0, relaxed);
+  return values;
+}
+
+}  // namespace
+
+EventMetrics::EventMetrics(std::vector<Source> sources) {
+  for (auto& source : sources) {
+    Counters counters;
+    counters.lines = zeroed(2 * source.lines.size());
+    counters.zones = zeroed(kZoneFields * source.zones.size());
+    counters.source = std::move(source);
+    counters_.push_back(std::move(counters));
+  }
+}
+
+void EventMetrics::observe(const messages::FrameResult& result) {
+  if (result.events.empty()) return;
+  const auto found = std::find_if(counters_.begin(), counters_.end(), [&](const Counters& c) {
+    return c.source.stream_id == result.stream_id;
+  });
+  if (found == counters_.end()) return;
+  for (const auto& event : result.events) {
+    const std::size_t index = event.index;
+    switch (event.kind) {
+      case events::EventKind::line_in:
+      case events::EventKind::line_out:
+        if (index < found->source.lines.size()) {
+          found->lines[2 * index + (event.kind == events::EventKind::line_in ? 0 : 1)].fetch_add(
+              1, relaxed);
+        }
+        break;
+      case events::EventKind::zone_enter:
+      case events::EventKind::zone_exit:
+      case events::EventKind::zone_dwell:
+        if (index < found->source.zones.size()) {
+          std::atomic<std::uint64_t>* zone = &found->zones[kZoneFields * index];
+          if (event.kind == events::EventKind::zone_enter) zone[0].fetch_add(1, relaxed);
+          if (event.kind == events::EventKind::zone_exit) zone[1].fetch_add(1, relaxed);
+          if (event.kind == events::EventKind::zone_exit && event.lost)
+            zone[2].fetch_add(1, relaxed);
+          if (event.kind == events::EventKind::zone_dwell) zone[3].fetch_add(1, relaxed);
+        }
+        break;
+    }
+  }
+}
+
+void EventMetrics::render(std::string& out) const {
+  if (counters_.empty()) return;
+  auto to = std::back_inserter(out);
+  fmt::format_to(to,
+                 "# HELP rtmot_line_crossings_total Tracks that crossed a counting line, by "
+                 "direction (docs/events.md).\n# TYPE rtmot_line_crossings_total counter\n");
+  for (const auto& c : counters_) {
+    for (std::size_t l = 0; l < c.source.lines.size(); ++l) {
+      for (const int direction : {0, 1}) {
+        fmt::format_to(
+            to, "rtmot_line_crossings_total{{stream=\"{}\",line=\"{}\",direction=\"{}\"}} {}\n",
+            c.source.stream_id, label_value(c.source.lines[l]), direction == 0 ? "in" : "out",
+            c.lines[2 * l + direction].load(relaxed));
+      }
+    }
+  }
+  fmt::format_to(
+      to,
+      "# HELP rtmot_zone_events_total Zone enters, exits (lost: of tracks that died "
+      "inside, counted in exit too) and dwells.\n# TYPE rtmot_zone_events_total counter\n");
+  static constexpr const char* kNames[kZoneFields] = {"enter", "exit", "lost", "dwell"};
+  for (const auto& c : counters_) {
+    for (std::size_t z = 0; z < c.source.zones.size(); ++z) {
+      for (std::size_t f = 0; f < kZoneFields; ++f) {
+        fmt::format_to(to, "rtmot_zone_events_total{{stream=\"{}\",zone=\"{}\",event=\"{}\"}} {}\n",
+                       c.source.stream_id, label_value(c.source.zones[z]), kNames[f],
+                       c.zones[kZoneFields * z + f].load(relaxed));
+      }
+    }
+  }
+  fmt::format_to(to,
+                 "# HELP rtmot_zone_occupancy Tracks inside a zone now (enters minus exits).\n"
+                 "# TYPE rtmot_zone_occupancy gauge\n");
+  for (const auto& c : counters_) {
+    for (std::size_t z = 0; z < c.source.zones.size(); ++z) {
+      const auto entered = c.zones[kZoneFields * z].load(relaxed);
+      const auto exited = c.zones[kZoneFields * z + 1].load(relaxed);
+      fmt::format_to(to, "rtmot_zone_occupancy{{stream=\"{}\",zone=\"{}\"}} {}\n",
+                     c.source.stream_id, label_value(c.source.zones[z]),
+                     entered >= exited ? entered - exited : 0);
+    }
+  }
+}
+
+}  // namespace rtmot::outputs

@@ -1,0 +1,112 @@
+// The events' Prometheus series against the events themselves: the rtmot tracker on PETS09-S2L1's
+// detections, two lines and a zone counted, every frame's events sent through the metrics and
+// through a JSON line read back; the series, the JSON events and the counter's own totals agree.
+#include "outputs/event_metrics.hpp"
+
+#include <gtest/gtest.h>
+
+#include <map>
+#include <regex>
+#include <string>
+
+#include "events/event_counter.hpp"
+#include "messages/json_line_decoder.hpp"
+#include "messages/jsonl_sink.hpp"
+#include "motio/frame_detections.hpp"
+#include "motio/mot_files.hpp"
+#include "outputs/pipeline_metrics.hpp"
+#include "shared_data.hpp"
+#include "tracker/presets.hpp"
+#include "tracker/tracker.hpp"
+
+namespace rtmot::outputs {
+namespace {
+
+double value_of(const std::string& text, const std::string& series) {
+  const std::regex line("(^|\n)" + std::regex_replace(series, std::regex(R"([{}+."])"), R"(\$&)") +
+                        " ([0-9.e+-]+)");
+  std::smatch match;
+  if (!std::regex_search(text, match, line)) {
+    ADD_FAILURE() << "no series " << series;
+    return -1.0;
+  }
+  return std::stod(match[2]);
+}
+
+TEST(EventMetrics, SeriesEqualTheEventsSentAndTheCountersTotals) {
+  const auto dir = test::shared_path("data/mot15-train/PETS09-S2L1");
+  RTMOT_REQUIRE_FILE(dir / "det" / "det.txt");
+  const auto info = motio::read_seqinfo(dir / "seqinfo.ini");
+  const motio::FrameDetections detections(
+      motio::read_mot_file(dir / "det" / "det.txt", motio::MotFileKind::detections));
+  auto tracker_config = *tracker::find_preset("rtmot");
+  tracker_config.frame_rate = info.frame_rate;
+  tracker_config.image_width = static_cast<float>(info.width);
+  tracker_config.image_height = static_cast<float>(info.height);
+  tracker::Tracker tracker(tracker_config);
+
+  events::EventsConfig config;
+  config.lines.push_back({"middle \"m\"", {{384.0, 0.0}, {384.0, 576.0}}, true});
+  config.lines.push_back({"low", {{0.0, 432.0}, {768.0, 432.0}}, true});
+  config.zones.push_back({"left", {{38, 172}, {346, 172}, {346, 547}, {38, 547}}, 5.0});
+  events::EventCounter counter(config);
+
+  EventMetrics event_metrics({{3, {"middle \"m\"", "low"}, {"left"}}});
+  PipelineMetrics metrics({}, {3});
+  metrics.set_event_metrics(&event_metrics);
+  EventMetricsSink sink(event_metrics);
+  std::map<std::string, int> from_json;  // "kind index" -> count
+  fmt::memory_buffer line;
+  messages::DecodedMessage decoded;
+  messages::FrameResult frame;
+  frame.stream_id = 3;
+  for (int f = 1; f <= info.length; ++f) {
+    const double time = (f - 1) / info.frame_rate;
+    const auto& reports = tracker.update(detections.at(f), time);
+    frame.frame_number = f;
+    frame.sequence = static_cast<std::uint64_t>(f - 1);
+    frame.pts_ns = static_cast<std::int64_t>(time * 1e9);
+    frame.tracks.assign(reports.begin(), reports.end());
+    const auto& decided = counter.update(reports, time);
+    frame.events.assign(decided.begin(), decided.end());
+    sink.write(frame);
+    line.clear();
+    messages::append_json_line(frame, static_cast<std::uint32_t>(frame.tracks.size()), false,
+                               messages::JsonLineExtras{1, nullptr}, line);
+    std::string problem;
+    ASSERT_TRUE(messages::decode_json_line(reinterpret_cast<const std::uint8_t*>(line.data()),
+                                           line.size(), decoded, problem))
+        << problem;
+    for (const auto& event : decoded.frame.events)
+      ++from_json[std::string(events::kEventKindNames.name(event.kind)) + " " +
+                  std::to_string(event.index)];
+  }
+  const std::string text = metrics.render();
+  const auto line_series = [&](const char* name, const char* direction) {
+    return value_of(text, std::string("rtmot_line_crossings_total{stream=\"3\",line=\"") + name +
+                              "\",direction=\"" + direction + "\"}");
+  };
+  EXPECT_EQ(line_series(R"(middle \"m\")", "in"), from_json["line_in 0"]);
+  EXPECT_EQ(line_series(R"(middle \"m\")", "out"), from_json["line_out 0"]);
+  EXPECT_EQ(line_series("low", "in"), from_json["line_in 1"]);
+  EXPECT_EQ(line_series("low", "out"), from_json["line_out 1"]);
+  EXPECT_EQ(line_series(R"(middle \"m\")", "in"), counter.line_counts()[0].in);
+  EXPECT_EQ(line_series(R"(middle \"m\")", "out"), counter.line_counts()[0].out);
+  EXPECT_EQ(line_series("low", "in"), counter.line_counts()[1].in);
+  EXPECT_EQ(line_series("low", "out"), counter.line_counts()[1].out);
+  EXPECT_GT(counter.line_counts()[0].in + counter.line_counts()[0].out, 10);
+  const auto zone = [&](const char* event) {
+    return value_of(text, std::string(R"(rtmot_zone_events_total{stream="3",zone="left",event=")") +
+                              event + "\"}");
+  };
+  EXPECT_EQ(zone("enter"), from_json["zone_enter 0"]);
+  EXPECT_EQ(zone("exit"), from_json["zone_exit 0"]);
+  EXPECT_EQ(zone("dwell"), from_json["zone_dwell 0"]);
+  EXPECT_EQ(zone("enter"), counter.zone_counts()[0].entered);
+  EXPECT_GT(zone("dwell"), 0.0);
+  EXPECT_EQ(value_of(text, R"(rtmot_zone_occupancy{stream="3",zone="left"})"),
+            counter.zone_counts()[0].occupancy);
+}
+
+}  // namespace
+}  // namespace rtmot::outputs

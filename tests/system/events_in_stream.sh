@@ -1,0 +1,58 @@
+#!/usr/bin/env bash
+# System test: lines and a zone in a source's `events:` section (docs/events.md). PETS09-S2L1
+# (image-less, replay detector, every frame) through `rtmot run`: the events arrive in the binary
+# messages (`rtmot listen --read` counts them per kind and index) and in the JSON lines, with the
+# same counts, and both lines are crossed in both directions. A zero-length line is refused before
+# anything runs: exit 3 naming file:line:field.
+# Usage: events_in_stream.sh RTMOT SHARED_DIR
+set -euo pipefail
+rtmot=$1 shared_dir=$2
+seq=$shared_dir/data/mot15-train/PETS09-S2L1
+[[ -f $seq/seqinfo.ini ]] || { echo "FAIL: missing test input $seq/seqinfo.ini"; exit 1; }
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cat > "$work/run.yaml" <<YAML
+source:
+  uri: mot-seq://$seq
+  events:
+    dwell_s: 5
+    lines:
+      - {name: middle, units: fraction, from: [0.5, 0.0], to: [0.5, 1.0]}
+      - {name: low, units: fraction, from: [0.0, 0.75], to: [1.0, 0.75]}
+    zones:
+      - {name: left, units: fraction, points: [[0.05, 0.3], [0.45, 0.3], [0.45, 0.95], [0.05, 0.95]]}
+detector:
+  kind: replay
+  det_file: $seq/det/det.txt
+playback:
+  mode: every-frame
+YAML
+"$rtmot" run --config "$work/run.yaml" --binary "$work/m.bin" --jsonl "$work/m.jsonl" 2>"$work/run.err" ||
+  { cat "$work/run.err"; echo "FAIL: rtmot run"; exit 1; }
+"$rtmot" listen --read "$work/m.bin" --quiet > "$work/listen.txt"
+checked=0
+for kind in line_in line_out zone_enter zone_exit zone_dwell; do
+  for index in 0 1; do
+    from_listen=$(sed -n "s/^  stream 0: events $kind $index: //p" "$work/listen.txt")
+    from_json=$({ grep -o "\"kind\":\"$kind\",\"index\":$index," "$work/m.jsonl" || true; } | wc -l)
+    [[ "${from_listen:-0}" == "$from_json" ]] ||
+      { echo "FAIL: $kind $index: listen ${from_listen:-0}, JSON $from_json"; exit 1; }
+    checked=$((checked + from_json))
+  done
+done
+for kind in line_in line_out; do
+  for index in 0 1; do
+    grep -q "^  stream 0: events $kind $index: [1-9]" "$work/listen.txt" ||
+      { echo "FAIL: no $kind on line $index"; cat "$work/listen.txt"; exit 1; }
+  done
+done
+grep -q "^  stream 0: events zone_dwell 0: [1-9]" "$work/listen.txt" ||
+  { echo "FAIL: no dwell in the zone"; exit 1; }
+
+sed 's/to: \[0.5, 1.0\]/to: [0.5, 0.0]/' "$work/run.yaml" > "$work/bad.yaml"
+status=0
+"$rtmot" run --config "$work/bad.yaml" 2>"$work/bad.err" || status=$?
+[[ $status == 3 ]] || { echo "FAIL: exit $status for a zero-length line, expected 3"; exit 1; }
+grep -q "bad.yaml:6: field 'source.events.lines\[0\]': line 'middle' has zero length" "$work/bad.err" ||
+  { echo "FAIL: error does not name file:line:field"; cat "$work/bad.err"; exit 1; }
+echo "PASS: $checked events, the same in listen and JSON; a zero-length line is exit 3"
