@@ -68,6 +68,7 @@ int run_soak(const SoakOptions& options) {
   platform::StopSignals signals;  // first: threads started later inherit the blocked mask
   const runner::RunConfig config = runner::load_run_config(options.config_path);
   runner::validate(config);
+  runner::check_model_found(config);
 
   using Clock = std::chrono::steady_clock;
   const auto start = Clock::now();

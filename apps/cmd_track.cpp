@@ -10,7 +10,6 @@
 
 #include "apps/number_checks.hpp"
 #include "apps/subcommand.hpp"
-#include "apps/tracker_flags.hpp"
 #include "common/exit_codes.hpp"
 #include "common/input_error.hpp"
 #include "motio/mot_files.hpp"
@@ -19,6 +18,8 @@
 #include "motio/sequence_folders.hpp"
 #include "motio/track_runner.hpp"
 #include "platform/signals.hpp"
+#include "runner/run_config.hpp"
+#include "runner/tracker_flags.hpp"
 #include "tracker/presets.hpp"
 #include "tracker/score_scale.hpp"
 #include "tracker/tracker_config.hpp"
@@ -34,21 +35,20 @@ struct TrackCommandOptions {
   std::string dataset;
   std::string out_dir;
   std::string preset{tracker::default_preset_name()};
-  TrackerFlags tracker_flags;
+  runner::TrackerFlags tracker_flags;
   int interval{1};
   std::string detections{"det/det.txt"};
 };
 
 // The preset first, then every option given on the command line.
 tracker::TrackerConfig make_config(const TrackCommandOptions& options) {
-  const auto preset = tracker::find_preset(options.preset);
-  if (!preset) {
+  tracker::TrackerConfig config;
+  if (!runner::apply_preset(options.preset, config)) {
     throw InputError(
         "command line", 0, "--preset",
         "unknown preset '" + options.preset + "' (known: " + tracker::preset_names() + ")",
         ExitCode::usage);
   }
-  tracker::TrackerConfig config = *preset;
   options.tracker_flags.apply(config);
   return config;
 }

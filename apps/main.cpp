@@ -16,6 +16,7 @@
 #include "apps/subcommand.hpp"
 #include "common/exit_codes.hpp"
 #include "common/input_error.hpp"
+#include "platform/log_setup.hpp"
 
 namespace {
 
@@ -107,12 +108,19 @@ int main(int argc, char** argv) {
   std::string log_level = "info";
   app.add_option("--log-level", log_level, "trace, debug, info, warn, error, off")
       ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "off"}));
+  std::string log_format = "text";
+  app.add_option("--log-format", log_format,
+                 "text, or json: one JSON object per line (time, level, thread, message) for "
+                 "log shippers")
+      ->check(CLI::IsMember({"text", "json"}));
+  std::string log_file;
+  app.add_option("--log-file", log_file, "also append the log to this file");
 
   using namespace rtmot::app;
   const std::vector<Subcommand> subcommands = {
       // SUBCOMMAND-LIST
-      add_count_command(app), add_eval_command(app), add_listen_command(app), add_run_command(app),
-      add_soak_command(app), add_study_command(app),  add_track_command(app),
+      add_count_command(app), add_eval_command(app),  add_listen_command(app), add_run_command(app),
+      add_soak_command(app),  add_study_command(app), add_track_command(app),
   };
 
   try {
@@ -126,6 +134,16 @@ int main(int argc, char** argv) {
     return code == 0 ? 0 : rtmot::to_int(rtmot::ExitCode::usage);
   }
   spdlog::set_level(spdlog::level::from_str(log_level));
+  if (log_format != "text" || !log_file.empty()) {
+    try {
+      rtmot::platform::configure_logging(log_format == "json" ? rtmot::platform::LogFormat::json
+                                                              : rtmot::platform::LogFormat::text,
+                                         log_file);
+    } catch (const rtmot::InputError& error) {
+      spdlog::error("{}", error.what());
+      return rtmot::to_int(error.exit_code());
+    }
+  }
   // OpenCV's own warnings would surround our one error line with lines of its own: it speaks only
   // when asked for debug output.
   cv::utils::logging::setLogLevel(log_level == "trace" || log_level == "debug"

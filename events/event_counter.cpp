@@ -9,6 +9,8 @@ namespace {
 
 // Enough anchor offsets for a stable median, few enough to follow a change of scene in seconds.
 constexpr std::size_t kNoiseWindow = 512;
+// Reports this many frame periods apart or less are neighbouring frames (timestamps wobble).
+constexpr double kNeighbourGap = 1.5;
 
 }  // namespace
 
@@ -157,11 +159,17 @@ const std::vector<Event>& EventCounter::finish(double time_seconds) {
   return events_;
 }
 
-void EventCounter::measure_noise(const Slot& slot, const tracker::Box& box) {
+void EventCounter::measure_noise(const Slot& slot, const tracker::Box& box, double time) {
   // The box's size, not its position: between processed frames a person (or the camera) moves
   // far, but the size changes smoothly, so what its second difference shows is the detector's
-  // jitter, the same that moves the anchor. Three sizes from consecutive updates only.
+  // jitter, the same that moves the anchor. Three sizes from consecutive updates only, and with
+  // a known frame period only from neighbouring frames: over frames far apart the size truly
+  // changes, and the measure would grow with the gap while the jitter does not.
   if (slot.last_update != updates_ - 1 || slot.previous_update != updates_ - 2) return;
+  const double period = config_.frame_period_seconds;
+  if (period > 0.0 && (time - slot.last_seen > kNeighbourGap * period ||
+                       slot.last_seen - slot.previous_seen > kNeighbourGap * period))
+    return;
   if (!(box.w > 0.F) || !(box.h > 0.F)) return;
   const double residual =
       0.5 * (std::abs(double{box.w} - 2.0 * slot.size.w + slot.previous_size.w) / box.w +
@@ -178,7 +186,7 @@ void EventCounter::follow(std::uint32_t index, const tracker::TrackReport& repor
   Slot& slot = slots_[index];
   const Point to = anchor_of(report.box);
   const bool first = slot.last_update < 0;
-  measure_noise(slot, report.box);
+  measure_noise(slot, report.box, time);
   const double band = std::max(config_.dead_band.min_px,
                                config_.dead_band.noise_factor * box_noise_ * report.box.h);
   slot.class_id = report.class_id;
@@ -190,6 +198,7 @@ void EventCounter::follow(std::uint32_t index, const tracker::TrackReport& repor
   slot.previous_update = slot.last_update;
   slot.anchor = to;
   slot.last_update = updates_;
+  slot.previous_seen = slot.last_seen;
   slot.last_seen = time;
 }
 

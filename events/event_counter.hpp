@@ -71,6 +71,7 @@ class EventCounter {
     std::int32_t track_id{0};
     std::int32_t class_id{0};
     double last_seen{0.0};
+    double previous_seen{0.0};
     std::int64_t last_update{-1};
     std::int64_t previous_update{-1};
     Point anchor;
@@ -84,7 +85,7 @@ class EventCounter {
   std::uint32_t find_live(std::int32_t track_id, std::size_t position) const;
   std::uint32_t find_broken_off(const tracker::TrackReport& report, double time) const;
   Point anchor_of(const tracker::Box& box) const;
-  void measure_noise(const Slot& slot, const tracker::Box& box);
+  void measure_noise(const Slot& slot, const tracker::Box& box, double time);
   void count_crossing(std::size_t line, const Slot& slot, int side, const Point& where,
                       double time);
   void follow(std::uint32_t index, const tracker::TrackReport& report, double time);

@@ -57,6 +57,11 @@ struct EventsConfig {
   /// last seen (within lost_after_seconds, with a height within 1.5x) continues that track: a
   /// tracker that loses a person and finds them again under a new id loses no crossing. 0: off.
   double link_radius{0.0};
+  /// The source's nominal frame period (s): the box noise is measured only on reports of
+  /// neighbouring frames (at most 1.5 periods apart). A detector slower than the camera never
+  /// shows them, and the band is then min_px: between frames far apart the motion dwarfs the
+  /// jitter. 0: unknown, any three consecutive updates. Set by the pipeline and `rtmot count`.
+  double frame_period_seconds{0.0};
   /// Tracks followed at once; more are not counted (EventCounter::tracks_not_followed()).
   int max_tracks{512};
 };

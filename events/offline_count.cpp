@@ -11,7 +11,9 @@ SequenceCounts count_sequence(const std::vector<FrameTrack>& tracks, int length,
   std::vector<FrameTrack> sorted = tracks;
   std::stable_sort(sorted.begin(), sorted.end(),
                    [](const FrameTrack& a, const FrameTrack& b) { return a.frame < b.frame; });
-  EventCounter counter(config);
+  EventsConfig timed = config;
+  timed.frame_period_seconds = frame_rate > 0.0 ? 1.0 / frame_rate : 0.0;
+  EventCounter counter(timed);
   std::vector<tracker::TrackReport> reports;
   auto next = sorted.begin();
   double time = 0.0;

@@ -54,6 +54,7 @@ void AnnotatedVideo::write_predicted(SideFrame& frame) {
     prediction_.tracks.push_back(predicted);
   }
   overlay_.draw(frame.image, prediction_, true, stats_);
+  if (events_overlay_) events_overlay_->draw(frame.image);
   stream_->push(frame.image);
   ++written_;
   ++predicted_;
@@ -62,6 +63,9 @@ void AnnotatedVideo::write_predicted(SideFrame& frame) {
 void AnnotatedVideo::consume(const pipeline::SinkFrame& frame) {
   const messages::FrameResult& result = frame.result;
   if (result.source_outage) return;
+  // The frames skipped before this one show the counts as they were; this one and later, with its
+  // events.
+  bool counted = false;
   const auto& times = result.times;
   stats_ =
       OverlayStats{frame.recent_fps, static_cast<double>(times.sent_ns - times.captured_ns) / 1e6};
@@ -73,11 +77,17 @@ void AnnotatedVideo::consume(const pipeline::SinkFrame& frame) {
       write_predicted(*side);
     } else {
       overlay_.draw(side->image, result, false, stats_);
+      if (events_overlay_) {
+        events_overlay_->count(result);
+        counted = true;
+        events_overlay_->draw(side->image);
+      }
       stream_->push(side->image);
       ++written_;
     }
     frames_.pop();
   }
+  if (events_overlay_ && !counted) events_overlay_->count(result);
   remember(result);
 }
 

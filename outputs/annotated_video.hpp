@@ -1,4 +1,5 @@
 #pragma once
+#include <optional>
 // The annotated video as a consumer of the sink stage (pipeline/frame_consumer.hpp). Every source
 // frame is written: the capture thread copies each frame into a side channel
 // (outputs/frame_side_channel.hpp, a bounded lock-free queue); when the sink stage hands on the
@@ -14,6 +15,7 @@
 #include <vector>
 
 #include "messages/jsonl_sink.hpp"
+#include "outputs/events_overlay.hpp"
 #include "outputs/frame_side_channel.hpp"
 #include "outputs/overlay.hpp"
 #include "outputs/video_stream.hpp"
@@ -27,6 +29,9 @@ class AnnotatedVideo final : public pipeline::FrameConsumer {
   /// now (an RTSP server listens at once), the encoder at the first frame.
   AnnotatedVideo(const VideoTarget& target, const platform::SourceInfo& source, OverlayFlags flags,
                  messages::ClassLabelFn labels);
+
+  /// Draws these lines and zones with their live counts on every frame (docs/events.md).
+  void show_events(const events::EventsConfig& config) { events_overlay_.emplace(config); }
 
   /// Give this to the source's PipelineInput::tap: it feeds the video every source frame.
   pipeline::FrameTap* tap() { return &frames_; }
@@ -48,6 +53,7 @@ class AnnotatedVideo final : public pipeline::FrameConsumer {
 
   std::unique_ptr<VideoStream> stream_;
   Overlay overlay_;
+  std::optional<EventsOverlay> events_overlay_;
   FrameSideChannel frames_;
   // The last two processed frames' tracks (reused buffers) and a scratch result for predictions.
   messages::FrameResult last_;

@@ -76,10 +76,20 @@ CaptureStage::Next CaptureStage::read_frame(FrameSlotItem& item, const std::atom
 // ground station keeps receiving messages, flagged source_outage, until the source is back.
 CaptureStage::Next CaptureStage::outage_tick(FrameSlotItem& item) {
   const std::int64_t now_ns = steady_now_ns();
+  // An operator reading the journal of a board whose camera is gone sees a line every 30 s, not
+  // one line at the start and then silence.
+  constexpr std::int64_t still_down_every_ns = 30'000'000'000;
   if (!in_outage_) {
     in_outage_ = true;
     ++outages_;
+    outage_since_ns_ = now_ns;
+    next_still_down_ns_ = now_ns + still_down_every_ns;
     spdlog::warn("{}: source outage {}: {}", source_->info().uri, outages_, source_->last_error());
+  } else if (now_ns >= next_still_down_ns_) {
+    next_still_down_ns_ = now_ns + still_down_every_ns;
+    spdlog::warn("{}: still down after {} s (outage {}; messages flagged source_outage go on): {}",
+                 source_->info().uri, (now_ns - outage_since_ns_) / 1'000'000'000, outages_,
+                 source_->last_error());
   }
   item.outage = true;
   item.info.frame_number = last_number_;  // no new frame: keeps the dropped-frame count honest

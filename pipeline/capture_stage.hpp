@@ -74,9 +74,11 @@ class CaptureStage {
   std::int64_t frames_lost_{0};
   std::int64_t outages_{0};
   bool in_outage_{false};
-  std::int64_t last_number_{0};      // the last real frame's number
-  std::int64_t last_pts_ns_{0};      // the last real frame's
-  std::int64_t last_capture_ns_{0};  // the last real frame's
+  std::int64_t outage_since_ns_{0};     // when the current outage began
+  std::int64_t next_still_down_ns_{0};  // when the next "still down" line is due
+  std::int64_t last_number_{0};         // the last real frame's number
+  std::int64_t last_pts_ns_{0};         // the last real frame's
+  std::int64_t last_capture_ns_{0};     // the last real frame's
   std::int64_t first_capture_ns_{0};
   std::string source_error_;
   FrameTap* tap_{nullptr};

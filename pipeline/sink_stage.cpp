@@ -22,6 +22,7 @@ SinkStage::SinkStage(std::vector<std::uint32_t> stream_ids, SpscQueue<TrackedFra
 
 void SinkStage::run(const std::atomic<bool>& abort) {
   interval_start_ns_ = platform::steady_now_ns();
+  fps_window_start_ns_ = interval_start_ns_;
   while (TrackedFrame* in = input_.front(abort)) {
     messages::FrameResult& result = in->result;
     result.times.sent_ns = platform::steady_now_ns();
@@ -35,8 +36,13 @@ void SinkStage::run(const std::atomic<bool>& abort) {
       interval_e2e_.record(result.times.sent_ns - result.times.captured_ns);
       ++interval_frames_;
       elapsed_ns = result.times.sent_ns - interval_start_ns_;
-      if (elapsed_ns > 0 && elapsed_ns >= std::max<std::int64_t>(interval_ns_, 1'000'000'000)) {
-        recent_fps_ = static_cast<double>(interval_frames_) * 1e9 / static_cast<double>(elapsed_ns);
+      ++fps_window_frames_;
+      const std::int64_t window_ns = result.times.sent_ns - fps_window_start_ns_;
+      if (window_ns > 0 && window_ns >= std::max<std::int64_t>(interval_ns_, 1'000'000'000)) {
+        recent_fps_ =
+            static_cast<double>(fps_window_frames_) * 1e9 / static_cast<double>(window_ns);
+        fps_window_frames_ = 0;
+        fps_window_start_ns_ = result.times.sent_ns;
       }
     }
     const SinkFrame frame{result, in->image, recent_fps_};

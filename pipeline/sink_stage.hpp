@@ -52,6 +52,11 @@ class SinkStage {
   std::int64_t interval_start_ns_{0};
   std::int64_t interval_frames_{0};
   double recent_fps_{0.0};
+  // The overlay's "fps": frames over the last window of max(stats interval, 1 s), counted apart
+  // from the log line's interval, which never ends when the log is off (stats_interval_s 0: the
+  // overlay showed the whole run's mean).
+  std::int64_t fps_window_start_ns_{0};
+  std::int64_t fps_window_frames_{0};
 };
 
 }  // namespace rtmot::pipeline

@@ -2,19 +2,15 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <filesystem>
+#include <map>
 #include <optional>
 #include <set>
 
-#include "common/frame_rate.hpp"
 #include "common/input_error.hpp"
 #include "common/input_file.hpp"
 #include "common/input_path.hpp"
-#include "detector/dnn_backend.hpp"
-#include "outputs/mqtt_uri.hpp"
-#include "outputs/overlay.hpp"
-#include "outputs/video_target.hpp"
-#include "platform/host_port.hpp"
-#include "runner/host_port.hpp"
+#include "runner/run_settings.hpp"
 #include "runner/sequence_clock_source.hpp"
 #include "runner/yaml_section.hpp"
 #include "tracker/presets.hpp"
@@ -23,116 +19,107 @@
 namespace rtmot::runner {
 namespace {
 
-// The documented ranges (docs/config.md) of the keys outside `tracker:`.
-constexpr int kMaxImageSide = 16384;
-constexpr double kMaxLatencyMs = 3'600'000.0;
-constexpr int kMaxThreads = 256;
-constexpr int kMaxClassId = 1000;
-constexpr double kMaxStatsInterval = 86'400.0;
-constexpr std::int64_t kMaxFrames = 1'000'000'000'000;
 // A configuration is a page of text: a bigger file is not one.
 constexpr std::uint64_t kMaxConfigBytes = 1 << 20;
 
-void read_source(Section section, SourceConfig& source) {
-  section.read("uri", source.uri);
-  source.events =
-      events::read_events_spec(section.child("events"), section.file(), section.field("events"));
-  read_checked(section, "width", source.width, within(0, kMaxImageSide),
-               "a size in [0, " + std::to_string(kMaxImageSide) + "]");
-  read_checked(section, "height", source.height, within(0, kMaxImageSide),
-               "a size in [0, " + std::to_string(kMaxImageSide) + "]");
-  read_checked(
-      section, "fps", source.fps, [](double fps) { return fps == 0.0 || is_frame_rate(fps); },
-      "0 (the source's rate) or a rate in " + frame_rate_range());
-  read_checked(
-      section, "stream_id", source.stream_id,
-      [](std::int64_t v) { return v >= 0 && v <= std::int64_t{0xFFFFFFFF}; },
-      "a stream id in 0..4294967295");
-  section.reject_unknown();
+// Keys whose value is a structure of its own, read by its own strict reader: the source's events
+// (lines and zones, events/events_yaml.hpp).
+using StructuredReader = void (*)(const YAML::Node& value, const Section& where,
+                                  const std::string& name, RunConfig& config);
+const std::map<std::string, StructuredReader>& structured_keys() {
+  static const std::map<std::string, StructuredReader> readers = {
+      {"source.events",
+       [](const YAML::Node& value, const Section& where, const std::string& name,
+          RunConfig& config) {
+         config.source.events = events::read_events_spec(value, where.file(), where.field(name));
+       }},
+  };
+  return readers;
+}
+
+bool has_settings_under(const std::string& prefix) {
+  const std::string start = prefix + ".";
+  for (const auto& setting : run_settings()) {
+    if (setting.key.compare(0, start.size(), start) == 0) return true;
+  }
+  return false;
+}
+
+// The value of a setting as text, as the command line gives it: a scalar, or a list joined with
+// commas (an empty list is "all").
+std::string value_text(const Section& section, const YAML::Node& key, const YAML::Node& value,
+                       const RunSetting& setting, const std::string& name) {
+  const std::string expected = "expected " + setting.expected;
+  if (value.IsNull()) section.fail(key, name, "has no value: " + expected);
+  if (!setting.list) {
+    if (!value.IsScalar()) section.fail(value, name, expected);
+    return value.Scalar();
+  }
+  if (!value.IsSequence()) section.fail(value, name, "expected a list: " + setting.expected);
+  if (value.size() == 0) return "all";
+  std::string text;
+  for (const auto& item : value) {
+    if (!item.IsScalar()) section.fail(item, name, expected);
+    text += (text.empty() ? "" : ",") + item.Scalar();
+  }
+  return text;
+}
+
+// One mapping of the file: every key is a setting of the table under `prefix` (its YAML path) or
+// a mapping of more of them. Errors name the field as `section` does (sources[1].width).
+void read_settings(const Section& section, const YAML::Node& node, const std::string& prefix,
+                   RunConfig& config, const std::set<std::string>& read_elsewhere = {}) {
+  if (!node.IsMap()) return;  // null: "section:" with nothing under it (Section checked the rest)
+  for (const auto& entry : node) {
+    const std::string name = section.key_text(entry.first);
+    if (read_elsewhere.count(name) > 0) continue;
+    const std::string key = prefix.empty() ? name : prefix + "." + name;
+    if (const auto structured = structured_keys().find(key);
+        structured != structured_keys().end()) {
+      structured->second(entry.second, section, name, config);
+    } else if (const RunSetting* setting = find_run_setting(key)) {
+      const std::string text = value_text(section, entry.first, entry.second, *setting, name);
+      std::string problem;
+      if (!setting->set(config, text, problem)) {
+        section.fail(entry.second, name, refusal(*setting, text, problem));
+      }
+    } else if (has_settings_under(key)) {
+      const Section child(entry.second, section.file(), section.field(name));
+      read_settings(child, entry.second, key, config);
+    } else {
+      section.fail(entry.first, name, "unknown key");
+    }
+  }
 }
 
 // `sources:` a list whose entries are a URI or a mapping with the keys of `source`.
-void read_sources(Section& top, const std::string& file_name, std::vector<SourceConfig>& sources) {
-  const YAML::Node list = top.child("sources");
-  if (!list.IsDefined() || list.IsNull()) return;
+void read_sources(const Section& top, const YAML::Node& list, RunConfig& config) {
+  if (list.IsNull()) return;
   if (!list.IsSequence()) top.fail(list, "sources", "expected a list of sources");
   for (std::size_t i = 0; i < list.size(); ++i) {
     const YAML::Node entry = list[i];
     const std::string field = "sources[" + std::to_string(i) + "]";
-    SourceConfig source;
+    RunConfig scratch;  // the source settings of the table, applied to its `source`
     if (entry.IsScalar()) {
-      source.uri = entry.Scalar();
+      scratch.source.uri = entry.Scalar();
     } else {
-      read_source(Section(entry, file_name, field), source);
+      read_settings(Section(entry, top.file(), field), entry, "source", scratch);
     }
-    if (source.uri.empty()) throw InputError(file_name, line_of(entry), field, "no uri given");
-    sources.push_back(source);
-  }
-  if (sources.empty()) top.fail(list, "sources", "the list is empty");
-}
-
-void read_playback(Section section, PlaybackConfig& playback) {
-  std::string mode;
-  if (section.read("mode", mode)) {
-    const auto parsed = pipeline::parse_playback_mode(mode);
-    if (!parsed) {
-      section.fail(*section.find("mode"), "mode",
-                   "expected " + pipeline::playback_mode_alternatives());
+    if (scratch.source.uri.empty()) {
+      throw InputError(top.file(), line_of(entry), field, "no uri given");
     }
-    playback.mode = *parsed;
+    config.sources.push_back(scratch.source);
   }
-  read_checked(
-      section, "latency_ms", playback.latency_ms,
-      [](double v) { return v > 0.0 && v <= kMaxLatencyMs; }, "a latency in (0, 3600000]");
-  section.reject_unknown();
-}
-
-void read_detector(Section section, DetectorConfig& detector) {
-  read_checked(
-      section, "kind", detector.kind,
-      [](const std::string& v) { return v == "ssd" || v == "replay"; }, "ssd or replay");
-  section.read("model", detector.model);
-  section.read("anchors", detector.anchors);
-  read_checked(
-      section, "backend", detector.backend,
-      [](const std::string& v) { return detector::parse_backend_request(v).has_value(); },
-      detector::backend_request_names());
-  read_checked(
-      section, "fp16", detector.fp16,
-      [](const std::string& v) { return detector::parse_fp16_request(v).has_value(); },
-      "auto, on or off");
-  read_checked(section, "threads", detector.threads, within(0, kMaxThreads), "a count in [0, 256]");
-  read_checked(section, "score_threshold", detector.score_threshold, unit_interval,
-               "a score in [0, 1]");
-  read_checked(section, "nms_threshold", detector.nms_threshold, unit_interval, "an IoU in [0, 1]");
-  read_checked(
-      section, "classes", detector.classes,
-      [](const std::vector<int>& ids) {
-        for (const int id : ids) {
-          if (id < 0 || id > kMaxClassId) return false;
-        }
-        return true;
-      },
-      "class ids in [0, 1000]");
-  section.read("det_file", detector.det_file);
-  section.reject_unknown();
+  if (config.sources.empty()) top.fail(list, "sources", "the list is empty");
 }
 
 void read_tracker(Section section, tracker::TrackerConfig& config) {
   // Without a preset the pipeline starts from the default (best measured) one, as `rtmot track`.
   std::string preset{tracker::default_preset_name()};
   section.read("preset", preset);
-  const auto found = tracker::find_preset(preset);
-  if (!found) {
+  if (!apply_preset(preset, config)) {
     section.fail(*section.find("preset"), "preset", "expected one of: " + tracker::preset_names());
   }
-  config = *found;
-  config.frame_rate = 0.0;  // still "from the source" unless set below
-  config.image_width = 0.F;
-  config.image_height = 0.F;
-  // No preset assumes a score scale (the default's cut is relative to the stream's own scores),
-  // so the preset applies here as in `rtmot track`; the detector's score_threshold is the
-  // detector's own cut, made before the tracker sees anything.
   // Every other key is an option of the one table (tracker/tracker_options.hpp), read as text so
   // that the YAML file and the command line accept exactly the same values.
   for (const auto& option : tracker::tracker_options()) {
@@ -154,88 +141,58 @@ void read_tracker(Section section, tracker::TrackerConfig& config) {
   }
 }
 
-void read_output(Section section, OutputConfig& output) {
-  if (section.read("udp", output.udp) && !output.udp.empty()) {
-    const YAML::Node value = *section.find("udp");
-    parse_host_port(output.udp, section.file(), line_of(value), section.field("udp"),
-                    ExitCode::bad_input);
+// The one document of the file. yaml-cpp's Load() reads the first and drops the rest silently: a
+// second document (after `---`) is an error naming its line, not settings that never apply.
+YAML::Node load_one_document(const std::string& yaml_text, const std::string& file_name) {
+  std::vector<YAML::Node> documents;
+  try {
+    documents = YAML::LoadAll(yaml_text);
+  } catch (const YAML::ParserException& error) {
+    throw InputError(file_name, error.mark.line + 1, "", "not valid YAML: " + error.msg);
   }
-  section.read("binary_file", output.binary_file);
-  section.read("jsonl_file", output.jsonl_file);
-  section.read("mqtt", output.mqtt);
-  section.read("video_file", output.video_file);
-  section.read("overlay", output.overlay);
-  section.read("report_file", output.report_file);
-  read_checked(
-      section, "metrics_port", output.metrics_port, [](int v) { return v >= 0 && v <= 65535; },
-      "a TCP port 0..65535 (0 = off)");
-  if (section.read("metrics_bind", output.metrics_bind)) {
-    std::string problem;
-    const auto address = platform::parse_bind_address(output.metrics_bind, problem);
-    if (!address) section.fail(*section.find("metrics_bind"), "metrics_bind", problem);
-    output.metrics_bind = *address;
+  if (documents.size() > 1) {
+    throw InputError(file_name, line_of(documents[1]), "",
+                     "a second YAML document: a run configuration is one document (remove the "
+                     "'---' and what follows, or merge it into the first)");
   }
-  section.reject_unknown();
-}
-
-// CPU_SETSIZE: the most CPUs pthread_setaffinity_np can name. A CPU this machine lacks is not a
-// configuration error (the same file runs on several boards): the thread runs unpinned, logged.
-constexpr int max_cpu = 1023;
-
-void read_stage_thread(Section section, pipeline::StageThread& thread) {
-  read_checked(
-      section, "cpu", thread.cpu, [](int v) { return v >= -1 && v <= max_cpu; },
-      "a CPU number in 0..1023, or -1 for any");
-  read_checked(
-      section, "fifo_priority", thread.fifo_priority, [](int v) { return v >= 0 && v <= 99; },
-      "a SCHED_FIFO priority in 1..99, or 0 for normal scheduling");
-  section.reject_unknown();
-}
-
-void read_threads(Section section, const std::string& file_name, pipeline::StageThreads& threads) {
-  const auto stage = [&](const char* name, pipeline::StageThread& thread) {
-    read_stage_thread(Section(section.child(name), file_name, section.field(name)), thread);
-  };
-  stage("capture", threads.capture);
-  stage("detect", threads.detect);
-  stage("track", threads.track);
-  stage("sink", threads.sink);
-  section.reject_unknown();
+  if (documents.empty() || documents.front().IsNull()) {
+    throw InputError(file_name, 0, "", "the configuration is empty");
+  }
+  return documents.front();
 }
 
 }  // namespace
 
+bool apply_preset(std::string_view name, tracker::TrackerConfig& config) {
+  const auto found = tracker::find_preset(std::string(name));
+  if (!found) return false;
+  // No preset assumes a score scale (the default's cut is relative to the stream's own scores), so
+  // a preset applies the same everywhere; the detector's score_threshold is the detector's own
+  // cut, made before the tracker sees anything.
+  config = *found;
+  config.frame_rate = 0.0;  // from the source (or seqinfo.ini) unless set after the preset
+  config.image_width = 0.F;
+  config.image_height = 0.F;
+  return true;
+}
+
 RunConfig parse_run_config(const std::string& yaml_text, const std::string& file_name) {
-  YAML::Node root;
-  try {
-    root = YAML::Load(yaml_text);
-  } catch (const YAML::ParserException& error) {
-    throw InputError(file_name, error.mark.line + 1, "", "not valid YAML: " + error.msg);
-  }
+  const YAML::Node root = load_one_document(yaml_text, file_name);
   RunConfig config;
   config.file = file_name;
-  config.tracker.frame_rate = 0.0;
-  config.tracker.image_width = 0.F;
-  config.tracker.image_height = 0.F;
+  apply_preset(tracker::default_preset_name(), config.tracker);
 
-  Section top(root, file_name, "");
-  if (root.IsNull()) throw InputError(file_name, 0, "", "the configuration is empty");
-  read_source(Section(top.child("source"), file_name, "source"), config.source);
-  read_sources(top, file_name, config.sources);
+  const Section top(root, file_name, "");
+  // `tracker:` has its own table; `sources:` is a list of `source:` mappings; every other key is a
+  // setting of runner/run_settings.hpp, or a mapping of them.
+  read_settings(top, root, "", config, {"tracker", "sources"});
+  if (const auto tracker = top.find("tracker")) {
+    read_tracker(Section(*tracker, file_name, "tracker"), config.tracker);
+  }
+  if (const auto sources = top.find("sources")) read_sources(top, *sources, config);
   if (!config.sources.empty() && !config.source.uri.empty()) {
     top.fail(*top.find("sources"), "sources", "give either source.uri or sources, not both");
   }
-  read_playback(Section(top.child("playback"), file_name, "playback"), config.playback);
-  read_detector(Section(top.child("detector"), file_name, "detector"), config.detector);
-  read_tracker(Section(top.child("tracker"), file_name, "tracker"), config.tracker);
-  read_output(Section(top.child("output"), file_name, "output"), config.output);
-  read_threads(Section(top.child("threads"), file_name, "threads"), file_name, config.threads);
-  read_checked(top, "stats_interval_s", config.stats_interval_s, within(0.0, kMaxStatsInterval),
-               "an interval in [0, 86400]");
-  top.read("stream_id", config.stream_id);
-  read_checked(top, "max_frames", config.max_frames, within<std::int64_t>(0, kMaxFrames),
-               "a count in [0, 10^12]");
-  top.reject_unknown();
   return config;
 }
 
@@ -309,41 +266,28 @@ void validate(const RunConfig& config) {
               "stream id " + std::to_string(stream_id_of(config, i)) + " is used twice");
     }
   }
-  if (sources.size() > 1 && !config.output.video_file.empty()) {
+  if (sources.size() > 1 && config.output.video) {
     missing("output.video_file", "the annotated video needs a single source");
   }
-  if (config.detector.kind == "ssd" && config.detector.model.empty()) {
+  if (config.detector.kind == DetectorKind::ssd && config.detector.model.empty()) {
     missing("detector.model", "the ssd detector needs a model file");
   }
-  if (config.detector.kind == "replay" && config.detector.det_file.empty()) {
+  if (config.detector.kind == DetectorKind::replay && config.detector.det_file.empty()) {
     missing("detector.det_file", "the replay detector needs a det.txt file");
   }
   for (const SourceConfig& source : sources) {
     if (!is_sequence_uri(source.uri)) continue;
-    if (config.detector.kind == "ssd") {
+    if (config.detector.kind == DetectorKind::ssd) {
       missing("detector.kind", "a mot-seq:// source has no images: use the replay detector");
     }
-    if (!config.output.video_file.empty()) {
+    if (config.output.video) {
       missing("output.video_file", "a mot-seq:// source has no images to annotate");
     }
   }
-  // Every output is checked here, before the model loads: a typo costs no start-up time.
-  std::string problem;
-  if (!config.output.udp.empty() && !platform::parse_host_port(config.output.udp, problem)) {
-    missing("output.udp",
-            "expected HOST:PORT or [IPV6]:PORT, got '" + config.output.udp + "': " + problem);
-  }
-  if (!config.output.mqtt.empty() && !outputs::parse_mqtt_uri(config.output.mqtt, problem)) {
-    missing("output.mqtt", "'" + config.output.mqtt + "': " + problem);
-  }
-  if (!config.output.video_file.empty() &&
-      !outputs::parse_video_target(config.output.video_file, problem)) {
-    missing("output.video_file", "'" + config.output.video_file + "': " + problem);
-  }
-  if (!outputs::parse_overlay_flags(config.output.overlay, problem)) {
-    missing("output.overlay", problem);
-  }
-  if (config.detector.kind == "ssd") {
+}
+
+void check_model_found(const RunConfig& config) {
+  if (config.detector.kind == DetectorKind::ssd) {
     // Say where it was looked for: "not found" alone sent users to fetch a model they had.
     std::string tried;
     resolve_input_path(config.detector.model, base_dir_of(config), "models", tried);

@@ -6,14 +6,26 @@
 #include <string>
 #include <vector>
 
+#include "detector/dnn_backend.hpp"
 #include "events/events_yaml.hpp"
+#include "outputs/mqtt_uri.hpp"
+#include "outputs/overlay.hpp"
+#include "outputs/video_target.hpp"
 #include "pipeline/pipeline.hpp"
 #include "pipeline/playback_mode.hpp"
+#include "platform/host_port.hpp"
+#include "tracker/enum_names.hpp"
 #include "tracker/tracker_config.hpp"
 
 namespace rtmot::runner {
 
 using pipeline::PlaybackMode;
+using platform::HostPort;
+
+enum class DetectorKind { ssd, replay };
+inline constexpr auto kDetectorKindNames = tracker::make_enum_names<DetectorKind>(
+    std::pair{DetectorKind::ssd, std::string_view("ssd")},
+    std::pair{DetectorKind::replay, std::string_view("replay")});
 
 struct SourceConfig {
   std::string uri;  // platform::open_video_source URI, or mot-seq://SEQUENCE_DIR (image-less)
@@ -31,29 +43,33 @@ struct PlaybackConfig {
   double latency_ms{250.0};  // simulated detector latency (simulated mode only)
 };
 
+// Every value below is parsed once, where it is read (runner/run_settings.cpp: the one table of
+// names, docs and ranges); the defaults here are the documented ones (docs/config.md).
 struct DetectorConfig {
-  std::string kind{"ssd"};      // ssd | replay
-  std::string model;            // ssd: model file
-  std::string anchors;          // ssd: anchors CSV; empty = beside the model
-  std::string backend{"auto"};  // auto | cpu | cuda
-  std::string fp16{"auto"};     // auto | on | off (true/false accepted)
-  float score_threshold{0.5F};
+  DetectorKind kind{DetectorKind::ssd};
+  std::string model;    // ssd: model file
+  std::string anchors;  // ssd: anchors CSV; empty = beside the model
+  detector::BackendRequest backend{detector::BackendRequest::automatic};
+  detector::Fp16Request fp16{detector::Fp16Request::automatic};
+  float score_threshold{0.5F};  // the detector's own cut, before the tracker sees anything
   float nms_threshold{0.6F};
-  int threads{0};               // OpenCV worker threads; 0 = OpenCV's default
+  /// The detector's CPU worker threads; 0 = every CPU this process may use. Decided (and set,
+  /// process-wide) in one place: runner::make_detector.
+  int threads{0};
   std::vector<int> classes{1};  // COCO ids to keep (1 = person); empty = all
   std::string det_file;         // replay: a MOTChallenge det.txt
 };
 
 struct OutputConfig {
-  std::string udp;          // HOST:PORT, empty = off
-  std::string binary_file;  // empty = off
-  std::string jsonl_file;   // empty = off
-  std::string mqtt;         // mqtt://HOST[:PORT]/TOPIC[?qos=0|1&format=binary|json], empty = off
-  std::string video_file;  // annotated video by path or URI (outputs/video_target.hpp), empty = off
-  std::string overlay{"box,labels,conf,track,trail,stats"};  // what the video shows
-  std::string report_file;                                   // JSON report, empty = off
-  int metrics_port{0};                    // Prometheus endpoint on this TCP port, 0 = off
-  std::string metrics_bind{"127.0.0.1"};  // address the endpoint listens on
+  std::optional<HostPort> udp;  // off when absent
+  std::string binary_file;      // empty = off
+  std::string jsonl_file;       // empty = off
+  std::optional<outputs::MqttUri> mqtt;
+  std::optional<outputs::VideoTarget> video;  // the annotated video (output.video_file)
+  outputs::OverlayFlags overlay{~0U};         // what the video shows: every flag
+  std::string report_file;                    // JSON report, empty = off
+  int metrics_port{0};                        // Prometheus endpoint on this TCP port, 0 = off
+  std::string metrics_bind{"127.0.0.1"};      // an IP literal the endpoint listens on
 };
 
 struct RunConfig {
@@ -86,9 +102,19 @@ RunConfig default_run_config();
 /// Same, from text; `file_name` names it in errors.
 RunConfig parse_run_config(const std::string& yaml_text, const std::string& file_name);
 
+/// Replaces `config`'s tracker with the preset `name` (false if there is none): the one way a
+/// preset is applied, for the YAML `tracker: {preset: ...}`, `run --preset` and `track --preset`.
+/// What the preset does not fix (frame rate, image size) stays "from the source" (0).
+bool apply_preset(std::string_view name, tracker::TrackerConfig& config);
+
 /// Checks what only the complete configuration (file plus command-line overrides) can tell: a
 /// source is given, the detector has its model or det file, outputs are consistent. Throws
 /// InputError.
 void validate(const RunConfig& config);
+
+/// The ssd detector's model file exists (where it was looked for otherwise: exit 4). Separate from
+/// validate(): the outputs are checked first (prepare_video_output), and a configuration can be
+/// checked without the model at hand.
+void check_model_found(const RunConfig& config);
 
 }  // namespace rtmot::runner

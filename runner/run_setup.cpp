@@ -25,7 +25,6 @@
 #include "outputs/video_target.hpp"
 #include "platform/host_port.hpp"
 #include "platform/video_uri.hpp"
-#include "runner/host_port.hpp"
 #include "runner/progress_sink.hpp"
 #include "runner/sequence_clock_source.hpp"
 #include "runner/source_factory.hpp"
@@ -58,6 +57,7 @@ std::vector<pipeline::PipelineInput> make_inputs(const RunConfig& config) {
     inputs[i].events =
         events::resolve_events(sources[i].events, static_cast<int>(inputs[i].tracker.image_width),
                                static_cast<int>(inputs[i].tracker.image_height));
+    inputs[i].events.frame_period_seconds = 1.0 / inputs[i].tracker.frame_rate;
   }
   return inputs;
 }
@@ -83,7 +83,7 @@ void warn_on_score_scale(const DetectorConfig& detector, const tracker::TrackerC
 
 std::unique_ptr<detector::Detector> make_detector(const RunConfig& config) {
   const DetectorConfig& wanted = config.detector;
-  if (wanted.kind == "replay") {
+  if (wanted.kind == DetectorKind::replay) {
     auto replay =
         std::make_unique<detector::ReplayDetector>(wanted.det_file, wanted.score_threshold);
     warn_on_score_scale(wanted, config.tracker);
@@ -95,9 +95,8 @@ std::unique_ptr<detector::Detector> make_detector(const RunConfig& config) {
   ssd.score_threshold = wanted.score_threshold;
   ssd.nms_iou = wanted.nms_threshold;
   ssd.classes = wanted.classes;
-  // Both were checked by the config parser.
-  ssd.backend = detector::parse_backend_request(wanted.backend).value();
-  ssd.fp16 = detector::parse_fp16_request(wanted.fp16).value();
+  ssd.backend = wanted.backend;
+  ssd.fp16 = wanted.fp16;
   // 0 ("automatic") is made explicit. Left to itself, a TBB build of OpenCV (Debian's, ours) runs
   // its DNN in TBB's automatic arena, sized by TBB: it ignores OpenCV's own OPENCV_FOR_THREADS_NUM
   // (measured) and, depending on the TBB version, a container's CPU quota (docker --cpus), so it
@@ -105,8 +104,13 @@ std::unique_ptr<detector::Detector> make_detector(const RunConfig& config) {
   // slowest part. OpenCV's CPU count honours the affinity mask, cpusets and the cgroup quota; on a
   // machine without either both give the same count (measured: no difference on the 2-core CI
   // machine).
-  ssd.threads = wanted.threads > 0 ? wanted.threads : std::max(1, cv::getNumberOfCPUs());
-  spdlog::info("detector threads: {}{}", ssd.threads,
+  // This is the one place that decides detector.threads, and the setting is process-wide
+  // (cv::setNumThreads): made here, in the open, not inside the detector's constructor (which
+  // gets 0, "leave as is").
+  const int threads = wanted.threads > 0 ? wanted.threads : std::max(1, cv::getNumberOfCPUs());
+  cv::setNumThreads(threads);
+  ssd.threads = 0;
+  spdlog::info("detector threads: {}{}", threads,
                wanted.threads > 0 ? "" : " (the CPUs this process may use)");
   // One forward pass takes one frame of every source (the detect stage batches them): without
   // this the SSD would split each batch into single images again.
@@ -131,10 +135,8 @@ RunOutputs make_outputs(const RunConfig& config, std::vector<pipeline::PipelineI
     return fmt::format("{} -> {}{}", kind, path,
                        std::filesystem::exists(path, error) ? " (replaces the existing file)" : "");
   };
-  if (!output.udp.empty()) {
-    // Checked when the file was read (with its line) or the override given.
-    const HostPort target =
-        parse_host_port(output.udp, config.file, 0, "output.udp", ExitCode::bad_input);
+  if (output.udp) {
+    const HostPort& target = *output.udp;
     auto sink = std::make_unique<messages::UdpSink>(target.host, target.port);
     const messages::UdpSink* udp = sink.get();
     probes.push_back({"udp",
@@ -150,10 +152,9 @@ RunOutputs make_outputs(const RunConfig& config, std::vector<pipeline::PipelineI
     outputs.destinations.push_back(file_line("binary", output.binary_file));
     sinks.push_back(std::make_unique<messages::BinaryFileSink>(output.binary_file));
   }
-  if (!output.mqtt.empty()) {
-    std::string problem;  // checked by validate()
+  if (output.mqtt) {
     outputs::MqttPublisherOptions mqtt;
-    mqtt.uri = outputs::parse_mqtt_uri(output.mqtt, problem).value();
+    mqtt.uri = *output.mqtt;
     auto sink =
         std::make_unique<outputs::MqttPublisher>(mqtt, config.stream_id, &detector::coco_label);
     const outputs::MqttPublisher* publisher = sink.get();
@@ -179,18 +180,15 @@ RunOutputs make_outputs(const RunConfig& config, std::vector<pipeline::PipelineI
         std::make_unique<messages::JsonlSink>(output.jsonl_file, &detector::coco_label));
   }
   std::unique_ptr<pipeline::FrameConsumer> video;
-  if (!output.video_file.empty()) {
-    std::string problem;  // both checked by validate()
-    const outputs::VideoTarget target =
-        outputs::parse_video_target(output.video_file, problem).value();
-    auto annotated = std::make_unique<outputs::AnnotatedVideo>(
-        target, first, outputs::parse_overlay_flags(output.overlay, problem).value(),
-        &detector::coco_label);
+  if (output.video) {
+    auto annotated = std::make_unique<outputs::AnnotatedVideo>(*output.video, first, output.overlay,
+                                                               &detector::coco_label);
     // One source (validate() checked it): the video sees every one of its frames.
     if (!inputs.empty()) inputs.front().tap = annotated->tap();
+    const auto& counted = inputs.empty() ? events::EventsConfig{} : inputs.front().events;
+    if (!counted.lines.empty() || !counted.zones.empty()) annotated->show_events(counted);
     video = std::move(annotated);
-    outputs.destinations.push_back("video -> " + output.video_file + " (H.264, overlay " +
-                                   output.overlay + ")");
+    outputs.destinations.push_back("video -> " + output.video->text + " (H.264)");
   }
   if (!output.report_file.empty()) {
     outputs.destinations.push_back(file_line("report", output.report_file));
@@ -234,7 +232,7 @@ RunOutputs make_outputs(const RunConfig& config, std::vector<pipeline::PipelineI
 
 std::vector<std::unique_ptr<messages::TrackSink>> make_sinks(const RunConfig& config) {
   RunConfig messages_only = config;
-  messages_only.output.video_file.clear();
+  messages_only.output.video.reset();
   messages_only.output.metrics_port = 0;
   messages_only.stats_interval_s = 0.0;
   std::vector<std::unique_ptr<messages::TrackSink>> sinks;
@@ -255,7 +253,7 @@ void check_run_files(const RunConfig& config) {
   const DetectorConfig& detector = config.detector;
   // A detections file named but not used (detector.kind ssd) is still the user's input file.
   inputs.push_back({detector.det_file, "detector.det_file"});
-  if (detector.kind != "replay" && !detector.model.empty()) {
+  if (detector.kind != DetectorKind::replay && !detector.model.empty()) {
     inputs.push_back({detector.model, "detector.model"});
     inputs.push_back({detector::checksum_path_of(detector.model), "the model's checksum file"});
     inputs.push_back({detector.anchors.empty() ? detector::default_anchors_path(detector.model)
@@ -280,8 +278,7 @@ void check_run_files(const RunConfig& config) {
   std::vector<NamedFile> outputs{{output.binary_file, "output.binary_file"},
                                  {output.jsonl_file, "output.jsonl_file"},
                                  {output.report_file, "output.report_file"}};
-  std::string problem;
-  const auto video = outputs::parse_video_target(output.video_file, problem);
+  const auto& video = output.video;
   if (video && (video->kind == outputs::VideoTargetKind::mp4_file ||
                 video->kind == outputs::VideoTargetKind::mkv_file)) {
     outputs.push_back({video->path, "output.video_file"});
@@ -295,14 +292,12 @@ void prepare_video_output(const RunConfig& config) {
   // First of all: no output may name an input or another output (nothing is opened for writing
   // before this).
   check_run_files(config);
-  if (config.output.video_file.empty()) return;
-  std::string problem;
-  const auto target = outputs::parse_video_target(config.output.video_file, problem);
+  const auto& target = config.output.video;
+  if (!target) return;
   const auto fail = [&](const std::string& why) {
-    throw InputError(config.output.video_file, 0, "output.video_file", why);
+    throw InputError(target->text, 0, "output.video_file", why);
   };
-  if (!target) fail(problem);
-  problem = outputs::check_video_elements(*target);
+  std::string problem = outputs::check_video_elements(*target);
   if (!problem.empty()) fail(problem);
   if (target->kind == outputs::VideoTargetKind::mp4_file ||
       target->kind == outputs::VideoTargetKind::mkv_file) {

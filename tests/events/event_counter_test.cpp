@@ -131,6 +131,24 @@ TEST(LineCrossing, TheBandFollowsTheMeasuredBoxNoise) {
   EXPECT_GT(bare.counter.line_counts()[0].in, 5);
 }
 
+TEST(LineCrossing, TheBoxNoiseIsMeasuredOnNeighbouringFramesOnly) {
+  // The same jittering tracks as above, but reported every third frame of a 10 fps source: the
+  // size's changes over frames far apart are not the jitter, and nothing is measured.
+  EventsConfig config;
+  config.lines.push_back({"floor", {{0.0, 100.0}, {400.0, 100.0}}, true});
+  config.frame_period_seconds = 0.1;
+  Walk sparse(config);
+  for (int id = 100; id < 140; ++id)
+    for (int i = 0; i < 20; ++i)
+      sparse.step({standing(id, 300.0, 300.0, i % 2 == 0 ? 64.0 : 56.0)}, 0.3);
+  EXPECT_EQ(sparse.counter.box_noise(), 0.0);
+  Walk dense(config);
+  for (int id = 100; id < 140; ++id)
+    for (int i = 0; i < 20; ++i)
+      dense.step({standing(id, 300.0, 300.0, i % 2 == 0 ? 64.0 : 56.0)}, 0.1);
+  EXPECT_NEAR(dense.counter.box_noise(), 8.0 / 60.0, 0.01);
+}
+
 TEST(LineCrossing, AJumpOverTheLineBetweenFarApartFramesCountsOnce) {
   Walk w(one_line());
   w.walk(1, {40});

@@ -22,6 +22,7 @@ bin=$stage/usr/bin/rtmot
 ldd "$bin" >"$work/ldd.txt" || fail "ldd $bin failed"
 ! grep -q "not found" "$work/ldd.txt" || { cat "$work/ldd.txt"; fail "a library is not found"; }
 while read -r name _ path _; do
+  path=$(readlink -f "$path")  # $ORIGIN/../lib/rtmot reads as .../usr/bin/../lib/rtmot
   case $path in
     "$stage"/usr/lib/*|/usr/lib/*|/lib/*) ;;
     *) fail "$name resolves to $path, outside the installed tree and the system" ;;

@@ -44,7 +44,8 @@ TEST_P(SteadyState, AllocatesNothingAfterWarmUp) {
   EXPECT_GT(reported, 0);  // it did track something
 }
 
-// The default preset as `rtmot track` runs it (elapsed time steps, the relative split): the same.
+// The default preset as `rtmot track` runs it (elapsed time steps, the relative split): the same,
+// with the whole track table (every live track's stage) read after every update.
 TEST(SteadyStateDefault, AllocatesNothingAfterWarmUp) {
   const auto dir = test::shared_path("data/mot15-train/ADL-Rundle-6");
   RTMOT_REQUIRE_FILE(dir / "det" / "det.txt");
@@ -53,17 +54,24 @@ TEST(SteadyStateDefault, AllocatesNothingAfterWarmUp) {
   config.frame_rate = 30.0;
   Tracker tracker(config);
   const std::size_t half = sequence.frames.size() / 2;
-  for (std::size_t f = 0; f < half; ++f) tracker.update(sequence.frames[f], f / 30.0);
+  for (std::size_t f = 0; f < half; ++f) {
+    tracker.update(sequence.frames[f], f / 30.0);
+    tracker.track_table();
+  }
   long reported = 0;
+  long live = 0;
   long during = 0;
   {
     const test::CountingScope counting;
-    for (std::size_t f = half; f < sequence.frames.size(); ++f)
+    for (std::size_t f = half; f < sequence.frames.size(); ++f) {
       reported += static_cast<long>(tracker.update(sequence.frames[f], f / 30.0).size());
+      live += static_cast<long>(tracker.track_table().size());
+    }
     during = counting.allocations();
   }
   EXPECT_EQ(during, 0);
   EXPECT_GT(reported, 0);
+  EXPECT_GT(live, reported);  // the table holds the unreported tracks too
 }
 
 TEST(AllocationCounter, CountsAllocations) {

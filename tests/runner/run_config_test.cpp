@@ -51,8 +51,8 @@ TEST(RunConfig, ReadsEverySection) {
   EXPECT_DOUBLE_EQ(config.source.fps, 10.0);
   EXPECT_EQ(config.playback.mode, PlaybackMode::simulated);
   EXPECT_DOUBLE_EQ(config.playback.latency_ms, 250.0);
-  EXPECT_EQ(config.detector.backend, "cpu");
-  EXPECT_EQ(config.detector.fp16, "false");
+  EXPECT_EQ(config.detector.backend, detector::BackendRequest::cpu);
+  EXPECT_EQ(config.detector.fp16, detector::Fp16Request::off);
   EXPECT_FLOAT_EQ(config.detector.score_threshold, 0.4F);
   EXPECT_EQ(config.detector.classes, (std::vector<int>{1, 3}));
   EXPECT_EQ(config.tracker.max_age, 3);
@@ -61,7 +61,9 @@ TEST(RunConfig, ReadsEverySection) {
   EXPECT_DOUBLE_EQ(config.tracker.affinity_threshold,
                    tracker::default_threshold(tracker::AffinityKind::linear));
   EXPECT_DOUBLE_EQ(config.tracker.frame_rate, 0.0) << "unset: taken from the source";
-  EXPECT_EQ(config.output.udp, "127.0.0.1:5600");
+  ASSERT_TRUE(config.output.udp.has_value());
+  EXPECT_EQ(config.output.udp->host, "127.0.0.1");
+  EXPECT_EQ(config.output.udp->port, 5600);
   EXPECT_EQ(config.output.report_file, "report.json");
   EXPECT_DOUBLE_EQ(config.stats_interval_s, 2.0);
   EXPECT_EQ(config.stream_id, 7U);
@@ -115,7 +117,8 @@ TEST(RunConfig, WrongTypesNameLineAndField) {
   expect_error("detector:\n  fp16: maybe\n", 2, "detector.fp16");
   expect_error("detector:\n  threads: [2]\n", 2, "detector.threads");
   expect_error("detector:\n  classes: 1\n", 2, "detector.classes");
-  expect_error("detector:\n  classes: [1, person]\n", 2, "detector.classes");
+  expect_error("detector:\n  classes: [1, unicorn]\n", 2, "detector.classes");
+  expect_error("detector:\n  classes: [1, 91]\n", 2, "detector.classes");
   expect_error("source: [1, 2]\n", 1, "source");
   expect_error("stats_interval_s:\n", 1, "stats_interval_s");
 }
@@ -182,7 +185,7 @@ TEST(RunConfig, SourcesListMistakesNameTheEntry) {
   };
   invalid("sources:\n  - {uri: a.avi, stream_id: 1}\n  - {uri: b.avi, stream_id: 1}\n",
           "sources[1].stream_id");
-  invalid("sources: [a.avi, b.avi]\noutput: {video_file: v.avi}\n", "output.video_file");
+  invalid("sources: [a.avi, b.avi]\noutput: {video_file: v.mp4}\n", "output.video_file");
 }
 
 // Every tracker key is read through the one options table: values a typed conversion would take
@@ -210,6 +213,20 @@ TEST(RunConfig, EveryTrackerOptionCanBeSetFromYaml) {
 
 TEST(RunConfig, MalformedYamlNamesTheLine) {
   expect_error("source:\n  uri: [a.avi\n", 3, "");
+}
+
+// Issue 23, class 11: yaml-cpp's Load() read the first document and dropped the rest silently.
+TEST(RunConfig, ASecondDocumentIsAnErrorNamingItsLine) {
+  expect_error("source:\n  uri: a.avi\n---\nsource:\n  uri: b.avi\n", 4, "");
+  expect_error("stream_id: 1\n---\n", 3, "");
+}
+
+TEST(RunConfig, ClassesTakeNamesOrIdsAsTheCommandLineDoes) {
+  const auto config = runner::parse_run_config("detector:\n  classes: [person, 3]\n", "c.yaml");
+  EXPECT_EQ(config.detector.classes, (std::vector<int>{1, 3}));
+  EXPECT_TRUE(
+      runner::parse_run_config("detector:\n  classes: []\n", "c.yaml").detector.classes.empty())
+      << "an empty list keeps every class";
 }
 
 TEST(RunConfig, ValidateNamesWhatIsMissing) {

@@ -8,7 +8,7 @@
 
 #include "tracker/tracker_config.hpp"
 
-namespace rtmot::app {
+namespace rtmot::runner {
 
 class TrackerFlags {
  public:
@@ -23,4 +23,4 @@ class TrackerFlags {
   std::vector<const CLI::Option*> given_;
 };
 
-}  // namespace rtmot::app
+}  // namespace rtmot::runner

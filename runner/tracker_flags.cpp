@@ -1,10 +1,10 @@
-#include "apps/tracker_flags.hpp"
+#include "runner/tracker_flags.hpp"
 
 #include "common/exit_codes.hpp"
 #include "common/input_error.hpp"
 #include "tracker/tracker_options.hpp"
 
-namespace rtmot::app {
+namespace rtmot::runner {
 
 void TrackerFlags::add_to(CLI::App& cli) {
   const auto& options = tracker::tracker_options();
@@ -35,4 +35,4 @@ void TrackerFlags::apply(tracker::TrackerConfig& config) const {
   }
 }
 
-}  // namespace rtmot::app
+}  // namespace rtmot::runner

@@ -1,0 +1,330 @@
+#include "runner/run_settings.hpp"
+
+#include <cstdint>
+#include <utility>
+
+#include "common/checked_number.hpp"
+#include "common/frame_rate.hpp"
+#include "detector/coco_labels.hpp"
+
+namespace rtmot::runner {
+namespace {
+
+// The documented ranges (docs/config.md).
+constexpr int kMaxImageSide = 16384;
+constexpr int kMaxThreads = 256;
+constexpr std::int64_t kMaxFrames = 1'000'000'000'000;
+// CPU_SETSIZE: the most CPUs pthread_setaffinity_np can name. A CPU this machine lacks is not a
+// configuration error (the same file runs on several boards): the thread runs unpinned, logged.
+constexpr int kMaxCpu = 1023;
+
+template <typename T>
+using Field = std::function<T&(RunConfig&)>;
+
+template <typename T>
+RunSetting real(std::string key, std::string flag, std::string doc, RealRange range,
+                Field<T> field) {
+  std::string expected = range.expected();
+  return {std::move(key),
+          std::move(flag),
+          std::move(doc),
+          std::move(expected),
+          false,
+          [range, field](RunConfig& c, std::string_view text, std::string&) {
+            const auto value = parse_real(text, range);
+            if (value) field(c) = static_cast<T>(*value);
+            return value.has_value();
+          }};
+}
+
+template <typename T>
+RunSetting integer(std::string key, std::string flag, std::string doc, IntegerRange range,
+                   Field<T> field) {
+  std::string expected = range.expected();
+  return {std::move(key),
+          std::move(flag),
+          std::move(doc),
+          std::move(expected),
+          false,
+          [range, field](RunConfig& c, std::string_view text, std::string&) {
+            const auto value = parse_integer(text, range);
+            if (value) field(c) = static_cast<T>(*value);
+            return value.has_value();
+          }};
+}
+
+// A broker and a topic to publish to (no wildcards: outputs/mqtt_uri.hpp).
+std::optional<outputs::MqttUri> publish_uri(const std::string& text, std::string& problem) {
+  return outputs::parse_mqtt_uri(text, problem, outputs::MqttTopicUse::publish);
+}
+
+// A frame rate (common/frame_rate.hpp: one range for every rate), or 0 for "the source's own".
+RunSetting frame_rate_or_zero(std::string key, std::string doc, Field<double> field) {
+  return {std::move(key),
+          "",
+          std::move(doc),
+          "0 (the source's rate) or a rate in " + frame_rate_range(),
+          false,
+          [field](RunConfig& c, std::string_view text, std::string&) {
+            const auto value = parse_real(text, {0.0, kMaxFrameRate});
+            if (!value || (*value != 0.0 && !is_frame_rate(*value))) return false;
+            field(c) = *value;
+            return true;
+          }};
+}
+
+// A path or URI taken as written (opened and checked when the run starts).
+RunSetting text(std::string key, std::string flag, std::string doc, Field<std::string> field) {
+  return {std::move(key),
+          std::move(flag),
+          std::move(doc),
+          "a path",
+          false,
+          [field](RunConfig& c, std::string_view text, std::string&) {
+            field(c) = std::string(text);
+            return true;
+          }};
+}
+
+// A value with its own parser: `parse(text, problem)` returns an optional of the field's type.
+template <typename T, typename Parse>
+RunSetting parsed(std::string key, std::string flag, std::string doc, std::string expected,
+                  Parse parse, Field<T> field) {
+  return {std::move(key),
+          std::move(flag),
+          std::move(doc),
+          std::move(expected),
+          false,
+          [parse, field](RunConfig& c, std::string_view text, std::string& problem) {
+            auto value = parse(std::string(text), problem);
+            if (value) field(c) = std::move(*value);
+            return value.has_value();
+          }};
+}
+
+template <typename Names, typename T>
+RunSetting named(std::string key, std::string flag, std::string doc, const Names& names,
+                 Field<T> field) {
+  return parsed<T>(
+      std::move(key), std::move(flag), std::move(doc), names.alternatives(),
+      [&names](const std::string& text, std::string&) { return names.parse(text); }, field);
+}
+
+std::optional<HostPort> host_port(const std::string& text, std::string& problem) {
+  const auto parsed = platform::parse_host_port(text, problem);
+  if (!parsed) problem = "expected HOST:PORT or [IPV6]:PORT, got '" + text + "': " + problem;
+  return parsed;
+}
+
+// An output that may be off: empty text turns it off, anything else is `parse`d (its problem
+// quoted with the text unless `parse` quotes it itself).
+template <typename Parse>
+auto off_or(Parse parse, bool quote = true) {
+  return [parse, quote](const std::string& text, std::string& problem) {
+    using Value = typename decltype(parse(text, problem))::value_type;
+    if (text.empty()) return std::optional<std::optional<Value>>(std::optional<Value>{});
+    auto value = parse(text, problem);
+    if (!value) {
+      if (quote) problem = "'" + text + "': " + problem;
+      return std::optional<std::optional<Value>>{};
+    }
+    return std::optional<std::optional<Value>>(std::move(value));
+  };
+}
+
+std::vector<RunSetting> source_settings() {
+  const auto side = IntegerRange{0, kMaxImageSide};
+  return {
+      text("source.uri", "", "what to track: a file, v4l2://, csi://, rtsp://, test://, mot-seq://",
+           [](RunConfig& c) -> std::string& { return c.source.uri; }),
+      integer<int>("source.width", "", "requested camera width; 0 = the source's", side,
+                   [](RunConfig& c) -> int& { return c.source.width; }),
+      integer<int>("source.height", "", "requested camera height; 0 = the source's", side,
+                   [](RunConfig& c) -> int& { return c.source.height; }),
+      frame_rate_or_zero("source.fps", "requested camera rate; 0 = the source's",
+                         [](RunConfig& c) -> double& { return c.source.fps; }),
+      integer<std::int64_t>(
+          "source.stream_id", "", "this source's stream id (default: stream_id + its index)",
+          {0, 0xFFFFFFFF}, [](RunConfig& c) -> std::int64_t& { return c.source.stream_id; }),
+  };
+}
+
+std::vector<RunSetting> playback_settings() {
+  return {
+      parsed<PlaybackMode>(
+          "playback.mode", "--playback", "how recorded frames are released to the detector",
+          pipeline::playback_mode_alternatives(),
+          [](const std::string& t, std::string&) { return pipeline::parse_playback_mode(t); },
+          [](RunConfig& c) -> PlaybackMode& { return c.playback.mode; }),
+      real<double>("playback.latency_ms", "--latency-ms",
+                   "simulated detector latency (simulated mode)", {0.0, 3'600'000.0, true},
+                   [](RunConfig& c) -> double& { return c.playback.latency_ms; }),
+  };
+}
+
+std::vector<RunSetting> detector_settings() {
+  const RealRange unit{0.0, 1.0};
+  RunSetting classes = parsed<std::vector<int>>(
+      "detector.classes", "--classes",
+      "COCO classes to keep: names or ids (person,car or 1,3); all = every class",
+      "COCO class names or ids (1..90), or all", parse_classes,
+      [](RunConfig& c) -> std::vector<int>& { return c.detector.classes; });
+  classes.list = true;
+  return {
+      named("detector.kind", "", "ssd (the model on every frame) or replay (a det.txt file)",
+            kDetectorKindNames,
+            Field<DetectorKind>([](RunConfig& c) -> DetectorKind& { return c.detector.kind; })),
+      text("detector.model", "--model", "ssd: the ONNX model (the flag also sets kind ssd)",
+           [](RunConfig& c) -> std::string& { return c.detector.model; }),
+      text("detector.anchors", "", "ssd: the anchors CSV; empty = beside the model",
+           [](RunConfig& c) -> std::string& { return c.detector.anchors; }),
+      parsed<detector::BackendRequest>(
+          "detector.backend", "--backend", "the engine that runs the model",
+          detector::backend_request_names(),
+          [](const std::string& t, std::string&) { return detector::parse_backend_request(t); },
+          [](RunConfig& c) -> detector::BackendRequest& { return c.detector.backend; }),
+      parsed<detector::Fp16Request>(
+          "detector.fp16", "--fp16", "half precision on CUDA (auto: on Jetson boards)",
+          "auto, on or off",
+          [](const std::string& t, std::string&) { return detector::parse_fp16_request(t); },
+          [](RunConfig& c) -> detector::Fp16Request& { return c.detector.fp16; }),
+      real<float>("detector.score_threshold", "--threshold",
+                  "the detector's score cut, before the tracker", unit,
+                  [](RunConfig& c) -> float& { return c.detector.score_threshold; }),
+      real<float>("detector.nms_threshold", "--nms-threshold", "non-maximum suppression IoU", unit,
+                  [](RunConfig& c) -> float& { return c.detector.nms_threshold; }),
+      integer<int>("detector.threads", "--detector-threads",
+                   "the detector's CPU threads; 0 = every CPU this process may use",
+                   {0, kMaxThreads}, [](RunConfig& c) -> int& { return c.detector.threads; }),
+      std::move(classes),
+      text("detector.det_file", "--det-file", "replay: a MOTChallenge det.txt",
+           [](RunConfig& c) -> std::string& { return c.detector.det_file; }),
+  };
+}
+
+std::vector<RunSetting> output_settings() {
+  return {
+      parsed<std::optional<HostPort>>(
+          "output.udp", "--udp", "send track messages to HOST:PORT or [IPV6]:PORT",
+          "HOST:PORT or [IPV6]:PORT", off_or(host_port, false),
+          [](RunConfig& c) -> std::optional<HostPort>& { return c.output.udp; }),
+      text("output.binary_file", "--binary", "write binary track messages to this file",
+           [](RunConfig& c) -> std::string& { return c.output.binary_file; }),
+      text("output.jsonl_file", "--jsonl", "write track messages as JSON lines to this file",
+           [](RunConfig& c) -> std::string& { return c.output.jsonl_file; }),
+      parsed<std::optional<outputs::MqttUri>>(
+          "output.mqtt", "--mqtt", "publish track messages to an MQTT broker",
+          "mqtt://HOST[:PORT]/TOPIC[?qos=0|1&format=binary|json]", off_or(publish_uri),
+          [](RunConfig& c) -> std::optional<outputs::MqttUri>& { return c.output.mqtt; }),
+      parsed<std::optional<outputs::VideoTarget>>(
+          "output.video_file", "--video-out", "the annotated video",
+          "FILE.mp4/.mkv, rtsp://[ADDRESS]:PORT/NAME, rtp://HOST:PORT or display://N",
+          off_or(outputs::parse_video_target),
+          [](RunConfig& c) -> std::optional<outputs::VideoTarget>& { return c.output.video; }),
+      parsed<outputs::OverlayFlags>(
+          "output.overlay", "--overlay", "what the video shows (comma-separated)",
+          outputs::overlay_flag_names() + " (comma-separated), or none",
+          outputs::parse_overlay_flags,
+          [](RunConfig& c) -> outputs::OverlayFlags& { return c.output.overlay; }),
+      text("output.report_file", "--report", "write the final report as JSON to this file",
+           [](RunConfig& c) -> std::string& { return c.output.report_file; }),
+      integer<int>("output.metrics_port", "--metrics-port",
+                   "serve Prometheus metrics on this TCP port; 0 = off", {0, 65535},
+                   [](RunConfig& c) -> int& { return c.output.metrics_port; }),
+      parsed<std::string>("output.metrics_bind", "--metrics-bind",
+                          "the address the metrics endpoint listens on", "an IPv4 or IPv6 address",
+                          platform::parse_bind_address,
+                          [](RunConfig& c) -> std::string& { return c.output.metrics_bind; }),
+  };
+}
+
+std::vector<RunSetting> thread_settings() {
+  using Stage = pipeline::StageThread pipeline::StageThreads::*;
+  const std::pair<const char*, Stage> stages[] = {{"capture", &pipeline::StageThreads::capture},
+                                                  {"detect", &pipeline::StageThreads::detect},
+                                                  {"track", &pipeline::StageThreads::track},
+                                                  {"sink", &pipeline::StageThreads::sink}};
+  std::vector<RunSetting> settings;
+  for (const auto& [name, stage] : stages) {
+    const std::string prefix = std::string("threads.") + name;
+    const Stage member = stage;
+    RunSetting cpu = integer<int>(
+        prefix + ".cpu", "", "pin the stage's thread to this CPU; -1 = any", {-1, kMaxCpu},
+        [member](RunConfig& c) -> int& { return (c.threads.*member).cpu; });
+    RunSetting fifo = integer<int>(
+        prefix + ".fifo_priority", "", "SCHED_FIFO priority 1..99; 0 = normal scheduling", {0, 99},
+        [member](RunConfig& c) -> int& { return (c.threads.*member).fifo_priority; });
+    settings.push_back(std::move(cpu));
+    settings.push_back(std::move(fifo));
+  }
+  return settings;
+}
+
+std::vector<RunSetting> top_settings() {
+  return {
+      real<double>("stats_interval_s", "--stats-interval",
+                   "seconds between progress lines; 0 = none", {0.0, 86'400.0},
+                   [](RunConfig& c) -> double& { return c.stats_interval_s; }),
+      integer<std::uint32_t>("stream_id", "--stream-id", "stream id in every message",
+                             {0, 0xFFFFFFFF},
+                             [](RunConfig& c) -> std::uint32_t& { return c.stream_id; }),
+      integer<std::int64_t>("max_frames", "--max-frames",
+                            "stop after this many captured frames; 0 = no limit", {0, kMaxFrames},
+                            [](RunConfig& c) -> std::int64_t& { return c.max_frames; }),
+  };
+}
+
+std::vector<RunSetting> make_table() {
+  std::vector<RunSetting> table;
+  for (auto part : {source_settings(), playback_settings(), detector_settings(), output_settings(),
+                    thread_settings(), top_settings()}) {
+    for (auto& setting : part) table.push_back(std::move(setting));
+  }
+  return table;
+}
+
+}  // namespace
+
+const std::vector<RunSetting>& run_settings() {
+  static const std::vector<RunSetting> table = make_table();
+  return table;
+}
+
+const RunSetting* find_run_setting(std::string_view key) {
+  for (const auto& setting : run_settings()) {
+    if (setting.key == key) return &setting;
+  }
+  return nullptr;
+}
+
+std::string refusal(const RunSetting& setting, std::string_view text, const std::string& problem) {
+  if (!problem.empty()) return problem;
+  return "'" + std::string(text) + "': expected " + setting.expected;
+}
+
+std::optional<std::vector<int>> parse_classes(std::string_view text, std::string& problem) {
+  std::vector<int> classes;
+  if (text == "all") return classes;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    const std::size_t comma = std::min(text.find(',', start), text.size());
+    const std::string_view word = text.substr(start, comma - start);
+    int id = detector::coco_class_id(word);
+    if (id < 0) {
+      const auto number = parse_integer(word, {1, 1000});
+      if (number && !detector::coco_label(static_cast<int>(*number)).empty()) {
+        id = static_cast<int>(*number);
+      }
+    }
+    if (id < 0) {
+      problem = "'" + std::string(word) +
+                "' is not a COCO class name or id (e.g. person,car or 1,3; ids 1..90)";
+      return std::nullopt;
+    }
+    classes.push_back(id);
+    start = comma + 1;
+  }
+  return classes;
+}
+
+}  // namespace rtmot::runner

@@ -1,0 +1,184 @@
+// The settings' one table (runner/run_settings.hpp): the YAML file and the command line read it
+// alike, a preset means the same wherever it is given, and docs/config.md shows the table as it is.
+#include "runner/run_settings.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "common/input_error.hpp"
+#include "runner/run_flags.hpp"
+#include "shared_data.hpp"
+#include "tracker/presets.hpp"
+
+namespace rtmot::runner {
+namespace {
+
+// The configuration `rtmot run` makes of `args` (a command line after `run`) on top of `yaml`.
+RunConfig with_flags(const std::string& yaml, const std::string& args) {
+  RunConfig config = parse_run_config(yaml, "base.yaml");
+  CLI::App app;
+  RunFlags flags;
+  flags.add_to(app);
+  app.parse(args, false);
+  flags.apply(config);
+  return config;
+}
+
+void expect_same_tracker(const tracker::TrackerConfig& a, const tracker::TrackerConfig& b) {
+  EXPECT_EQ(a.predictor, b.predictor);
+  EXPECT_EQ(a.affinity, b.affinity);
+  EXPECT_EQ(a.affinity_threshold, b.affinity_threshold);
+  EXPECT_EQ(a.detection_threshold, b.detection_threshold);
+  EXPECT_EQ(a.score_range_cut, b.score_range_cut);
+  EXPECT_EQ(a.max_age, b.max_age);
+  EXPECT_EQ(a.min_hits, b.min_hits);
+  EXPECT_EQ(a.time_step, b.time_step);
+  EXPECT_EQ(a.second_round, b.second_round);
+  EXPECT_EQ(a.low_score, b.low_score);
+  EXPECT_EQ(a.birth_threshold, b.birth_threshold);
+  EXPECT_EQ(a.strong_birth_range_cut, b.strong_birth_range_cut);
+  EXPECT_EQ(a.confirm_by_duration, b.confirm_by_duration);
+  EXPECT_EQ(a.keep_confirmation, b.keep_confirmation);
+  EXPECT_EQ(a.tentative_dies_on_miss, b.tentative_dies_on_miss);
+  EXPECT_EQ(a.second_round_threshold, b.second_round_threshold);
+  EXPECT_EQ(a.noise_gate_factor, b.noise_gate_factor);
+  EXPECT_EQ(a.frame_rate, b.frame_rate);
+  EXPECT_EQ(a.image_width, b.image_width);
+  EXPECT_EQ(a.image_height, b.image_height);
+}
+
+// Issue 18: `--preset bytetrack` zeroed the score cut that `tracker: {preset: bytetrack}` kept.
+TEST(RunSettings, PresetOnTheCommandLineEqualsPresetInTheFile) {
+  for (const std::string name : {"sort", "rtmot", "bytetrack"}) {
+    SCOPED_TRACE(name);
+    const RunConfig from_file =
+        parse_run_config("tracker:\n  preset: " + name + "\n", "preset.yaml");
+    const RunConfig from_flag = with_flags("stream_id: 0\n", "--preset " + name);
+    expect_same_tracker(from_file.tracker, from_flag.tracker);
+    const auto preset = tracker::find_preset(name);
+    ASSERT_TRUE(preset.has_value());
+    EXPECT_EQ(from_flag.tracker.detection_threshold, preset->detection_threshold)
+        << "the preset's own score cut, as `rtmot track --preset` uses it";
+    EXPECT_EQ(from_flag.tracker.frame_rate, 0.0) << "from the source";
+  }
+  // The flag replaces the file's tracker section, keys and all.
+  const RunConfig replaced = with_flags("tracker:\n  max_age: 7\n", "--preset sort");
+  EXPECT_EQ(replaced.tracker.max_age, tracker::find_preset("sort")->max_age);
+}
+
+TEST(RunSettings, FlagsAndFileKeysGiveTheSameValues) {
+  const RunConfig from_file = parse_run_config(
+      "detector:\n  score_threshold: 0.25\n  classes: [person, car]\n  backend: cpu\n"
+      "output:\n  udp: '[::1]:5600'\n  metrics_port: 9100\n  metrics_bind: '::1'\n"
+      "playback:\n  mode: simulated\n  latency_ms: 40\nmax_frames: 12\n",
+      "f.yaml");
+  const RunConfig from_flags = with_flags(
+      "stream_id: 0\n",
+      "--threshold 0.25 --classes person,car --backend cpu --udp [::1]:5600 --metrics-port 9100 "
+      "--metrics-bind ::1 --playback simulated --latency-ms 40 --max-frames 12");
+  EXPECT_EQ(from_file.detector.score_threshold, from_flags.detector.score_threshold);
+  EXPECT_EQ(from_file.detector.classes, (std::vector<int>{1, 3}));
+  EXPECT_EQ(from_flags.detector.classes, from_file.detector.classes);
+  EXPECT_EQ(from_flags.detector.backend, detector::BackendRequest::cpu);
+  ASSERT_TRUE(from_flags.output.udp && from_file.output.udp);
+  EXPECT_EQ(from_flags.output.udp->host, "::1");
+  EXPECT_EQ(from_file.output.udp->port, from_flags.output.udp->port);
+  EXPECT_EQ(from_flags.output.metrics_bind, from_file.output.metrics_bind);
+  EXPECT_EQ(from_flags.playback.mode, PlaybackMode::simulated);
+  EXPECT_EQ(from_flags.playback.latency_ms, from_file.playback.latency_ms);
+  EXPECT_EQ(from_flags.max_frames, 12);
+}
+
+// A refused flag names the flag and is a usage error (exit 2), never the YAML key it sets (exit 3).
+TEST(RunSettings, RefusedFlagsNameTheFlag) {
+  for (const auto& [flag, value] :
+       std::vector<std::pair<std::string, std::string>>{{"--threshold", "nan"},
+                                                        {"--video-out", "out/x.avi"},
+                                                        {"--mqtt", "tcp://broker/t"},
+                                                        {"--overlay", "boxes"},
+                                                        {"--udp", "999.999.1.1:5600"},
+                                                        {"--metrics-bind", "999.999.1.1"},
+                                                        {"--classes", "unicorn"},
+                                                        {"--max-frames", "-1"},
+                                                        {"--preset", "deepsort"}}) {
+    SCOPED_TRACE(flag + " " + value);
+    try {
+      with_flags("stream_id: 0\n", flag + " " + value);
+      ADD_FAILURE() << "accepted";
+    } catch (const InputError& error) {
+      EXPECT_EQ(error.field(), flag);
+      EXPECT_EQ(error.exit_code(), ExitCode::usage);
+    }
+  }
+}
+
+TEST(RunSettings, EveryKeyAndFlagIsDeclaredOnce) {
+  std::set<std::string> keys;
+  std::set<std::string> flags{"--config", "--preset", "--source"};
+  for (const auto& setting : run_settings()) {
+    EXPECT_TRUE(keys.insert(setting.key).second) << setting.key;
+    if (!setting.flag.empty()) {
+      EXPECT_TRUE(flags.insert(setting.flag).second) << setting.flag;
+    }
+    EXPECT_FALSE(setting.doc.empty()) << setting.key;
+    EXPECT_FALSE(setting.expected.empty()) << setting.key;
+  }
+}
+
+// The reference table of docs/config.md, as the settings' table makes it.
+std::string markdown_table() {
+  std::ostringstream text;
+  text << "| key | flag | accepted | meaning |\n| --- | --- | --- | --- |\n";
+  for (const auto& setting : run_settings()) {
+    std::string expected = setting.expected;
+    for (std::size_t at = expected.find('|'); at != std::string::npos;
+         at = expected.find('|', at + 2)) {
+      expected.replace(at, 1, "\\|");
+    }
+    text << "| `" << setting.key << "` | "
+         << (setting.flag.empty() ? "–" : "`" + setting.flag + "`") << " | " << expected << " | "
+         << setting.doc << " |\n";
+  }
+  return text.str();
+}
+
+constexpr const char* kBegin =
+    "<!-- settings-table: generated from runner/run_settings.cpp by tests/runner/"
+    "run_settings_test.cpp (RTMOT_UPDATE_DOCS=1 rewrites it) -->\n";
+constexpr const char* kEnd = "<!-- end settings-table -->\n";
+
+// docs/config.md cannot drift from the table: the test fails until the docs show it as it is.
+TEST(RunSettings, DocsShowTheTableAsItIs) {
+  const auto path = test::source_path("docs/config.md");
+  std::ifstream in(path);
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  std::string docs = buffer.str();
+  const std::size_t begin = docs.find(kBegin);
+  const std::size_t end = docs.find(kEnd);
+  ASSERT_NE(begin, std::string::npos) << "no settings table in " << path;
+  ASSERT_NE(end, std::string::npos) << "no end of the settings table in " << path;
+  const std::size_t body = begin + std::string(kBegin).size();
+  const std::string shown = docs.substr(body, end - body);
+  const std::string table = markdown_table();
+  if (shown != table && std::getenv("RTMOT_UPDATE_DOCS") != nullptr) {
+    docs.replace(body, end - body, table);
+    std::ofstream(path) << docs;
+    return;
+  }
+  EXPECT_EQ(shown, table) << "docs/config.md's settings table is out of date: run this test with "
+                             "RTMOT_UPDATE_DOCS=1";
+  // Every key also has its hand-written row (defaults, details) in its section's table.
+  for (const auto& setting : run_settings()) {
+    const std::string name = setting.key.substr(setting.key.rfind('.') + 1);
+    EXPECT_NE(docs.find("`" + name + "`", end), std::string::npos)
+        << setting.key << " has no row of its own below the reference table";
+  }
+}
+
+}  // namespace
+}  // namespace rtmot::runner
