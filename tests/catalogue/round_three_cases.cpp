@@ -423,8 +423,8 @@ std::vector<CatalogueCase> round_three_cases() {
        "run --mqtt publishing to a topic with a + wildcard",
        replay_config(),
        with(run_yaml, {"--mqtt", "mqtt://127.0.0.1:1/site/+/tracks", "--jsonl", "{dir}/out.jsonl"}),
-       ExitCode::bad_input,
-       {"output.mqtt", "wildcards"},
+       ExitCode::usage,
+       {"--mqtt", "wildcards"},
        absent("out.jsonl")});
   cases.push_back({"run_mqtt_topic_hash_in_the_middle",
                    "output.mqtt topic a/#/b in the configuration",
@@ -436,14 +436,14 @@ std::vector<CatalogueCase> round_three_cases() {
                    "run --mqtt topic holding a byte that is not UTF-8",
                    replay_config(),
                    with(run_yaml, {"--mqtt", "mqtt://127.0.0.1:1/caf\xE9"}),
-                   ExitCode::bad_input,
-                   {"output.mqtt", "UTF-8"}});
+                   ExitCode::usage,
+                   {"--mqtt", "UTF-8"}});
   cases.push_back({"run_mqtt_topic_sys",
                    "run --mqtt publishing into the broker's $SYS tree",
                    replay_config(),
                    with(run_yaml, {"--mqtt", "mqtt://127.0.0.1:1/$SYS/tracks"}),
-                   ExitCode::bad_input,
-                   {"output.mqtt", "$SYS"}});
+                   ExitCode::usage,
+                   {"--mqtt", "$SYS"}});
   cases.push_back({"listen_mqtt_filter_hash_not_last",
                    "listen --mqtt with the filter a/b# (# not a whole level)",
                    [](Workspace&, Vars&) {},
