@@ -121,6 +121,12 @@ std::vector<CatalogueCase> settings_cases() {
                 listen_with("--bind", "999.999.1.1"), "--bind"),
       flag_case("listen_bind_name", "listen --bind example.com (a name is not a local address)",
                 listen_with("--bind", "example.com"), "--bind"),
+      // ---- 11. A second YAML document was silently ignored ---------------------------------
+      yaml_case("yaml_second_document",
+                "a second document after '---' (its settings never applied)",
+                "---\noutput:\n  udp: 127.0.0.1:5600\n", "second YAML document"),
+      yaml_case("yaml_second_document_empty", "a trailing '---' with nothing after it", "---\n",
+                "second YAML document"),
   };
 }
 
