@@ -15,6 +15,7 @@
 #include "apps/subcommand.hpp"
 #include "common/exit_codes.hpp"
 #include "common/input_error.hpp"
+#include "common/input_file.hpp"
 #include "events/events_yaml.hpp"
 #include "events/offline_count.hpp"
 #include "motio/mot_files.hpp"
@@ -35,9 +36,9 @@ struct CountCommandOptions {
 
 YAML::Node load_yaml(const std::string& file) {
   try {
-    return YAML::LoadFile(file);
-  } catch (const YAML::BadFile&) {
-    throw InputError(file, 0, "", "cannot read the file");
+    // Through the one input reader (a FIFO or /dev/zero named here would hang or fill memory).
+    constexpr std::uint64_t kMaxLinesFileBytes = 1 << 20;
+    return YAML::Load(read_text_file(file, kMaxLinesFileBytes));
   } catch (const YAML::ParserException& error) {
     throw InputError(file, error.mark.line + 1, "", error.msg);
   }

@@ -13,6 +13,7 @@
 #include "mot/evaluation.hpp"
 #include "mot/metrics_report.hpp"
 #include "motio/mot_files.hpp"
+#include "motio/sequence_folders.hpp"
 #include "platform/signals.hpp"
 
 namespace rtmot::app {
@@ -48,6 +49,9 @@ void warn_if_sampled(const mot::EvaluationReport& report) {
 
 int run_eval(const EvalOptions& options) {
   platform::StopSignals signals;  // a stop ends scoring before the next sequence
+  check_distinct_files(motio::sequence_inputs(motio::find_sequences(options.gt_dir), {"gt/gt.txt"},
+                                              {options.results_dir}),
+                       {{options.csv_path, "--csv"}, {options.json_path, "--json"}});
   const mot::EvaluationReport report =
       mot::evaluate(options.gt_dir, options.results_dir,
                     mot::EvaluationScope{options.interval, options.processed_frames},

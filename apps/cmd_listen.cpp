@@ -13,6 +13,7 @@
 
 #include "apps/number_checks.hpp"
 #include "apps/subcommand.hpp"
+#include "common/distinct_files.hpp"
 #include "common/input_error.hpp"
 #include "detector/coco_labels.hpp"
 #include "messages/json_line_decoder.hpp"
@@ -264,7 +265,8 @@ int listen_udp(const ListenOptions& options) {
 int listen_mqtt(const ListenOptions& options) {
   platform::StopSignals signals;  // before libmosquitto's thread exists: see its header
   std::string problem;
-  const auto uri = outputs::parse_mqtt_uri(options.mqtt_uri, problem);
+  const auto uri =
+      outputs::parse_mqtt_uri(options.mqtt_uri, problem, outputs::MqttTopicUse::subscribe);
   if (!uri) throw InputError(options.mqtt_uri, 0, "--mqtt", problem, ExitCode::usage);
   MessageHandler handler(options);
   // The handler runs on libmosquitto's thread; the main thread reads the counts for the stats
@@ -284,6 +286,9 @@ int listen_mqtt(const ListenOptions& options) {
   };
   double next_stats_s = options.stats_every_s;
   while (!signals.stop_requested()) {
+    if (const std::string failure = subscriber.failure(); !failure.empty()) {
+      throw InputError(outputs::to_string(*uri), 0, "--mqtt", failure, ExitCode::network);
+    }
     {
       const std::lock_guard<std::mutex> lock(handler_mutex);
       if (options.count > 0 && messages_seen >= options.count) break;
@@ -362,10 +367,12 @@ Subcommand add_listen_command(CLI::App& parent) {
     if (port->count() == 0 && read->count() == 0 && mqtt->count() == 0)
       throw CLI::RequiredError("--port (or --read FILE, or --mqtt URI)");
   });
-  return {cli, [options] {
-            if (!options->mqtt_uri.empty()) return listen_mqtt(*options);
-            return options->read_path.empty() ? listen_udp(*options) : read_file(*options);
-          }};
+  return {
+      cli, [options] {
+        check_distinct_files({{options->read_path, "--read"}}, {{options->jsonl_path, "--jsonl"}});
+        if (!options->mqtt_uri.empty()) return listen_mqtt(*options);
+        return options->read_path.empty() ? listen_udp(*options) : read_file(*options);
+      }};
 }
 
 }  // namespace rtmot::app

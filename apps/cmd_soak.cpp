@@ -9,14 +9,16 @@
 
 #include <algorithm>
 #include <chrono>
-#include <fstream>
 #include <memory>
+#include <sstream>
 #include <string>
 #include <vector>
 
 #include "apps/number_checks.hpp"
 #include "apps/subcommand.hpp"
 #include "common/exit_codes.hpp"
+#include "common/input_error.hpp"
+#include "common/input_file.hpp"
 #include "pipeline/pipeline.hpp"
 #include "platform/signals.hpp"
 #include "runner/run_config.hpp"
@@ -38,7 +40,13 @@ struct SoakOptions {
 
 /// Resident memory of this process in MiB, from /proc/self/status (0 if unavailable).
 double resident_mb() {
-  std::ifstream status("/proc/self/status");
+  std::string text;
+  try {
+    text = read_text_file("/proc/self/status", 64 * 1024);  // the one input reader, bounded
+  } catch (const InputError&) {
+    return 0.0;
+  }
+  std::istringstream status(text);
   for (std::string line; std::getline(status, line);) {
     if (line.rfind("VmRSS:", 0) == 0) return std::stod(line.substr(6)) / 1024.0;  // kB
   }

@@ -76,6 +76,10 @@ int run_track(const TrackCommandOptions& options) {
   track_options.interval = options.interval;
   track_options.stop = &signals.stop_flag();
   const auto sequences = motio::find_sequences(options.dataset);
+  std::vector<NamedFile> outputs;
+  for (const auto& sequence : sequences)
+    outputs.push_back({motio::sequence_file(options.out_dir, sequence.info.name, ".txt"), "--out"});
+  check_distinct_files(motio::sequence_inputs(sequences, {options.detections}), outputs);
   std::error_code error;
   fs::create_directories(options.out_dir, error);
   if (error) throw InputError(options.out_dir, 0, "--out", "cannot create: " + error.message());

@@ -3,9 +3,13 @@
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
+#include <cerrno>
 #include <csignal>
+#include <cstdio>
+#include <cstring>
 #include <exception>
 #include <opencv2/core/utils/logger.hpp>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -16,17 +20,38 @@
 
 namespace {
 
+// What a command printed must have reached stdout: a results table lost to a full disk or a
+// closed pipe is a failure, as for coreutils (close_stdout). Returns the error line, or "".
+std::string stdout_failure() {
+  errno = 0;
+  const bool failed = std::fflush(stdout) != 0 || std::ferror(stdout) != 0;
+  if (!failed) return {};
+  return std::string("cannot write to stdout: ") +
+         (errno != 0 ? std::strerror(errno) : "write error");
+}
+
 // Every failure ends here: one clear line, a documented exit code, never an uncaught exception.
 int run_reporting_errors(const std::function<int()>& run) {
+  int code = 0;
   try {
-    return run();
+    code = run();
   } catch (const rtmot::InputError& error) {
     spdlog::error("{}", error.what());
     return rtmot::to_int(error.exit_code());
   } catch (const std::exception& error) {
+    // fmt::print throws when stdout refuses a write larger than its buffer.
+    if (const std::string failure = stdout_failure(); !failure.empty()) {
+      spdlog::error("{}", failure);
+      return rtmot::to_int(rtmot::ExitCode::io_error);
+    }
     spdlog::critical("internal error: {}", error.what());
     return rtmot::to_int(rtmot::ExitCode::internal_error);
   }
+  if (const std::string failure = stdout_failure(); !failure.empty()) {
+    spdlog::error("{}", failure);
+    if (code == 0) code = rtmot::to_int(rtmot::ExitCode::io_error);
+  }
+  return code;
 }
 
 // CLI11 reports a mistyped subcommand as "a subcommand is required"; name the word instead.
@@ -45,7 +70,11 @@ bool is_unknown_subcommand(const CLI::App& app, int argc, char** argv) {
 // 60-200 ms during which SIGTERM killed `rtmot run`. A .preinit_array entry of the executable runs
 // after the loader has mapped the libraries and before any of their constructors; the process is
 // single-threaded then, so sigprocmask is the whole mask.
+// SIGXFSZ is ignored here too: under a file-size limit (ulimit -f, systemd's LimitFSIZE=) its
+// default action killed the run mid-record; ignored, the write fails with EFBIG and the output is
+// cut back to its last whole record (common/output_file.cpp) and the run ends with io_error.
 void block_stop_signals(int, char**, char**) {
+  std::signal(SIGXFSZ, SIG_IGN);
   sigset_t stop_signals;
   sigemptyset(&stop_signals);
   sigaddset(&stop_signals, SIGINT);

@@ -15,6 +15,7 @@ enum class ExitCode : int {
   network = 6,         // a socket cannot be opened/bound (e.g. port in use)
   io_error = 7,        // reading or writing a file failed: disk full, EIO (not the data's fault);
                        // the annotated video's write failing mid-run
+  encoder_failed = 8,  // the video encoder refused the frames (a size or format it cannot take)
 };
 
 constexpr int to_int(ExitCode code) {

@@ -15,11 +15,14 @@ class InputError : public std::runtime_error {
   InputError(std::string file, int line, std::string field, const std::string& problem,
              ExitCode code = ExitCode::bad_input)
       : std::runtime_error(format(file, line, field, problem)),
+        problem_(problem),
         file_(std::move(file)),
         line_(line),
         field_(std::move(field)),
         code_(code) {}
 
+  /// What is wrong, without where.
+  const std::string& problem() const noexcept { return problem_; }
   const std::string& file() const noexcept { return file_; }
   int line() const noexcept { return line_; }
   const std::string& field() const noexcept { return field_; }
@@ -34,6 +37,7 @@ class InputError : public std::runtime_error {
     return where.empty() ? problem : where + ": " + problem;
   }
 
+  std::string problem_;
   std::string file_;
   int line_;
   std::string field_;

@@ -87,6 +87,15 @@ std::size_t InputFile::read(void* data, std::size_t size) {
   return total;
 }
 
+std::string input_file_problem(const std::filesystem::path& path) {
+  try {
+    const InputFile file(path);
+  } catch (const InputError& error) {
+    return error.problem();
+  }
+  return {};
+}
+
 std::string read_text_file(const std::filesystem::path& path, std::uint64_t max_bytes) {
   InputFile file(path, max_bytes);
   std::string text;

@@ -38,6 +38,11 @@ class InputFile {
   std::uint64_t size_{0};
 };
 
+/// "" when `path` is a regular file that opens for reading, else why not ("cannot open file: no
+/// such file", "is a FIFO (pipe), expected a regular file"): for a file a library opens itself
+/// (GStreamer's filesrc), checked first by the same rules.
+std::string input_file_problem(const std::filesystem::path& path);
+
 /// A whole regular file (at most `max_bytes`: a file that grows beyond it while being read is
 /// refused too).
 std::string read_text_file(const std::filesystem::path& path,

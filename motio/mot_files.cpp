@@ -8,6 +8,7 @@
 #include <optional>
 #include <string_view>
 
+#include "common/frame_rate.hpp"
 #include "common/input_error.hpp"
 #include "common/input_file.hpp"
 #include "motio/text_fields.hpp"
@@ -231,9 +232,9 @@ SequenceInfo read_seqinfo(const std::filesystem::path& ini_path) {
   check_sequence_name(info.name, file, required("name").second);
   const auto& [rate_text, rate_line] = required("frameRate");
   const auto rate = ini_number(rate_text);
-  if (!rate || *rate <= 0.0 || *rate > 10000.0) {
+  if (!rate || !is_frame_rate(*rate)) {
     throw InputError(file, rate_line, "frameRate",
-                     "'" + rate_text + "' is not a rate in (0, 10000]");
+                     "'" + rate_text + "' is not a rate in " + frame_rate_range());
   }
   info.frame_rate = *rate;
   info.length = positive_integer("seqLength", kMaxFrame);
@@ -251,7 +252,12 @@ std::vector<MotRow> read_mot_file(const std::filesystem::path& path, MotFileKind
   const std::string file = path.string();
   const std::string text = read_text_file(path);
   std::vector<MotRow> rows;
-  rows.reserve(static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n')) + 1);
+  // One row per line that holds something: reserving one per newline let 128 MB of blank lines
+  // ask for 128 M rows (bad_alloc under a 4 GB address limit). Counting first costs one pass over
+  // text already in memory; what is reserved is then bounded by what the file holds.
+  std::size_t content_lines = 0;
+  detail::for_each_line(file, text, [&](int, std::string_view) { ++content_lines; });
+  rows.reserve(content_lines);
   RowParser parser(file, kind, max_frame);
   detail::for_each_line(file, text, [&](int line, std::string_view content) {
     rows.push_back(parser.parse(line, content));

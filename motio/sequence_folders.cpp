@@ -77,4 +77,21 @@ fs::path sequence_file(const fs::path& dir, const std::string& name, const std::
   return dir / (name + extension);
 }
 
+std::vector<NamedFile> sequence_inputs(const std::vector<SequenceFolder>& sequences,
+                                       const std::vector<std::string>& per_sequence,
+                                       const std::vector<std::filesystem::path>& named_files) {
+  std::vector<NamedFile> files;
+  for (const auto& sequence : sequences) {
+    files.push_back({sequence.dir / "seqinfo.ini", sequence.info.name + "'s seqinfo.ini"});
+    for (const auto& relative : per_sequence) {
+      files.push_back({sequence.dir / relative, sequence.info.name + "'s " + relative});
+    }
+    for (const auto& dir : named_files) {
+      files.push_back(
+          {sequence_file(dir, sequence.info.name, ".txt"), sequence.info.name + "'s results"});
+    }
+  }
+  return files;
+}
+
 }  // namespace rtmot::motio

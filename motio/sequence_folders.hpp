@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "common/distinct_files.hpp"
 #include "motio/mot_files.hpp"
 
 namespace rtmot::motio {
@@ -26,5 +27,12 @@ std::vector<std::filesystem::path> find_sequence_dirs(const std::filesystem::pat
 /// `dir`/`name``extension` for a sequence name read_seqinfo() accepted: inside `dir`.
 std::filesystem::path sequence_file(const std::filesystem::path& dir, const std::string& name,
                                     const std::string& extension);
+
+/// The files a command reads from each sequence: its seqinfo.ini and each of `per_sequence`
+/// (relative to the sequence folder, e.g. "det/det.txt", "gt/gt.txt"), and `dir`/NAME.txt for
+/// each of `named_files` (e.g. eval's results folder); for check_distinct_files().
+std::vector<NamedFile> sequence_inputs(const std::vector<SequenceFolder>& sequences,
+                                       const std::vector<std::string>& per_sequence,
+                                       const std::vector<std::filesystem::path>& named_files = {});
 
 }  // namespace rtmot::motio

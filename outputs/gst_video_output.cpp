@@ -3,8 +3,14 @@
 #include <fmt/format.h>
 #include <gst/app/gstappsrc.h>
 #include <spdlog/spdlog.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
+#include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstdio>
+#include <cstring>
 
 #include "common/input_error.hpp"
 #include "outputs/bgr_buffer.hpp"
@@ -28,7 +34,23 @@ std::string raw_caps(int width, int height, double fps) {
                      numerator, denominator);
 }
 
+// Where a GStreamer error came from: the sink's file (open, write: disk full) or the encoding.
+ExitCode code_of(const GError* error) {
+  return error != nullptr && error->domain == GST_RESOURCE_ERROR ? ExitCode::io_error
+                                                                 : ExitCode::encoder_failed;
+}
+
+constexpr int kMinEncoderSide = 16;
+
 }  // namespace
+
+std::string encoder_padding(int width, int height) {
+  const auto fitted = [](int side) { return std::max(kMinEncoderSide, side + (side & 1)); };
+  const int right = fitted(width) - width;
+  const int bottom = fitted(height) - height;
+  if (right == 0 && bottom == 0) return "";
+  return fmt::format("videobox right={} bottom={} ! ", -right, -bottom);
+}
 
 std::string describe_pipeline(const VideoTarget& target, int width, int height, double fps) {
   const int keyframe_interval = std::max(1, static_cast<int>(std::lround(fps * 2.0)));
@@ -40,10 +62,10 @@ std::string describe_pipeline(const VideoTarget& target, int width, int height, 
       target.kind == VideoTargetKind::mp4_file || target.kind == VideoTargetKind::mkv_file;
   const std::string source = fmt::format(
       "appsrc name=src format=time is-live={} block={} max-buffers={} {} caps=\"{}\" ! "
-      "videoconvert ! video/x-raw,format=I420 ! ",
+      "videoconvert ! video/x-raw,format=I420 ! {}",
       file ? "false" : "true", file ? "true" : "false",
       file ? 4 : std::max(4, keyframe_interval / 4), file ? "" : "leaky-type=downstream",
-      raw_caps(width, height, fps));
+      raw_caps(width, height, fps), encoder_padding(width, height));
   // Browsers play H.264 High profile 4:2:0 in MP4 with the index first (faststart) and `avc1`
   // sample entries (x264enc's default stream-format=avc).
   const std::string file_encoder =
@@ -87,12 +109,15 @@ GstVideoOutput::GstVideoOutput(VideoTarget target, double fps)
 
 GstVideoOutput::~GstVideoOutput() {
   if (pipeline_) gst_element_set_state(pipeline_.get(), GST_STATE_NULL);
+  if (!written_path_.empty()) ::unlink(written_path_.c_str());  // not finished: not published
 }
 
-void GstVideoOutput::fail(const std::string& problem) {
+void GstVideoOutput::fail(const std::string& problem, ExitCode code) {
   if (pipeline_) gst_element_set_state(pipeline_.get(), GST_STATE_NULL);
   closed_ = true;
-  throw InputError(target_.text, 0, "output.video_file", problem, ExitCode::io_error);
+  if (!written_path_.empty()) ::unlink(written_path_.c_str());
+  written_path_.clear();
+  throw InputError(target_.text, 0, "output.video_file", problem, code);
 }
 
 void GstVideoOutput::start(int width, int height) {
@@ -101,16 +126,27 @@ void GstVideoOutput::start(int width, int height) {
   pipeline_.reset(gst_parse_launch(description.c_str(), &raw_error));
   const ErrorPtr error(raw_error);
   if (!pipeline_ || error) {
-    fail(std::string("cannot build the video pipeline: ") + (error ? error->message : "?"));
+    fail(std::string("cannot build the video pipeline: ") + (error ? error->message : "?"),
+         ExitCode::encoder_failed);
   }
   source_.reset(gst_bin_get_by_name(GST_BIN(pipeline_.get()), "src"));
   if (const ObjectPtr<GstElement> sink{gst_bin_get_by_name(GST_BIN(pipeline_.get()), "sink")}) {
-    g_object_set(sink.get(), "location", target_.path.c_str(), nullptr);
+    // Published by rename, as common/output_file does: right for a regular file or a new one;
+    // a device or FIFO there (/dev/full, a pipe to a player) is written in place.
+    struct stat status {};
+    const bool special = ::stat(target_.path.c_str(), &status) == 0 && !S_ISREG(status.st_mode);
+    if (!special) written_path_ = target_.path + ".tmp-" + std::to_string(::getpid());
+    g_object_set(sink.get(), "location", special ? target_.path.c_str() : written_path_.c_str(),
+                 nullptr);
+  }
+  if (!encoder_padding(width, height).empty()) {
+    spdlog::warn("{}: frames of {}x{} are padded with black to a size the H.264 encoder takes",
+                 target_.text, width, height);
   }
   bus_.reset(gst_element_get_bus(pipeline_.get()));
   if (gst_element_set_state(pipeline_.get(), GST_STATE_PLAYING) == GST_STATE_CHANGE_FAILURE) {
     throw_if_error();
-    fail("the video pipeline does not start");
+    fail("the video pipeline does not start", ExitCode::encoder_failed);
   }
 }
 
@@ -123,7 +159,8 @@ void GstVideoOutput::throw_if_error() {
   gst_message_parse_error(message.get(), &raw_error, &raw_debug);
   const ErrorPtr error(raw_error);
   const StringPtr debug(raw_debug);
-  fail(std::string("writing the video failed: ") + (error ? error->message : "unknown error"));
+  fail(std::string("writing the video failed: ") + (error ? error->message : "unknown error"),
+       code_of(error.get()));
 }
 
 void GstVideoOutput::push(const cv::Mat& bgr) {
@@ -138,7 +175,8 @@ void GstVideoOutput::push(const cv::Mat& bgr) {
   const GstFlowReturn flow = gst_app_src_push_buffer(GST_APP_SRC(source_.get()), buffer);
   throw_if_error();
   if (flow != GST_FLOW_OK && flow != GST_FLOW_FLUSHING) {
-    fail(std::string("the encoder refused a frame: ") + gst_flow_get_name(flow));
+    fail(std::string("the encoder refused a frame: ") + gst_flow_get_name(flow),
+         ExitCode::encoder_failed);
   }
 }
 
@@ -155,16 +193,17 @@ void GstVideoOutput::close() {
     GError* raw_error = nullptr;
     gst_message_parse_error(message.get(), &raw_error, nullptr);
     const ErrorPtr error(raw_error);
-    gst_element_set_state(pipeline_.get(), GST_STATE_NULL);
-    throw InputError(
-        target_.text, 0, "output.video_file",
-        std::string("finishing the video failed: ") + (error ? error->message : "unknown error"),
-        ExitCode::io_error);
+    fail(std::string("finishing the video failed: ") + (error ? error->message : "unknown error"),
+         code_of(error.get()));
   }
   gst_element_set_state(pipeline_.get(), GST_STATE_NULL);
-  if (!message) {
-    throw InputError(target_.text, 0, "output.video_file", "the encoder did not finish within 60 s",
-                     ExitCode::io_error);
+  if (!message) fail("the encoder did not finish within 60 s", ExitCode::encoder_failed);
+  if (!written_path_.empty()) {
+    if (::rename(written_path_.c_str(), target_.path.c_str()) != 0) {
+      fail(std::string("cannot rename the finished video: ") + std::strerror(errno),
+           ExitCode::io_error);
+    }
+    written_path_.clear();
   }
 }
 

@@ -1,13 +1,16 @@
 #pragma once
 // File, RTP and display outputs: appsrc -> videoconvert -> x264enc -> mp4mux/matroskamux/
 // rtph264pay -> filesink/udpsink (or a video sink), built at the first frame, when the size is
-// known. The bus is checked after every frame, so a write that fails mid-run (a full disk) is an
-// error at once, not a video silently lost.
+// known (and padded to what the encoder takes). The bus is checked after every frame, so a write
+// that fails mid-run (a full disk) is an error at once, not a video silently lost. A file is
+// written under a temporary name and renamed when finished: an unplayable half (an mp4 without
+// its index) never appears under the name asked for.
 #include <gst/gst.h>
 
 #include <cstdint>
 #include <string>
 
+#include "common/exit_codes.hpp"
 #include "outputs/video_stream.hpp"
 #include "platform/gst_ptr.hpp"
 
@@ -25,7 +28,9 @@ class GstVideoOutput final : public VideoStream {
 
  private:
   void start(int width, int height);
-  [[noreturn]] void fail(const std::string& problem);
+  /// Stops the pipeline, removes an unfinished file and throws: `code` io_error for a failed
+  /// write (disk full), encoder_failed for what the encoder refused.
+  [[noreturn]] void fail(const std::string& problem, ExitCode code);
   void throw_if_error();
 
   VideoTarget target_;
@@ -33,9 +38,15 @@ class GstVideoOutput final : public VideoStream {
   platform::gst::ObjectPtr<GstElement> pipeline_;
   platform::gst::ObjectPtr<GstElement> source_;
   platform::gst::ObjectPtr<GstBus> bus_;
+  std::string written_path_;  // files: PATH.tmp-PID until close() renames it to PATH
   std::uint64_t frames_{0};
   bool closed_{false};
 };
+
+/// x264 takes 4:2:0 frames whose sides are even and at least 16 (33x17 and 1x1 were refused at
+/// the first frame, 16x14 hung it): "videobox ... ! " padding `width`x`height` with black on the
+/// right and bottom up to the nearest size it takes, or "" when it takes it as it is.
+std::string encoder_padding(int width, int height);
 
 /// The GStreamer pipeline description for a target (what gst-launch-1.0 would take), with the
 /// caps of frames `width`x`height` at `fps`. The file's location is set as a property, not here.

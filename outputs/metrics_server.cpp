@@ -24,7 +24,30 @@ MetricsServer::MetricsServer(const PipelineMetrics& metrics, const std::string& 
       url_("http://" + platform::format_host_port(bind_address, port) + "/metrics") {
   ensure_library();
   const std::string ports = platform::format_host_port(bind_address, port);
-  const char* options[] = {"listening_ports", ports.c_str(), "num_threads", "1", nullptr};
+  // A client that connects and sends nothing, or half a request, holds a worker until the request
+  // timeout: with civetweb's one worker and 30 s, one idle connection stopped every scrape
+  // (Prometheus gives up after 10 s). A scrape's request is one small packet: a second is ample on
+  // any link. Workers are cheap (they sleep); 16 of them with a 1 s header timeout clear 50
+  // half-sent requests in about 3 s. Connections beyond the workers wait in a bounded queue, then
+  // in the kernel's bounded backlog; keep-alive is off so that no scraper holds a worker between
+  // scrapes.
+  const char* options[] = {"listening_ports",
+                           ports.c_str(),
+                           "num_threads",
+                           "16",
+                           "request_timeout_ms",
+                           "1000",
+                           "enable_keep_alive",
+                           "no",
+                           "linger_timeout_ms",
+                           "0",
+                           "connection_queue",
+                           "64",
+                           "listen_backlog",
+                           "128",
+                           "max_request_size",
+                           "8192",
+                           nullptr};
   mg_callbacks callbacks{};
   context_ = mg_start(&callbacks, nullptr, options);
   if (context_ == nullptr) {

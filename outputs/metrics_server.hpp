@@ -1,7 +1,8 @@
 #pragma once
 // The optional HTTP endpoint (--metrics-port / output.metrics_port) serving GET /metrics in
-// Prometheus' text format, with civetweb (Debian's libcivetweb-dev): one worker thread, its own, so
-// a slow scraper never touches the pipeline.
+// Prometheus' text format, with civetweb (Debian's libcivetweb-dev): worker threads of its own, so
+// a slow scraper never touches the pipeline, and enough of them, with a short request timeout, that
+// idle or half-sent connections do not stop scrapes (metrics_server.cpp says the numbers).
 #include <cstdint>
 #include <string>
 

@@ -27,9 +27,14 @@ void MqttSubscriber::on_connect(struct mosquitto* client, void* self, int rc) {
   const int subscribed =
       mosquitto_subscribe(client, nullptr, subscriber.uri_.topic.c_str(), subscriber.uri_.qos);
   if (subscribed != MOSQ_ERR_SUCCESS) {
-    spdlog::error("{}: cannot subscribe: {}", to_string(subscriber.uri_),
-                  mosquitto_error_text(subscribed));
+    subscriber.fail(std::string("cannot subscribe: ") + mosquitto_error_text(subscribed));
   }
+}
+
+void MqttSubscriber::fail(std::string why) {
+  if (failure_claimed_.exchange(true, std::memory_order_acq_rel)) return;
+  failure_ = std::move(why);
+  failed_.store(true, std::memory_order_release);
 }
 
 void MqttSubscriber::on_disconnect(struct mosquitto*, void* self, int rc) {
@@ -39,8 +44,14 @@ void MqttSubscriber::on_disconnect(struct mosquitto*, void* self, int rc) {
   spdlog::warn("{}: connection lost; reconnecting with backoff", to_string(subscriber.uri_));
 }
 
-void MqttSubscriber::on_subscribe(struct mosquitto*, void* self, int, int, const int*) {
+void MqttSubscriber::on_subscribe(struct mosquitto*, void* self, int, int granted_count,
+                                  const int* granted) {
   auto& subscriber = *static_cast<MqttSubscriber*>(self);
+  // SUBACK's return code 0x80: the broker refused the filter (its ACL, or a filter it rejects).
+  if (granted_count < 1 || granted == nullptr || granted[0] >= 0x80) {
+    subscriber.fail("the broker refused the subscription");
+    return;
+  }
   subscriber.subscriptions_.fetch_add(1, std::memory_order_release);
   spdlog::info("subscribed to {}", to_string(subscriber.uri_));
 }

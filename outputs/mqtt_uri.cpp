@@ -1,5 +1,7 @@
 #include "outputs/mqtt_uri.hpp"
 
+#include <mosquitto.h>
+
 #include <string_view>
 
 #include "platform/host_port.hpp"
@@ -34,7 +36,32 @@ bool read_parameter(std::string_view key, std::string_view value, MqttUri& uri,
 
 }  // namespace
 
-std::optional<MqttUri> parse_mqtt_uri(const std::string& text, std::string& problem) {
+// libmosquitto's own checks (the ones its publish and subscribe apply), so that the start-up check
+// and the library agree; control characters are refused by its UTF-8 check too.
+std::string check_mqtt_topic(const std::string& topic, MqttTopicUse use) {
+  if (topic.empty()) return "the topic is empty";
+  if (topic.size() > 65535) return "the topic is longer than 65535 bytes";
+  if (mosquitto_validate_utf8(topic.data(), static_cast<int>(topic.size())) != MOSQ_ERR_SUCCESS) {
+    return "the topic is not valid UTF-8 or holds a NUL or control character";
+  }
+  if (use == MqttTopicUse::publish) {
+    if (mosquitto_pub_topic_check2(topic.data(), topic.size()) != MOSQ_ERR_SUCCESS) {
+      return "a topic to publish to may not hold the wildcards + or #, got '" + topic + "'";
+    }
+    if (topic.front() == '$') {
+      return "topics starting with '$' are the broker's own ($SYS), got '" + topic + "'";
+    }
+    return {};
+  }
+  if (mosquitto_sub_topic_check2(topic.data(), topic.size()) != MOSQ_ERR_SUCCESS) {
+    return "'" + topic +
+           "' is not a topic filter: + and # must each be a whole level, # only the last";
+  }
+  return {};
+}
+
+std::optional<MqttUri> parse_mqtt_uri(const std::string& text, std::string& problem,
+                                      MqttTopicUse use) {
   const std::string_view all(text);
   if (all.substr(0, scheme.size()) != scheme) {
     problem = "expected mqtt://HOST[:PORT]/TOPIC";
@@ -56,6 +83,8 @@ std::optional<MqttUri> parse_mqtt_uri(const std::string& text, std::string& prob
   uri.host = address->host;
   uri.port = address->port;
   uri.topic = std::string(rest.substr(slash + 1));
+  problem = check_mqtt_topic(uri.topic, use);
+  if (!problem.empty()) return std::nullopt;
   std::string_view parameters = query;
   while (!parameters.empty()) {
     const auto amp = parameters.find('&');

@@ -17,9 +17,21 @@ struct MqttUri {
   MqttPayload payload{MqttPayload::binary};
 };
 
+/// What the topic is for: a publisher's topic name may hold no wildcard; a subscriber's filter may
+/// hold + (a whole level) and # (a whole last level).
+enum class MqttTopicUse { publish, subscribe };
+
 /// Parses `text`; nullopt with `problem` set (one phrase) if malformed. HOST:PORT goes through
-/// platform::parse_host_port, so `mqtt://[::1]:1883/t` works.
-std::optional<MqttUri> parse_mqtt_uri(const std::string& text, std::string& problem);
+/// platform::parse_host_port, so `mqtt://[::1]:1883/t` works. The topic follows the MQTT
+/// specification's rules for `use` (well-formed UTF-8 without NUL or control characters, at most
+/// 65535 bytes, wildcards only whole levels of a filter) and a topic name for publishing does not
+/// start with '$' (the broker's own, $SYS): checked here, at start, because a topic the broker
+/// refuses failed every message later (30 warnings a second) or subscribed to nothing.
+std::optional<MqttUri> parse_mqtt_uri(const std::string& text, std::string& problem,
+                                      MqttTopicUse use = MqttTopicUse::publish);
+
+/// "" when `topic` is valid for `use` (the rules above), else why not.
+std::string check_mqtt_topic(const std::string& topic, MqttTopicUse use);
 
 /// The URI back as text (for logs).
 std::string to_string(const MqttUri& uri);

@@ -106,10 +106,14 @@ std::string prepare_video_file(const VideoTarget& target) {
       return "cannot create folder " + path.parent_path().string() + ": " + error.message();
   }
   if (std::filesystem::is_directory(path, error)) return "is a directory";
-  // Created (or truncated) now, as the writer will: what fails here would fail later.
-  const int fd = ::open(target.path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  // The writer writes PATH.tmp-PID and renames it to PATH when the video is finished: that
+  // temporary is created (and removed) now, so that what fails here fails before the run, and an
+  // existing PATH is left as it is until a finished video replaces it.
+  const std::string temporary = target.path + ".tmp-" + std::to_string(::getpid());
+  const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
   if (fd < 0) return std::strerror(errno);
   ::close(fd);
+  ::unlink(temporary.c_str());
   return "";
 }
 

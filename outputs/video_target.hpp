@@ -31,7 +31,8 @@ std::optional<VideoTarget> parse_video_target(const std::string& text, std::stri
 std::string rtp_sdp(const VideoTarget& target);
 
 /// For a file target: creates its missing folders and checks that the file can be created and
-/// written (it is created empty; the writer replaces it). Returns "" or the reason it cannot
+/// written (a temporary beside it is created and removed; an existing file is left until the
+/// finished video replaces it). Returns "" or the reason it cannot
 /// ("permission denied", "is a directory", ...). Run before the model loads: a typo costs nothing.
 std::string prepare_video_file(const VideoTarget& target);
 

@@ -4,21 +4,26 @@
 
 #include <array>
 #include <cstdio>
-#include <fstream>
 #include <memory>
 #include <regex>
 #include <sstream>
 #include <thread>
 
+#include "common/input_error.hpp"
+#include "common/input_file.hpp"
+
 namespace rtmot::platform {
 namespace {
 
+// Through the one input reader, bounded: a board's description files are a line each; a missing
+// or unreadable one means "not this board" ({}).
 std::string read_text(const std::filesystem::path& path) {
-  std::ifstream file(path, std::ios::binary);
-  if (!file) return {};
-  std::ostringstream text;
-  text << file.rdbuf();
-  return text.str();
+  constexpr std::uint64_t kMaxDescriptionBytes = 64 * 1024;
+  try {
+    return read_text_file(path, kMaxDescriptionBytes);
+  } catch (const InputError&) {
+    return {};
+  }
 }
 
 // Device-tree strings end in NUL; config files in newlines.

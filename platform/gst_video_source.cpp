@@ -7,7 +7,9 @@
 #include <filesystem>
 #include <opencv2/core.hpp>
 
+#include "common/frame_rate.hpp"
 #include "common/input_error.hpp"
+#include "common/input_file.hpp"
 #include "platform/clock.hpp"
 #include "platform/gst_pipelines.hpp"
 #include "platform/image_folder_source.hpp"
@@ -78,9 +80,10 @@ void GstVideoSource::fail_open(const std::string& problem) const {
 void GstVideoSource::open() {
   gst::ensure_initialized();
   if (uri_.kind == SourceKind::file) {
-    std::error_code error;
-    if (!std::filesystem::is_regular_file(uri_.location, error)) {
-      fail_open("no such file: " + uri_.location);
+    // GStreamer opens the file itself: the one input reader's rules first (a FIFO would block
+    // filesrc, a device never ends).
+    if (const std::string problem = input_file_problem(uri_.location); !problem.empty()) {
+      fail_open(uri_.location + ": " + problem);
     }
   }
 
@@ -257,7 +260,7 @@ ReadStatus GstVideoSource::read(cv::Mat& bgr, FrameInfo& info) {
           info_.fps > 0.0 ? "" : " and no frame rate", fps,
           info_.fps > 0.0 || options_.fps > 0.0 ? "" : " (set source.fps if that is wrong)");
     }
-    info.pts_ns = std::llround(static_cast<double>(info.frame_number - 1) * 1e9 / fps);
+    info.pts_ns = frame_time_ns(info.frame_number - 1, fps);
   }
   info.capture_ns = capture_ns;
   return ReadStatus::frame;
@@ -298,7 +301,11 @@ bool GstVideoSource::adopt_caps(GstCaps* caps) {
   info_.height = GST_VIDEO_INFO_HEIGHT(&video_info_);
   const int numerator = GST_VIDEO_INFO_FPS_N(&video_info_);
   const int denominator = GST_VIDEO_INFO_FPS_D(&video_info_);
-  info_.fps = numerator > 0 && denominator > 0 ? static_cast<double>(numerator) / denominator : 0.0;
+  const double fps =
+      numerator > 0 && denominator > 0 ? static_cast<double>(numerator) / denominator : 0.0;
+  // A stream that claims an absurd rate (1/1000000) is taken as one without a rate: its
+  // timestamps are its own, and the frame-number fallback assumes one (frame_time_ns).
+  info_.fps = is_frame_rate(fps) ? fps : 0.0;
   return true;
 }
 

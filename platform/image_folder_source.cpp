@@ -7,8 +7,11 @@
 #include <opencv2/imgproc.hpp>
 #include <system_error>
 
+#include "common/frame_rate.hpp"
 #include "common/input_error.hpp"
+#include "common/input_file.hpp"
 #include "platform/clock.hpp"
+#include "platform/image_header.hpp"
 
 namespace rtmot::platform {
 namespace {
@@ -57,6 +60,28 @@ bool natural_less(const std::string& a, const std::string& b) {
   return a < b;
 }
 
+// The largest image file read: an uncompressed 8192x8192 BMP is 192 MB.
+constexpr std::uint64_t kMaxImageFileBytes = 256ULL << 20;
+
+// Reads `path` whole into `bytes` (through the one input reader: regular files only, bounded, read
+// errors reported) and decodes it once its header declared a frame within the limits. Throws
+// InputError naming the file.
+void read_image(const std::filesystem::path& path, std::string& bytes, cv::Mat& decoded) {
+  InputFile file(path, kMaxImageFileBytes);
+  bytes.resize(static_cast<std::size_t>(file.size()));
+  bytes.resize(file.read(bytes.data(), bytes.size()));
+  const auto size = read_image_size(bytes);
+  if (!size) {
+    throw InputError(path.string(), 0, "", "not a PNG, JPEG, BMP or PNM image (unknown header)");
+  }
+  if (const std::string problem = check_image_size(*size); !problem.empty()) {
+    throw InputError(path.string(), 0, "", problem);
+  }
+  const cv::Mat encoded(1, static_cast<int>(bytes.size()), CV_8UC1, bytes.data());
+  decoded = cv::imdecode(encoded, cv::IMREAD_COLOR);
+  if (decoded.empty()) throw InputError(path.string(), 0, "", "cannot decode the image");
+}
+
 }  // namespace
 
 const std::vector<std::string>& image_folder_extensions() {
@@ -101,8 +126,11 @@ ImageFolderSource::ImageFolderSource(const VideoUri& uri)
   info_.uri = uri.text;
   info_.live = false;
   info_.fps = fps_;
-  decoded_ = cv::imread(files_.front().string(), cv::IMREAD_COLOR);
-  if (decoded_.empty()) fail(files_.front().string(), "cannot decode the image (not an image?)");
+  try {
+    read_image(files_.front(), file_bytes_, decoded_);
+  } catch (const InputError& error) {
+    throw InputError("", 0, "", error.what(), ExitCode::source_failed);  // names the file
+  }
   info_.width = decoded_.cols;
   info_.height = decoded_.rows;
 }
@@ -111,18 +139,18 @@ ReadStatus ImageFolderSource::read(cv::Mat& bgr, FrameInfo& info) {
   const auto count = static_cast<std::int64_t>(files_.size());
   if (next_ >= count * loops_) return ReadStatus::end_of_stream;
   const auto& path = files_[static_cast<std::size_t>(next_ % count)];
-  // imread has no variant that decodes into an existing buffer; the copy below keeps the
+  // imdecode has no variant that decodes into an existing buffer; the copy below keeps the
   // caller's buffer (and so the pipeline's slots) stable when the size is unchanged.
-  decoded_ = cv::imread(path.string(), cv::IMREAD_COLOR);
-  if (decoded_.empty()) {
-    last_error_ = path.string() + ": cannot decode the image";
+  try {
+    read_image(path, file_bytes_, decoded_);
+  } catch (const InputError& error) {
+    last_error_ = error.what();
     return ReadStatus::error;
   }
   decoded_.copyTo(bgr);
   ++next_;
   info.frame_number = next_;
-  info.pts_ns =
-      static_cast<std::int64_t>(std::llround(static_cast<double>(next_ - 1) * 1e9 / fps_));
+  info.pts_ns = frame_time_ns(next_ - 1, fps_);
   info.capture_ns = steady_now_ns();
   return ReadStatus::frame;
 }

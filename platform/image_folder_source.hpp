@@ -29,8 +29,9 @@ class ImageFolderSource final : public VideoSource {
   explicit ImageFolderSource(const VideoUri& uri);
 
   /// Decodes the next file into `bgr` (8-bit BGR; grey and 16-bit images are converted). A file
-  /// that cannot be decoded is an `error` naming it (last_error()); after the last file (of the
-  /// last loop) `end_of_stream`.
+  /// that cannot be read or decoded, or whose header declares more pixels than a frame may have
+  /// (image_header.hpp: checked before decoding), is an `error` naming it (last_error()); after
+  /// the last file (of the last loop) `end_of_stream`.
   ReadStatus read(cv::Mat& bgr, FrameInfo& info) override;
   const SourceInfo& info() const override { return info_; }
   std::string last_error() const override { return last_error_; }
@@ -43,7 +44,8 @@ class ImageFolderSource final : public VideoSource {
   double fps_;
   SourceInfo info_;
   std::string last_error_;
-  std::int64_t next_{0};  // index of the next frame over all loops
+  std::int64_t next_{0};    // index of the next frame over all loops
+  std::string file_bytes_;  // the encoded file, reused: read through InputFile, header checked
   cv::Mat decoded_;
 };
 

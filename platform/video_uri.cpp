@@ -1,5 +1,7 @@
 #include "platform/video_uri.hpp"
 
+#include <sys/stat.h>
+
 #include <algorithm>
 #include <cctype>
 #include <charconv>
@@ -7,6 +9,7 @@
 #include <filesystem>
 #include <set>
 
+#include "common/frame_rate.hpp"
 #include "common/input_error.hpp"
 #include "platform/host_port.hpp"
 
@@ -51,7 +54,7 @@ double parse_fps(const std::string& uri, const std::string& key, const std::stri
   if (value.empty() || end != value.c_str() + value.size()) {
     fail(uri, key, "'" + value + "' is not a number");
   }
-  if (!(parsed > 0.0 && parsed <= 1000.0)) fail(uri, key, value + " is out of range (0, 1000]");
+  if (!is_frame_rate(parsed)) fail(uri, key, value + " is out of range " + frame_rate_range());
   return parsed;
 }
 
@@ -165,6 +168,9 @@ std::string percent_decode(const std::string& uri, const std::string& text) {
     const int high = i + 2 < text.size() ? hex_value(text[i + 1]) : -1;
     const int low = i + 2 < text.size() ? hex_value(text[i + 2]) : -1;
     if (high < 0 || low < 0) fail(uri, "path", "bad %-escape at position " + std::to_string(i));
+    // A NUL cannot be in a path: decoded, it cut the path short and another file played.
+    if (high == 0 && low == 0)
+      fail(uri, "path", "%00 (a NUL byte) at position " + std::to_string(i));
     decoded += static_cast<char>(high * 16 + low);
     i += 2;
   }
@@ -201,6 +207,14 @@ VideoUri parse_video_uri(const std::string& text) {
       uri.location = rest;
     } else {
       fail(text, "device", "expected v4l2:///dev/videoN or v4l2://N");
+    }
+    // A missing device is a camera not plugged in yet (a cold start, retried); a file or a folder
+    // there never becomes a camera: retrying it forever hid the mistake.
+    struct stat status {};
+    if (::stat(uri.location.c_str(), &status) == 0 && !S_ISCHR(status.st_mode)) {
+      fail(text, "device",
+           "'" + uri.location + "' is " + (S_ISDIR(status.st_mode) ? "a folder" : "not a device") +
+               ", expected a video device (/dev/videoN)");
     }
   } else if (scheme == "csi") {
     uri.kind = SourceKind::csi;

@@ -4,6 +4,7 @@
 #include <utility>
 
 #include "common/checked_number.hpp"
+#include "common/frame_rate.hpp"
 #include "detector/coco_labels.hpp"
 
 namespace rtmot::runner {
@@ -49,6 +50,26 @@ RunSetting integer(std::string key, std::string flag, std::string doc, IntegerRa
             const auto value = parse_integer(text, range);
             if (value) field(c) = static_cast<T>(*value);
             return value.has_value();
+          }};
+}
+
+// A broker and a topic to publish to (no wildcards: outputs/mqtt_uri.hpp).
+std::optional<outputs::MqttUri> publish_uri(const std::string& text, std::string& problem) {
+  return outputs::parse_mqtt_uri(text, problem, outputs::MqttTopicUse::publish);
+}
+
+// A frame rate (common/frame_rate.hpp: one range for every rate), or 0 for "the source's own".
+RunSetting frame_rate_or_zero(std::string key, std::string doc, Field<double> field) {
+  return {std::move(key),
+          "",
+          std::move(doc),
+          "0 (the source's rate) or a rate in " + frame_rate_range(),
+          false,
+          [field](RunConfig& c, std::string_view text, std::string&) {
+            const auto value = parse_real(text, {0.0, kMaxFrameRate});
+            if (!value || (*value != 0.0 && !is_frame_rate(*value))) return false;
+            field(c) = *value;
+            return true;
           }};
 }
 
@@ -120,8 +141,8 @@ std::vector<RunSetting> source_settings() {
                    [](RunConfig& c) -> int& { return c.source.width; }),
       integer<int>("source.height", "", "requested camera height; 0 = the source's", side,
                    [](RunConfig& c) -> int& { return c.source.height; }),
-      real<double>("source.fps", "", "requested camera rate; 0 = the source's", {0.0, 1000.0},
-                   [](RunConfig& c) -> double& { return c.source.fps; }),
+      frame_rate_or_zero("source.fps", "requested camera rate; 0 = the source's",
+                         [](RunConfig& c) -> double& { return c.source.fps; }),
       integer<std::int64_t>(
           "source.stream_id", "", "this source's stream id (default: stream_id + its index)",
           {0, 0xFFFFFFFF}, [](RunConfig& c) -> std::int64_t& { return c.source.stream_id; }),
@@ -193,7 +214,7 @@ std::vector<RunSetting> output_settings() {
            [](RunConfig& c) -> std::string& { return c.output.jsonl_file; }),
       parsed<std::optional<outputs::MqttUri>>(
           "output.mqtt", "--mqtt", "publish track messages to an MQTT broker",
-          "mqtt://HOST[:PORT]/TOPIC[?qos=0|1&format=binary|json]", off_or(outputs::parse_mqtt_uri),
+          "mqtt://HOST[:PORT]/TOPIC[?qos=0|1&format=binary|json]", off_or(publish_uri),
           [](RunConfig& c) -> std::optional<outputs::MqttUri>& { return c.output.mqtt; }),
       parsed<std::optional<outputs::VideoTarget>>(
           "output.video_file", "--video-out", "the annotated video",

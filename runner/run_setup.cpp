@@ -7,9 +7,11 @@
 #include <filesystem>
 #include <opencv2/core/utility.hpp>
 
+#include "common/distinct_files.hpp"
 #include "common/input_error.hpp"
 #include "detector/coco_labels.hpp"
 #include "detector/dnn_backend.hpp"
+#include "detector/model_checksum.hpp"
 #include "detector/replay_detector.hpp"
 #include "detector/ssd_detector.hpp"
 #include "messages/binary_file_sink.hpp"
@@ -22,7 +24,9 @@
 #include "outputs/video_stream.hpp"
 #include "outputs/video_target.hpp"
 #include "platform/host_port.hpp"
+#include "platform/video_uri.hpp"
 #include "runner/progress_sink.hpp"
+#include "runner/sequence_clock_source.hpp"
 #include "runner/source_factory.hpp"
 #include "tracker/score_scale.hpp"
 
@@ -240,7 +244,54 @@ std::vector<std::unique_ptr<messages::TrackSink>> make_sinks(const RunConfig& co
   return sinks;
 }
 
+namespace {
+
+// Every file a run reads (the configuration, the replayed detections, the model and what comes
+// with it, file and sequence sources) and every file it writes.
+void check_run_files(const RunConfig& config) {
+  std::vector<NamedFile> inputs{{config.file, "--config"}};
+  const DetectorConfig& detector = config.detector;
+  // A detections file named but not used (detector.kind ssd) is still the user's input file.
+  inputs.push_back({detector.det_file, "detector.det_file"});
+  if (detector.kind != DetectorKind::replay && !detector.model.empty()) {
+    inputs.push_back({detector.model, "detector.model"});
+    inputs.push_back({detector::checksum_path_of(detector.model), "the model's checksum file"});
+    inputs.push_back({detector.anchors.empty() ? detector::default_anchors_path(detector.model)
+                                               : std::filesystem::path(detector.anchors),
+                      "detector.anchors"});
+  }
+  for (const SourceConfig& source : source_list(config)) {
+    if (is_sequence_uri(source.uri)) {
+      inputs.push_back(
+          {std::filesystem::path(source.uri.substr(std::string(sequence_uri_scheme).size())) /
+               "seqinfo.ini",
+           "source.uri"});
+      continue;
+    }
+    try {
+      const platform::VideoUri uri = platform::parse_video_uri(source.uri);
+      if (uri.kind == platform::SourceKind::file) inputs.push_back({uri.location, "source.uri"});
+    } catch (const InputError&) {  // a malformed URI is reported when the source opens
+    }
+  }
+  const OutputConfig& output = config.output;
+  std::vector<NamedFile> outputs{{output.binary_file, "output.binary_file"},
+                                 {output.jsonl_file, "output.jsonl_file"},
+                                 {output.report_file, "output.report_file"}};
+  const auto& video = output.video;
+  if (video && (video->kind == outputs::VideoTargetKind::mp4_file ||
+                video->kind == outputs::VideoTargetKind::mkv_file)) {
+    outputs.push_back({video->path, "output.video_file"});
+  }
+  check_distinct_files(inputs, outputs);
+}
+
+}  // namespace
+
 void prepare_video_output(const RunConfig& config) {
+  // First of all: no output may name an input or another output (nothing is opened for writing
+  // before this).
+  check_run_files(config);
   const auto& target = config.output.video;
   if (!target) return;
   const auto fail = [&](const std::string& why) {

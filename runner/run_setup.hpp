@@ -45,8 +45,10 @@ RunOutputs make_outputs(const RunConfig& config, std::vector<pipeline::PipelineI
 /// Only the message sinks (UDP, binary, MQTT, JSON lines), for runs without video or metrics.
 std::vector<std::unique_ptr<messages::TrackSink>> make_sinks(const RunConfig& config);
 
-/// Before the model loads: checks the annotated video's target (GStreamer has its elements; a
-/// file's folders are created and the file can be written). Throws InputError with one clear line.
+/// Before anything is opened for writing and the model loads: checks that no output file names an
+/// input or another output (common/distinct_files.hpp), and the annotated video's target
+/// (GStreamer has its elements and the encoder takes the source's size; a file's folders are
+/// created and the file can be written). Throws InputError with one clear line.
 void prepare_video_output(const RunConfig& config);
 /// The configured tracker with what the file left unset (0) taken from the source.
 tracker::TrackerConfig complete_tracker_config(const RunConfig& config,

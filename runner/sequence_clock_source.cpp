@@ -3,6 +3,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "common/frame_rate.hpp"
 #include "motio/mot_files.hpp"
 #include "platform/clock.hpp"
 
@@ -27,7 +28,7 @@ platform::ReadStatus SequenceClockSource::read(cv::Mat& bgr, platform::FrameInfo
   if (next_frame_ > length_) return platform::ReadStatus::end_of_stream;
   bgr.release();
   info.frame_number = next_frame_;
-  info.pts_ns = std::llround(static_cast<double>(next_frame_ - 1) * 1e9 / info_.fps);
+  info.pts_ns = frame_time_ns(next_frame_ - 1, info_.fps);
   info.capture_ns = platform::steady_now_ns();
   ++next_frame_;
   return platform::ReadStatus::frame;

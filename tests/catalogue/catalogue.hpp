@@ -33,6 +33,8 @@ struct CatalogueCase {
 const std::vector<CatalogueCase>& catalogue();
 /// Round two: what a hostile tester found (issue 11), a class per block; catalogue() includes it.
 std::vector<CatalogueCase> hostile_cases();
+/// Round three (issue 23), a class per block; catalogue() includes it.
+std::vector<CatalogueCase> round_three_cases();
 /// Round three (issue 23), the settings surface's classes: checked numbers and addresses.
 std::vector<CatalogueCase> settings_cases();
 /// Round three (issue 23, class 1): the detector's files through common/input_file.

@@ -66,6 +66,7 @@ const std::vector<CatalogueCase>& catalogue() {
   static const std::vector<CatalogueCase> cases = [] {
     std::vector<CatalogueCase> all = first_round();
     for (auto& c : hostile_cases()) all.push_back(std::move(c));
+    for (auto& c : round_three_cases()) all.push_back(std::move(c));
     for (auto& c : settings_cases()) all.push_back(std::move(c));
     for (auto& c : detector_file_cases()) all.push_back(std::move(c));
     return all;

@@ -33,18 +33,20 @@ std::string slurp(const std::filesystem::path& path) {
 
 // In the child between fork and exec: async-signal-safe calls only.
 [[noreturn]] void exec_child(char* const* args, const char* cwd, const char* out_path,
-                             const char* err_path, std::uint64_t file_size_limit,
-                             std::uint64_t address_space_limit) {
+                             const char* stdout_device, const char* err_path,
+                             std::uint64_t file_size_limit, std::uint64_t address_space_limit) {
   if (::chdir(cwd) != 0) ::_exit(126);
   const int in = ::open("/dev/null", O_RDONLY);
-  const int out = ::open(out_path, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  const int out = stdout_device != nullptr ? ::open(stdout_device, O_WRONLY)
+                                           : ::open(out_path, O_WRONLY | O_CREAT | O_TRUNC, 0644);
   const int err = ::open(err_path, O_WRONLY | O_CREAT | O_TRUNC, 0644);
   if (in < 0 || out < 0 || err < 0) ::_exit(126);
   ::dup2(in, STDIN_FILENO);
   ::dup2(out, STDOUT_FILENO);
   ::dup2(err, STDERR_FILENO);
   if (file_size_limit > 0) {
-    ::signal(SIGXFSZ, SIG_IGN);  // inherited through exec: writes fail with EFBIG instead
+    // SIGXFSZ keeps its default action (kill): rtmot must ignore it itself, as a service under
+    // systemd's LimitFSIZE= or a shell's `ulimit -f` would see it.
     const rlimit limit{file_size_limit, file_size_limit};
     ::setrlimit(RLIMIT_FSIZE, &limit);
   }
@@ -88,8 +90,9 @@ ProcessResult run_process(const std::vector<std::string>& argv, const std::files
   const pid_t pid = ::fork();
   if (pid < 0) throw std::runtime_error("cannot start " + argv[0]);
   if (pid == 0) {
-    exec_child(args.data(), dir.c_str(), out_path.c_str(), err_path.c_str(),
-               conditions.file_size_limit, conditions.address_space_limit);
+    exec_child(args.data(), dir.c_str(), out_path.c_str(),
+               conditions.stdout_device.empty() ? nullptr : conditions.stdout_device.c_str(),
+               err_path.c_str(), conditions.file_size_limit, conditions.address_space_limit);
   }
 
   ProcessResult result;
@@ -138,7 +141,7 @@ ProcessResult run_process(const std::vector<std::string>& argv, const std::files
   } else if (WIFSIGNALED(status)) {
     result.signal = WTERMSIG(status);
   }
-  result.out = slurp(out_path);
+  if (conditions.stdout_device.empty()) result.out = slurp(out_path);
   result.err = slurp(err_path);
   return result;
 }

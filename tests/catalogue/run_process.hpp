@@ -37,10 +37,13 @@ struct TimedSignal {
 
 struct ProcessConditions {
   std::chrono::seconds time_limit{60};
-  /// RLIMIT_FSIZE in bytes (0: none). SIGXFSZ is ignored, so a write beyond it fails with EFBIG.
+  /// RLIMIT_FSIZE in bytes (0: none). SIGXFSZ keeps its default action (rtmot ignores it itself,
+  /// so a write beyond it fails with EFBIG).
   std::uint64_t file_size_limit{0};
   /// RLIMIT_AS in bytes (0: none): a case whose old failure was eating memory stays bounded.
   std::uint64_t address_space_limit{0};
+  /// Where stdout goes instead of a file the test reads (e.g. /dev/full: a full disk).
+  std::string stdout_device{};
   /// Signals to send in turn (e.g. SIGTERM, then SIGTERM or SIGKILL).
   std::vector<TimedSignal> signals;
 };

@@ -4,11 +4,13 @@
 #include <gtest/gtest.h>
 #include <netinet/in.h>
 #include <sys/socket.h>
+#include <sys/time.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <regex>
 #include <string>
+#include <vector>
 
 #include "child_process.hpp"
 #include "common/input_error.hpp"
@@ -19,21 +21,34 @@
 namespace rtmot::outputs {
 namespace {
 
-// GET `path` from 127.0.0.1:port with a plain socket; the whole response (headers and body).
-std::string http_get(unsigned short port, const std::string& path) {
+// A TCP connection to 127.0.0.1:port (-1 if refused); the caller closes it.
+int connect_to(unsigned short port) {
   const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
   sockaddr_in address{};
   address.sin_family = AF_INET;
   address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
   address.sin_port = htons(port);
+  if (::connect(fd, reinterpret_cast<sockaddr*>(&address), sizeof address) != 0) {
+    ::close(fd);
+    return -1;
+  }
+  return fd;
+}
+
+// GET `path` from 127.0.0.1:port with a plain socket; the whole response (headers and body), or
+// what came within `timeout_s` (Prometheus' default scrape timeout is 10 s).
+std::string http_get(unsigned short port, const std::string& path, int timeout_s = 10) {
+  const int fd = connect_to(port);
   std::string response;
-  if (::connect(fd, reinterpret_cast<sockaddr*>(&address), sizeof address) == 0) {
+  if (fd >= 0) {
+    const timeval timeout{timeout_s, 0};
+    ::setsockopt(fd, SOL_SOCKET, SO_RCVTIMEO, &timeout, sizeof timeout);
     const std::string request = "GET " + path + " HTTP/1.1\r\nHost: localhost\r\n\r\n";
     (void)!::write(fd, request.data(), request.size());
     char buffer[4096];
     for (ssize_t n; (n = ::read(fd, buffer, sizeof buffer)) > 0;) response.append(buffer, n);
+    ::close(fd);
   }
-  ::close(fd);
   return response;
 }
 
@@ -100,6 +115,37 @@ TEST(Metrics, EndpointServesPrometheusText) {
             value_of(response, R"(rtmot_stage_latency_seconds_bucket{stage="detect",le="0.1"})"));
   EXPECT_GT(value_of(response, R"(rtmot_fps{stream="7"})"), 0.0);
   EXPECT_NE(http_get(port, "/other").find("404"), std::string::npos);
+}
+
+// Issue 23, class 4: one connection that sends nothing, and 50 that send half a request and then
+// nothing, held open while Prometheus scrapes: every scrape is answered within its 10 s timeout.
+// With civetweb's defaults (one worker, 30 s request timeout) the first scrape got nothing.
+TEST(Metrics, ScrapesAreAnsweredWhileIdleAndHalfSentConnectionsAreHeld) {
+  auto frames = test::frames_from_detections("TUD-Stadtmitte", 10);
+  PipelineMetrics metrics({}, {frames.front().stream_id});
+  MetricsSink sink(metrics);
+  for (auto& frame : frames) sink.write(frame);
+  const unsigned short port = test::free_tcp_port();
+  MetricsServer server(metrics, "127.0.0.1", port);
+
+  std::vector<int> held;
+  held.push_back(connect_to(port));  // idle: sends nothing
+  for (int i = 0; i < 50; ++i) {
+    const int fd = connect_to(port);
+    const std::string half = "GET /metrics HTTP/1.1\r\nHost: loc";
+    (void)!::write(fd, half.data(), half.size());
+    held.push_back(fd);
+  }
+  for (const int fd : held) ASSERT_GE(fd, 0) << "a held connection was refused";
+  for (int scrape = 0; scrape < 3; ++scrape) {
+    const std::string response = http_get(port, "/metrics");
+    ASSERT_NE(response.find("200 OK"), std::string::npos)
+        << "scrape " << scrape << ": " << response;
+    EXPECT_EQ(value_of(response, "rtmot_frames_processed_total{stream=\"" +
+                                     std::to_string(frames.front().stream_id) + "\"}"),
+              10.0);
+  }
+  for (const int fd : held) ::close(fd);
 }
 
 // Two sources through one pipeline: each has its own series (the captured count was one stream's,

@@ -49,9 +49,9 @@ class Received {
   std::vector<std::vector<std::uint8_t>> raw_;
 };
 
-MqttUri uri_of(const std::string& text) {
+MqttUri uri_of(const std::string& text, MqttTopicUse use = MqttTopicUse::publish) {
   std::string problem;
-  const auto uri = parse_mqtt_uri(text, problem);
+  const auto uri = parse_mqtt_uri(text, problem, use);
   EXPECT_TRUE(uri.has_value()) << text << ": " << problem;
   return uri.value_or(MqttUri{});
 }
@@ -88,11 +88,39 @@ TEST(MqttUri, ReadsBrokerTopicQosAndFormat) {
   EXPECT_FALSE(parse_mqtt_uri("udp://broker/t", problem));
 }
 
+// Issue 23, class 9: the MQTT specification's rules, checked at start for the topic's use.
+TEST(MqttTopics, AreCheckedForTheirUse) {
+  using Use = MqttTopicUse;
+  EXPECT_EQ(check_mqtt_topic("fleet/board7/tracks", Use::publish), "");
+  EXPECT_EQ(check_mqtt_topic("fleet/+/tracks", Use::subscribe), "");
+  EXPECT_EQ(check_mqtt_topic("fleet/#", Use::subscribe), "");
+  EXPECT_EQ(check_mqtt_topic("#", Use::subscribe), "");
+  EXPECT_EQ(check_mqtt_topic("$SYS/broker/uptime", Use::subscribe), "");
+  EXPECT_NE(check_mqtt_topic("fleet/+/tracks", Use::publish).find("wildcards"), std::string::npos);
+  EXPECT_NE(check_mqtt_topic("fleet/#", Use::publish).find("wildcards"), std::string::npos);
+  EXPECT_NE(check_mqtt_topic("$SYS/x", Use::publish).find("$SYS"), std::string::npos);
+  for (const char* filter : {"a/b#", "a/#/b", "a/b+/c", "+a"}) {
+    EXPECT_NE(check_mqtt_topic(filter, Use::subscribe).find("not a topic filter"),
+              std::string::npos)
+        << filter;
+  }
+  for (const Use use : {Use::publish, Use::subscribe}) {
+    EXPECT_NE(check_mqtt_topic("", use), "");
+    EXPECT_NE(check_mqtt_topic("caf\xE9", use).find("UTF-8"), std::string::npos);
+    EXPECT_NE(check_mqtt_topic(std::string("a\0b", 3), use).find("UTF-8"), std::string::npos);
+    EXPECT_NE(check_mqtt_topic("a\x01b", use).find("UTF-8"), std::string::npos);
+    EXPECT_NE(check_mqtt_topic(std::string(65536, 'a'), use).find("65535"), std::string::npos);
+  }
+  std::string problem;
+  EXPECT_FALSE(parse_mqtt_uri("mqtt://broker/a/+", problem));
+  EXPECT_TRUE(parse_mqtt_uri("mqtt://broker/a/+", problem, Use::subscribe)) << problem;
+}
+
 TEST_F(Mqtt, Qos1DeliversEveryMessageIntact) {
   test::MosquittoBroker broker(folder_);
   Received received;
   MqttSubscriber subscriber(
-      uri_of(broker.mqtt_uri("rtmot/#")),
+      uri_of(broker.mqtt_uri("rtmot/#"), MqttTopicUse::subscribe),
       [&](const std::uint8_t* data, std::size_t size) { received.add(data, size); });
   ASSERT_TRUE(wait_until([&] { return subscriber.subscriptions() == 1; }, 10s));
 

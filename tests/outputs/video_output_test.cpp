@@ -146,7 +146,9 @@ TEST(VideoTarget, ReadsEveryKind) {
 
 TEST_F(VideoOutputs, MissingFoldersAreCreatedUnwritableTargetsSaySo) {
   EXPECT_EQ(prepare_video_file(target_of((folder_ / "a/b/demo.mp4").string())), "");
-  EXPECT_TRUE(std::filesystem::exists(folder_ / "a/b/demo.mp4"));
+  EXPECT_TRUE(std::filesystem::is_directory(folder_ / "a/b"));
+  // The video appears only when finished: nothing under its name (nor a temporary) yet.
+  EXPECT_TRUE(std::filesystem::is_empty(folder_ / "a/b"));
   std::filesystem::create_directories(folder_ / "dir.mp4");
   EXPECT_EQ(prepare_video_file(target_of((folder_ / "dir.mp4").string())), "is a directory");
   EXPECT_NE(prepare_video_file(target_of("/proc/rtmot/demo.mp4")), "");
