@@ -119,7 +119,15 @@ std::unique_ptr<detector::Detector> make_detector(const RunConfig& config) {
   return std::make_unique<detector::SsdDetector>(ssd);
 }
 
+namespace {
+void check_run_files(const RunConfig& config);  // below, with prepare_video_output
+}  // namespace
+
 RunOutputs make_outputs(const RunConfig& config, std::vector<pipeline::PipelineInput>& inputs) {
+  // The one place a run's outputs are opened (run, soak): none may name an input or another
+  // output. `run` checked already in prepare_video_output (before its video's temporary); soak
+  // comes here only.
+  check_run_files(config);
   RunOutputs outputs;
   std::vector<std::unique_ptr<messages::TrackSink>> sinks;
   const platform::SourceInfo first =

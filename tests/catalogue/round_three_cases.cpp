@@ -271,6 +271,19 @@ std::vector<CatalogueCase> round_three_cases() {
                    ExitCode::bad_input,
                    {"same file", "output.binary_file", "output.jsonl_file"},
                    absent("out/t")});
+  cases.push_back({"soak_jsonl_names_the_det_file",
+                   "soak over a configuration whose output.jsonl_file is its det_file",
+                   [](Workspace& ws, Vars&) {
+                     ws.copy_sequence(seq, "data/TUD-Campus");
+                     ws.write("run.yaml",
+                              replay_run(ws, "output:\n  jsonl_file: " +
+                                                 ws.path("data/TUD-Campus/det/det.txt").string() +
+                                                 "\n"));
+                   },
+                   {"soak", "--config", "{dir}/run.yaml", "--duration", "1"},
+                   ExitCode::bad_input,
+                   {"det.txt", "same file", "output.jsonl_file"},
+                   unchanged("data/TUD-Campus/det/det.txt", shared_det)});
   cases.push_back({"listen_jsonl_names_the_read_file",
                    "listen --read F --jsonl F",
                    [](Workspace& ws, Vars&) { ws.copy_sequence(seq, "data/TUD-Campus"); },
