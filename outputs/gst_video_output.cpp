@@ -14,6 +14,7 @@
 
 #include "common/input_error.hpp"
 #include "outputs/bgr_buffer.hpp"
+#include "outputs/encoder_padding.hpp"
 
 namespace rtmot::outputs {
 namespace {
@@ -40,17 +41,7 @@ ExitCode code_of(const GError* error) {
                                                                  : ExitCode::encoder_failed;
 }
 
-constexpr int kMinEncoderSide = 16;
-
 }  // namespace
-
-std::string encoder_padding(int width, int height) {
-  const auto fitted = [](int side) { return std::max(kMinEncoderSide, side + (side & 1)); };
-  const int right = fitted(width) - width;
-  const int bottom = fitted(height) - height;
-  if (right == 0 && bottom == 0) return "";
-  return fmt::format("videobox right={} bottom={} ! ", -right, -bottom);
-}
 
 std::string describe_pipeline(const VideoTarget& target, int width, int height, double fps) {
   const int keyframe_interval = std::max(1, static_cast<int>(std::lround(fps * 2.0)));
@@ -139,10 +130,7 @@ void GstVideoOutput::start(int width, int height) {
     g_object_set(sink.get(), "location", special ? target_.path.c_str() : written_path_.c_str(),
                  nullptr);
   }
-  if (!encoder_padding(width, height).empty()) {
-    spdlog::warn("{}: frames of {}x{} are padded with black to a size the H.264 encoder takes",
-                 target_.text, width, height);
-  }
+  warn_if_padded(target_.text, width, height);
   bus_.reset(gst_element_get_bus(pipeline_.get()));
   if (gst_element_set_state(pipeline_.get(), GST_STATE_PLAYING) == GST_STATE_CHANGE_FAILURE) {
     throw_if_error();

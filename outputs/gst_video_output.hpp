@@ -1,10 +1,10 @@
 #pragma once
 // File, RTP and display outputs: appsrc -> videoconvert -> x264enc -> mp4mux/matroskamux/
 // rtph264pay -> filesink/udpsink (or a video sink), built at the first frame, when the size is
-// known (and padded to what the encoder takes). The bus is checked after every frame, so a write
-// that fails mid-run (a full disk) is an error at once, not a video silently lost. A file is
-// written under a temporary name and renamed when finished: an unplayable half (an mp4 without
-// its index) never appears under the name asked for.
+// known (and padded to what the encoder takes: outputs/encoder_padding.hpp). The bus is checked
+// after every frame, so a write that fails mid-run (a full disk) is an error at once, not a video
+// silently lost. A file is written under a temporary name and renamed when finished: an unplayable
+// half (an mp4 without its index) never appears under the name asked for.
 #include <gst/gst.h>
 
 #include <cstdint>
@@ -42,11 +42,6 @@ class GstVideoOutput final : public VideoStream {
   std::uint64_t frames_{0};
   bool closed_{false};
 };
-
-/// x264 takes 4:2:0 frames whose sides are even and at least 16 (33x17 and 1x1 were refused at
-/// the first frame, 16x14 hung it): "videobox ... ! " padding `width`x`height` with black on the
-/// right and bottom up to the nearest size it takes, or "" when it takes it as it is.
-std::string encoder_padding(int width, int height);
 
 /// The GStreamer pipeline description for a target (what gst-launch-1.0 would take), with the
 /// caps of frames `width`x`height` at `fps`. The file's location is set as a property, not here.

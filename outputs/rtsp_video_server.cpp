@@ -9,6 +9,7 @@
 
 #include "common/input_error.hpp"
 #include "outputs/bgr_buffer.hpp"
+#include "outputs/encoder_padding.hpp"
 #include "platform/gst_ptr.hpp"
 
 namespace rtmot::outputs {
@@ -25,14 +26,15 @@ RtspVideoServer::RtspVideoServer(VideoTarget target, double fps)
 
   GstRTSPMediaFactory* factory = gst_rtsp_media_factory_new();
   const int keyframe_interval = std::max(1, static_cast<int>(std::lround(fps_)));
-  // The caps (frame size) are set on the appsrc at the first frame it gets; do-timestamp stamps
-  // each buffer with the pipeline's running time, as a live source does.
+  // The caps (frame size) are set on the appsrc, and the padding to a size x264 takes on the
+  // videobox, at the first frame it gets; do-timestamp stamps each buffer with the pipeline's
+  // running time, as a live source does.
   const std::string launch = fmt::format(
       "( appsrc name=src format=time is-live=true do-timestamp=true block=false max-buffers=2 "
-      "leaky-type=downstream ! videoconvert ! video/x-raw,format=I420 ! x264enc "
+      "leaky-type=downstream ! videoconvert ! video/x-raw,format=I420 ! {}x264enc "
       "speed-preset=ultrafast tune=zerolatency key-int-max={} ! rtph264pay name=pay0 pt=96 "
       "config-interval=1 )",
-      keyframe_interval);
+      kSizedLaterPadding, keyframe_interval);
   gst_rtsp_media_factory_set_launch(factory, launch.c_str());
   gst_rtsp_media_factory_set_shared(factory, TRUE);
   g_signal_connect(factory, "media-configure", G_CALLBACK(&RtspVideoServer::on_media_configure),
@@ -71,7 +73,9 @@ void RtspVideoServer::close() {
   {
     const std::lock_guard<std::mutex> lock(media_mutex_);
     if (appsrc_ != nullptr) gst_object_unref(appsrc_);
+    if (padding_ != nullptr) gst_object_unref(padding_);
     appsrc_ = nullptr;
+    padding_ = nullptr;
   }
   GSource* source = g_main_context_find_source_by_id(context_, source_id_);
   if (source != nullptr) g_source_destroy(source);
@@ -89,11 +93,14 @@ void RtspVideoServer::on_media_configure(GstRTSPMediaFactory*, GstRTSPMedia* med
   auto& server = *static_cast<RtspVideoServer*>(self);
   GstElement* element = gst_rtsp_media_get_element(media);
   GstElement* appsrc = gst_bin_get_by_name_recurse_up(GST_BIN(element), "src");
+  GstElement* padding = gst_bin_get_by_name_recurse_up(GST_BIN(element), "pad");
   gst_object_unref(element);
   g_signal_connect(media, "unprepared", G_CALLBACK(&RtspVideoServer::on_media_unprepared), self);
   const std::lock_guard<std::mutex> lock(server.media_mutex_);
   if (server.appsrc_ != nullptr) gst_object_unref(server.appsrc_);
+  if (server.padding_ != nullptr) gst_object_unref(server.padding_);
   server.appsrc_ = appsrc;
+  server.padding_ = padding;
   server.caps_set_ = false;
 }
 
@@ -101,7 +108,9 @@ void RtspVideoServer::on_media_unprepared(GstRTSPMedia*, gpointer self) {
   auto& server = *static_cast<RtspVideoServer*>(self);
   const std::lock_guard<std::mutex> lock(server.media_mutex_);
   if (server.appsrc_ != nullptr) gst_object_unref(server.appsrc_);
+  if (server.padding_ != nullptr) gst_object_unref(server.padding_);
   server.appsrc_ = nullptr;
+  server.padding_ = nullptr;
 }
 
 void RtspVideoServer::push(const cv::Mat& bgr) {
@@ -115,8 +124,12 @@ void RtspVideoServer::push(const cv::Mat& bgr) {
     const platform::gst::CapsPtr caps(gst_caps_new_simple(
         "video/x-raw", "format", G_TYPE_STRING, "BGR", "width", G_TYPE_INT, bgr.cols, "height",
         G_TYPE_INT, bgr.rows, "framerate", GST_TYPE_FRACTION, numerator, denominator, nullptr));
+    // Before the first buffer: the videobox is sized before the encoder's caps are negotiated.
+    if (padding_ != nullptr) set_encoder_padding(padding_, bgr.cols, bgr.rows);
     gst_app_src_set_caps(GST_APP_SRC(appsrc_), caps.get());
     caps_set_ = true;
+    if (!padding_warned_) warn_if_padded(target_.text, bgr.cols, bgr.rows);
+    padding_warned_ = true;
   }
   GstBuffer* buffer = copy_to_gst_buffer(bgr);
   ++frames_;

@@ -1,6 +1,7 @@
 #pragma once
 // rtsp://ADDRESS:PORT/NAME: an RTSP server (gst-rtsp-server) that clients pull the annotated video
-// from. One shared media for every client: appsrc -> x264enc (zero latency) -> rtph264pay. The
+// from. One shared media for every client: appsrc -> videobox (padding to a size x264 takes,
+// outputs/encoder_padding.hpp) -> x264enc (zero latency) -> rtph264pay. The
 // server runs its own GLib main loop on a thread (it handles RTSP requests there); frames are only
 // encoded while at least one client watches.
 #include <gst/gst.h>
@@ -49,7 +50,9 @@ class RtspVideoServer final : public VideoStream {
   // stage. A mutex that push() only try_locks: the sink stage never waits for the RTSP thread.
   std::mutex media_mutex_;
   GstElement* appsrc_{nullptr};
+  GstElement* padding_{nullptr};  // the media's videobox: sized at its first frame
   bool caps_set_{false};
+  bool padding_warned_{false};
   std::uint64_t frames_{0};
   bool closed_{false};
 };

@@ -39,7 +39,10 @@ ReadBack read_back(const std::string& description, int save_index, int stop_afte
       gst_structure_get_int(structure, "width", &width);
       gst_structure_get_int(structure, "height", &height);
       platform::gst::MappedBuffer map(gst_sample_get_buffer(sample.get()));
-      result.saved = cv::Mat(height, width, CV_8UC3, const_cast<guint8*>(map.data())).clone();
+      // GStreamer's raw rows are padded to 4 bytes (a 34-pixel BGR row is 104 bytes, not 102).
+      const std::size_t stride = height > 0 ? map.size() / static_cast<std::size_t>(height) : 0;
+      result.saved =
+          cv::Mat(height, width, CV_8UC3, const_cast<guint8*>(map.data()), stride).clone();
     }
     ++result.frames;
   }

@@ -282,6 +282,55 @@ TEST_F(VideoOutputs, RtspServerIsPulledByAClient) {
   expect_overlay(back.saved, folder_ / "rtsp.png");
 }
 
+// x264 refuses odd sides and sides under 16: the RTSP server's pipeline, built before the size is
+// known, pads at the first frame as the file and RTP outputs do (outputs/encoder_padding.hpp).
+// Before, a 33x17 source reached no client: x264enc refused the caps and the media failed.
+TEST_F(VideoOutputs, RtspServerPadsAnOddTinyFrame) {
+  const unsigned short port = test::free_tcp_port();
+  const VideoTarget target = target_of("rtsp://127.0.0.1:" + std::to_string(port) + "/tiny");
+  RtspVideoServer server(target, 30.0);
+  auto source = platform::open_video_source("test://ball?width=33&height=17&num-buffers=60");
+  std::vector<cv::Mat> frames;
+  cv::Mat frame;
+  platform::FrameInfo info;
+  while (source->read(frame, info) == platform::ReadStatus::frame) {
+    frame.setTo(cv::Scalar(0, 200, 0));  // uniform green: what survives the encoding is checked
+    frames.push_back(frame.clone());
+  }
+  ASSERT_EQ(frames.size(), 60U);
+  ASSERT_EQ(frames[0].size(), cv::Size(33, 17));
+  std::thread pusher;
+  const ReadBack back =
+      read_back("rtspsrc location=rtsp://127.0.0.1:" + std::to_string(port) +
+                    "/tiny protocols=tcp latency=0 ! rtph264depay ! avdec_h264" + to_bgr_sink,
+                5, 30, 30s, [&] {
+                  pusher = std::thread([&] {
+                    const auto deadline = std::chrono::steady_clock::now() + 20s;
+                    while (!server.has_client() && std::chrono::steady_clock::now() < deadline) {
+                      std::this_thread::sleep_for(10ms);
+                    }
+                    std::this_thread::sleep_for(300ms);
+                    for (const auto& f : frames) {
+                      server.push(f);
+                      std::this_thread::sleep_for(15ms);
+                    }
+                  });
+                });
+  pusher.join();
+  server.close();
+  // Frames decoded without their keyframe (a client that joined late) are left out.
+  EXPECT_GT(back.frames, 10);
+  ASSERT_FALSE(back.saved.empty());
+  EXPECT_EQ(back.saved.size(), cv::Size(34, 18));  // even sides, black on the right and bottom
+  // A frame this small is coded coarsely at first: the picture is green, the corner darker.
+  const cv::Vec3b inside = back.saved.at<cv::Vec3b>(8, 16);
+  EXPECT_GT(inside[1], 100);
+  EXPECT_GT(inside[1], inside[0] + 60);
+  EXPECT_GT(inside[1], inside[2] + 60);
+  const cv::Vec3b corner = back.saved.at<cv::Vec3b>(17, 33);
+  EXPECT_LT(corner[1] + 30, inside[1]);
+}
+
 // A full disk mid-run is an error (exit code io_error), not a video silently lost.
 TEST_F(VideoOutputs, FullDiskIsAnError) {
   if (!std::filesystem::exists("/dev/full")) GTEST_SKIP() << "no /dev/full";
