@@ -10,9 +10,9 @@
 #include <exception>
 #include <opencv2/core/utils/logger.hpp>
 #include <string>
-#include <string_view>
 #include <vector>
 
+#include "apps/cli_error.hpp"
 #include "apps/subcommand.hpp"
 #include "common/exit_codes.hpp"
 #include "common/input_error.hpp"
@@ -52,16 +52,6 @@ int run_reporting_errors(const std::function<int()>& run) {
     if (code == 0) code = rtmot::to_int(rtmot::ExitCode::io_error);
   }
   return code;
-}
-
-// CLI11 reports a mistyped subcommand as "a subcommand is required"; name the word instead.
-bool is_unknown_subcommand(const CLI::App& app, int argc, char** argv) {
-  if (argc < 2 || argv[1][0] == '-') return false;
-  const std::string_view word = argv[1];
-  for (const CLI::App* sub : app.get_subcommands({})) {
-    if (sub->get_name() == word) return false;
-  }
-  return true;
 }
 
 // SIGINT/SIGTERM blocked before anything else, so that a command that stops cleanly on them takes
@@ -126,12 +116,9 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
-    if (is_unknown_subcommand(app, argc, argv)) {
-      spdlog::error("unknown subcommand '{}' (rtmot --help lists them)", argv[1]);
-      return rtmot::to_int(rtmot::ExitCode::usage);
-    }
-    const int code = app.exit(error);
-    return code == 0 ? 0 : rtmot::to_int(rtmot::ExitCode::usage);
+    if (error.get_exit_code() == 0) return app.exit(error);  // --help, --version
+    spdlog::error("{}", rtmot::app::parse_error_line(app, argc, argv, error));
+    return rtmot::to_int(rtmot::ExitCode::usage);
   }
   spdlog::set_level(spdlog::level::from_str(log_level));
   if (log_format != "text" || !log_file.empty()) {

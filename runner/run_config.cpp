@@ -10,6 +10,7 @@
 #include "common/input_error.hpp"
 #include "common/input_file.hpp"
 #include "common/input_path.hpp"
+#include "common/nearest_name.hpp"
 #include "runner/run_settings.hpp"
 #include "runner/sequence_clock_source.hpp"
 #include "runner/yaml_section.hpp"
@@ -43,6 +44,21 @@ bool has_settings_under(const std::string& prefix) {
     if (setting.key.compare(0, start.size(), start) == 0) return true;
   }
   return false;
+}
+
+// The names a mapping at `prefix` ("" for the top, "detector", ...) may hold: its settings, its
+// structured keys, its sub-mappings and `read_elsewhere`; for "did you mean" (common/nearest_name).
+std::vector<std::string> names_under(const std::string& prefix,
+                                     const std::set<std::string>& read_elsewhere) {
+  const std::string start = prefix.empty() ? "" : prefix + ".";
+  std::set<std::string> names(read_elsewhere.begin(), read_elsewhere.end());
+  const auto add = [&](const std::string& key) {
+    if (key.compare(0, start.size(), start) != 0) return;
+    names.insert(key.substr(start.size(), key.find('.', start.size()) - start.size()));
+  };
+  for (const auto& setting : run_settings()) add(setting.key);
+  for (const auto& entry : structured_keys()) add(entry.first);
+  return {names.begin(), names.end()};
 }
 
 // The value of a setting as text, as the command line gives it: a scalar, or a list joined with
@@ -87,7 +103,8 @@ void read_settings(const Section& section, const YAML::Node& node, const std::st
       const Section child(entry.second, section.file(), section.field(name));
       read_settings(child, entry.second, key, config);
     } else {
-      section.fail(entry.first, name, "unknown key");
+      section.fail(entry.first, name,
+                   "unknown key" + did_you_mean(name, names_under(prefix, read_elsewhere)));
     }
   }
 }

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "common/input_error.hpp"
+#include "common/nearest_name.hpp"
 
 namespace rtmot::runner {
 
@@ -120,7 +121,11 @@ class Section {
     if (!node_.IsMap()) return;
     for (const auto& entry : node_) {
       const auto key = key_text(entry.first);
-      if (known_.count(key) == 0) fail(entry.first, key, "unknown key");
+      if (known_.count(key) == 0) {
+        fail(entry.first, key,
+             "unknown key" +
+                 did_you_mean(key, std::vector<std::string>(known_.begin(), known_.end())));
+      }
     }
   }
 

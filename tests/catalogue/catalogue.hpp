@@ -28,6 +28,8 @@ struct CatalogueCase {
   ProcessConditions conditions{};
   /// Optional (0: unchecked): the child's peak resident memory must stay below this.
   long max_rss_mb{0};
+  /// Optional (empty: unchecked): the error line's exact text after "[error] ".
+  std::string message{};
 };
 
 const std::vector<CatalogueCase>& catalogue();
@@ -39,5 +41,7 @@ std::vector<CatalogueCase> round_three_cases();
 std::vector<CatalogueCase> settings_cases();
 /// Round three (issue 23, class 1): the detector's files through common/input_file.
 std::vector<CatalogueCase> detector_file_cases();
+/// Issue 22: command-line and configuration typos, one line each with the nearest valid name.
+std::vector<CatalogueCase> usage_cases();
 
 }  // namespace rtmot::test

@@ -69,6 +69,7 @@ const std::vector<CatalogueCase>& catalogue() {
     for (auto& c : round_three_cases()) all.push_back(std::move(c));
     for (auto& c : settings_cases()) all.push_back(std::move(c));
     for (auto& c : detector_file_cases()) all.push_back(std::move(c));
+    for (auto& c : usage_cases()) all.push_back(std::move(c));
     return all;
   }();
   return cases;
