@@ -124,8 +124,6 @@ std::unique_ptr<rtmot::detector::SsdDetector> make_detector(const Options& optio
   config.fp16 = backend == "cuda-fp16" ? Fp16Request::on : Fp16Request::off;
   config.threads = threads;
   config.max_batch = batch;
-  config.score_threshold = 0.5F;
-  config.classes = {1};
   return std::make_unique<rtmot::detector::SsdDetector>(config);
 }
 

@@ -49,8 +49,6 @@ void BM_SsdDetect(benchmark::State& state) {
   config.backend =
       xnnpack ? rtmot::detector::BackendRequest::xnnpack : rtmot::detector::BackendRequest::cpu;
   config.threads = static_cast<int>(state.range(1));
-  config.score_threshold = 0.5F;
-  config.classes = {1};
   std::unique_ptr<rtmot::detector::SsdDetector> detector;
   try {
     detector = std::make_unique<rtmot::detector::SsdDetector>(config);

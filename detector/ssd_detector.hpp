@@ -11,6 +11,7 @@
 
 #include "detector/detector.hpp"
 #include "detector/dnn_backend.hpp"
+#include "detector/ssd_defaults.hpp"
 #include "detector/ssd_postprocess.hpp"
 #include "detector/xnnpack_network.hpp"
 
@@ -20,10 +21,10 @@ struct SsdConfig {
   std::filesystem::path model_path{"models/ssdlite_mobilenet_v2_coco.onnx"};
   /// Empty: the model path with ".onnx" replaced by ".anchors.csv", as fetch_model.sh writes it.
   std::filesystem::path anchors_path;
-  float score_threshold{0.5F};
-  float nms_iou{0.6F};  // the model's own training pipeline value
-  int max_detections{100};
-  std::vector<int> classes{1};  // COCO ids (1 = person); empty = all
+  float score_threshold{kDefaultScoreThreshold};
+  float nms_iou{kDefaultNmsIou};
+  int max_detections{kDefaultMaxDetections};
+  std::vector<int> classes{default_classes()};  // COCO ids; empty = all
   BackendRequest backend{BackendRequest::automatic};
   Fp16Request fp16{Fp16Request::automatic};
   /// Worker threads: OpenCV's (process-wide: cv::setNumThreads; 0 = leave as is) and XNNPACK's

@@ -5,17 +5,17 @@
 #include <vector>
 
 #include "detector/ssd_anchors.hpp"
+#include "detector/ssd_defaults.hpp"
 #include "tracker/box.hpp"
 
 namespace rtmot::detector {
 
 struct SsdPostprocessConfig {
-  float score_threshold{0.5F};
-  /// Boxes of one class overlapping a better one by more than this IoU are dropped. 0.6 is what the
-  /// model's training pipeline (ssdlite_mobilenet_v2_coco) uses.
-  float nms_iou{0.6F};
-  int max_detections{100};   // per class and in total, as the TF pipeline
-  std::vector<int> classes;  // class ids to report; empty = all
+  float score_threshold{kDefaultScoreThreshold};
+  /// Boxes of one class overlapping a better one by more than this IoU are dropped.
+  float nms_iou{kDefaultNmsIou};
+  int max_detections{kDefaultMaxDetections};  // per class and in total, as the TF pipeline
+  std::vector<int> classes;                   // class ids to report; empty = all
 };
 
 class SsdPostprocessor {

@@ -6,6 +6,8 @@
 #include <iterator>
 #include <opencv2/core/version.hpp>
 
+#include "pipeline/frame_rate.hpp"
+
 namespace rtmot::outputs {
 namespace {
 
@@ -124,12 +126,9 @@ std::string PipelineMetrics::render() const {
              [](const StreamCounters& s) {
                const std::int64_t first = s.first_captured_ns.load(relaxed);
                const std::int64_t last = s.last_sent_ns.load(relaxed);
-               const double seconds =
-                   first > 0 && last > first ? static_cast<double>(last - first) / 1e9 : 0.0;
+               const auto processed = static_cast<std::int64_t>(s.frames_processed.load(relaxed));
                return fmt::format(
-                   "{:.3f}", seconds > 0
-                                 ? static_cast<double>(s.frames_processed.load(relaxed)) / seconds
-                                 : 0.0);
+                   "{:.3f}", pipeline::frames_per_second(processed, first > 0 ? last - first : 0));
              });
   fmt::format_to(to,
                  "# HELP rtmot_stage_latency_seconds Time per pipeline stage, every source "

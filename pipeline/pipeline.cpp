@@ -8,6 +8,7 @@
 
 #include "pipeline/capture_stage.hpp"
 #include "pipeline/detect_stage.hpp"
+#include "pipeline/frame_rate.hpp"
 #include "pipeline/run_control.hpp"
 #include "pipeline/sink_stage.hpp"
 #include "pipeline/track_stage.hpp"
@@ -107,10 +108,8 @@ PipelineReport Pipeline::Stages::report() const {
     stream.frames_lost = counts.frames_lost;
     stream.source_outages = counts.outages;
     stream.source_error = counts.source_error;
-    if (stream.frames_processed > 0 && sent.last_sent_ns > counts.first_capture_ns) {
-      stream.fps = static_cast<double>(stream.frames_processed) * 1e9 /
-                   static_cast<double>(sent.last_sent_ns - counts.first_capture_ns);
-    }
+    stream.fps =
+        frames_per_second(stream.frames_processed, sent.last_sent_ns - counts.first_capture_ns);
     stream.latency = sent.latency;
 
     report.source += (i == 0 ? "" : ", ") + stream.source;
@@ -129,13 +128,10 @@ PipelineReport Pipeline::Stages::report() const {
   report.frames_dropped = report.frames_captured - report.frames_processed;
   if (report.frames_processed > 0 && total.last_sent_ns > first_capture_ns) {
     report.wall_seconds = static_cast<double>(total.last_sent_ns - first_capture_ns) * 1e-9;
-    report.fps = static_cast<double>(report.frames_processed) / report.wall_seconds;
+    report.fps = frames_per_second(report.frames_processed, total.last_sent_ns - first_capture_ns);
   }
   const DetectCounts detected = detect->counts();
-  if (detected.busy_ns > 0) {
-    report.detector_fps =
-        static_cast<double>(detected.frames) * 1e9 / static_cast<double>(detected.busy_ns);
-  }
+  report.detector_fps = frames_per_second(detected.frames, detected.busy_ns);
   report.detector_batches = detected.batches;
   report.latency = total.latency;
   return report;

@@ -6,6 +6,7 @@
 #include <exception>
 #include <utility>
 
+#include "pipeline/frame_rate.hpp"
 #include "platform/clock.hpp"
 
 namespace rtmot::pipeline {
@@ -39,8 +40,7 @@ void SinkStage::run(const std::atomic<bool>& abort) {
       ++fps_window_frames_;
       const std::int64_t window_ns = result.times.sent_ns - fps_window_start_ns_;
       if (window_ns > 0 && window_ns >= std::max<std::int64_t>(interval_ns_, 1'000'000'000)) {
-        recent_fps_ =
-            static_cast<double>(fps_window_frames_) * 1e9 / static_cast<double>(window_ns);
+        recent_fps_ = frames_per_second(fps_window_frames_, window_ns);
         fps_window_frames_ = 0;
         fps_window_start_ns_ = result.times.sent_ns;
       }
@@ -60,7 +60,7 @@ void SinkStage::log_interval(const TrackedFrame& frame, std::int64_t elapsed_ns)
   spdlog::info(
       "{:.1f} fps | capture->sent p50 {:.1f} ms p95 {:.1f} ms | captured {} processed {} "
       "dropped {}",
-      static_cast<double>(interval_frames_) * 1e9 / static_cast<double>(elapsed_ns),
+      frames_per_second(interval_frames_, elapsed_ns),
       static_cast<double>(interval_e2e_.quantile_ns(0.5)) / 1e6,
       static_cast<double>(interval_e2e_.quantile_ns(0.95)) / 1e6, captured,
       total_.latency.of(pipeline::Stage::end_to_end).count(),

@@ -5,6 +5,8 @@
 
 #include <cmath>
 
+#include "pipeline/frame_rate.hpp"
+
 namespace rtmot::runner {
 
 std::string progress_line(std::int64_t frame, std::int64_t total_frames, double fps,
@@ -44,14 +46,15 @@ void ProgressSink::write(const messages::FrameResult& result) {
   ++interval_processed_;
   const std::int64_t elapsed = now - interval_start_ns_;
   if (elapsed < interval_ns_) return;
-  const double seconds = static_cast<double>(elapsed) / 1e9;
-  spdlog::info("{}", progress_line(
-                         result.frame_number, total_frames_,
-                         static_cast<double>(interval_processed_) / seconds,
-                         static_cast<double>(result.frame_number - interval_start_frame_) / seconds,
-                         static_cast<double>(latency_.quantile_ns(0.5)) / 1e6,
-                         static_cast<double>(latency_.quantile_ns(0.95)) / 1e6, processed_,
-                         result.frames_dropped));
+  spdlog::info(
+      "{}",
+      progress_line(
+          result.frame_number, total_frames_,
+          pipeline::frames_per_second(static_cast<std::int64_t>(interval_processed_), elapsed),
+          pipeline::frames_per_second(result.frame_number - interval_start_frame_, elapsed),
+          static_cast<double>(latency_.quantile_ns(0.5)) / 1e6,
+          static_cast<double>(latency_.quantile_ns(0.95)) / 1e6, processed_,
+          result.frames_dropped));
   latency_.clear();
   interval_start_ns_ = now;
   interval_start_frame_ = result.frame_number;

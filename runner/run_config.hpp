@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "detector/dnn_backend.hpp"
+#include "detector/ssd_defaults.hpp"
 #include "events/events_yaml.hpp"
 #include "outputs/mqtt_uri.hpp"
 #include "outputs/overlay.hpp"
@@ -51,13 +52,13 @@ struct DetectorConfig {
   std::string anchors;  // ssd: anchors CSV; empty = beside the model
   detector::BackendRequest backend{detector::BackendRequest::automatic};
   detector::Fp16Request fp16{detector::Fp16Request::automatic};
-  float score_threshold{0.5F};  // the detector's own cut, before the tracker sees anything
-  float nms_threshold{0.6F};
+  float score_threshold{detector::kDefaultScoreThreshold};  // before the tracker sees anything
+  float nms_threshold{detector::kDefaultNmsIou};
   /// The detector's CPU worker threads; 0 = every CPU this process may use. Decided (and set,
   /// process-wide) in one place: runner::make_detector.
   int threads{0};
-  std::vector<int> classes{1};  // COCO ids to keep (1 = person); empty = all
-  std::string det_file;         // replay: a MOTChallenge det.txt
+  std::vector<int> classes{detector::default_classes()};  // COCO ids to keep; empty = all
+  std::string det_file;                                   // replay: a MOTChallenge det.txt
 };
 
 struct OutputConfig {
