@@ -8,6 +8,7 @@
 #include <chrono>
 #include <filesystem>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,7 @@
 #include "common/input_error.hpp"
 #include "common/output_file.hpp"
 #include "mot/metrics_report.hpp"
+#include "mot/run_progress.hpp"
 #include "mot/study_cv.hpp"
 #include "mot/study_dataset.hpp"
 #include "mot/study_plan.hpp"
@@ -47,6 +49,35 @@ int stopped(const char* phase) {
   spdlog::warn("study: stopped during {}: nothing written (its tables need every run)", phase);
   return to_int(ExitCode::ok);
 }
+
+// Prints mot::run_progress_line at most every `interval` (and at the last run), from whichever
+// worker thread finished a run.
+class RunProgressPrinter {
+ public:
+  RunProgressPrinter(std::string what, std::chrono::steady_clock::duration interval)
+      : what_(std::move(what)),
+        interval_(interval),
+        start_(std::chrono::steady_clock::now()),
+        last_line_(start_) {}
+
+  void update(std::size_t done, std::size_t total) {
+    const auto now = std::chrono::steady_clock::now();
+    // A few hundred runs of about a second each: a lock per run costs nothing here.
+    const std::lock_guard<std::mutex> lock(mutex_);
+    if (now - last_line_ < interval_ && done < total) return;
+    last_line_ = now;
+    spdlog::info(
+        "{}: {}", what_,
+        mot::run_progress_line(done, total, std::chrono::duration<double>(now - start_).count()));
+  }
+
+ private:
+  std::string what_;
+  std::chrono::steady_clock::duration interval_;
+  std::chrono::steady_clock::time_point start_;
+  std::mutex mutex_;
+  std::chrono::steady_clock::time_point last_line_;
+};
 
 int run_study_command(const StudyCommandOptions& options) {
   using Clock = std::chrono::steady_clock;
@@ -116,8 +147,10 @@ int run_study_command(const StudyCommandOptions& options) {
     std::vector<mot::StudyConfiguration> references;
     for (const char* name : {"sort", "bytetrack"})
       references.push_back({std::string("preset-") + name, "cv", *tracker::find_preset(name)});
-    const auto cv = mot::cross_validate(dataset, candidates, detectors, intervals, options.jobs,
-                                        &signals.stop_flag(), references);
+    RunProgressPrinter printer("study: cross-validation", std::chrono::seconds(10));
+    const auto cv = mot::cross_validate(
+        dataset, candidates, detectors, intervals, options.jobs, &signals.stop_flag(), references,
+        [&printer](std::size_t done, std::size_t total) { printer.update(done, total); });
     if (signals.stop_requested()) return stopped("the cross-validation");
     for (const auto& table : cv.tables) tables.push_back(table);
     folds = mot::format_folds_markdown(cv);

@@ -23,7 +23,7 @@ using Mask = std::vector<std::vector<bool>>;
 Counts count_everything(const std::vector<LoadedSequence>& dataset,
                         const std::vector<StudyConfiguration>& candidates,
                         const std::vector<StudyInput>& inputs, const std::vector<int>& intervals,
-                        int jobs, const std::atomic<bool>* stop) {
+                        int jobs, const std::atomic<bool>* stop, const RunProgress& progress) {
   const std::size_t n_s = dataset.size();
   const std::size_t n_i = intervals.size();
   const std::size_t n_d = inputs.size();
@@ -33,6 +33,7 @@ Counts count_everything(const std::vector<LoadedSequence>& dataset,
   const std::size_t total = candidates.size() * n_d * n_i * n_s;
   // As run_study: each run writes only its own preallocated cell; join() publishes them.
   std::atomic<std::size_t> next{0};
+  std::atomic<std::size_t> done{0};  // only counted: the cells are published by join()
   std::exception_ptr failure;
   std::mutex failure_mutex;
   const auto work = [&] {
@@ -45,6 +46,7 @@ Counts count_everything(const std::vector<LoadedSequence>& dataset,
       try {
         counts[c][d][i][s] = track_and_count(dataset[s], inputs[d], candidates[c].config,
                                              intervals[i], candidates[c].knobs);
+        if (progress) progress(done.fetch_add(1, std::memory_order_relaxed) + 1, total);
       } catch (...) {
         const std::lock_guard<std::mutex> lock(failure_mutex);
         if (!failure) failure = std::current_exception();
@@ -150,14 +152,15 @@ CrossValidation cross_validate(const std::vector<LoadedSequence>& dataset,
                                const std::vector<StudyInput>& inputs,
                                const std::vector<int>& intervals, int jobs,
                                const std::atomic<bool>* stop,
-                               const std::vector<StudyConfiguration>& references) {
+                               const std::vector<StudyConfiguration>& references,
+                               const RunProgress& progress) {
   if (dataset.size() < 2 || candidates.empty() || inputs.empty() || intervals.empty())
     throw std::invalid_argument(
         "cross-validation needs two sequences, a candidate, a detector "
         "and an interval");
   std::vector<StudyConfiguration> runs = candidates;
   runs.insert(runs.end(), references.begin(), references.end());
-  const Counts counts = count_everything(dataset, runs, inputs, intervals, jobs, stop);
+  const Counts counts = count_everything(dataset, runs, inputs, intervals, jobs, stop, progress);
   const std::size_t n_c = candidates.size();
   if (stop != nullptr && stop->load(std::memory_order_relaxed)) return {};
   const std::size_t n_s = dataset.size();

@@ -42,19 +42,25 @@ struct CrossValidation {
   std::vector<CandidateScore> in_sample_scores;
 };
 
+/// Called after each finished run with (runs done, runs in all), from the worker threads: it must
+/// be thread-safe. `rtmot study` prints a progress line with an ETA from it.
+using RunProgress = std::function<void(std::size_t done, std::size_t total)>;
+
 /// The selection score: the mean over `intervals` of (MOTA + IDF1) / 2, pooled over sequences.
 double selection_score(const std::vector<Metrics>& by_interval);
 
 /// Over `dataset` (at least two sequences) and `inputs` (the detectors). Runs every candidate and
 /// every reference on every sequence, detector and interval once, on `jobs` threads; without
 /// references the choice is by the selection score alone. Once `stop` (may be null) is true
-/// no further run starts and an empty result comes back.
+/// no further run starts and an empty result comes back. `progress` (may be empty) hears of
+/// every finished run.
 CrossValidation cross_validate(const std::vector<LoadedSequence>& dataset,
                                const std::vector<StudyConfiguration>& candidates,
                                const std::vector<StudyInput>& inputs,
                                const std::vector<int>& intervals, int jobs,
                                const std::atomic<bool>* stop = nullptr,
-                               const std::vector<StudyConfiguration>& references = {});
+                               const std::vector<StudyConfiguration>& references = {},
+                               const RunProgress& progress = {});
 
 /// The folds as a Markdown table.
 std::string format_folds_markdown(const CrossValidation& cv);

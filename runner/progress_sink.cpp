@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "common/duration_text.hpp"
 #include "pipeline/frame_rate.hpp"
 
 namespace rtmot::runner {
@@ -19,10 +20,9 @@ std::string progress_line(std::int64_t frame, std::int64_t total_frames, double 
                            static_cast<double>(total_frames);
     position += fmt::format(" of {} ({:.0f}%)", total_frames, percent);
     if (source_frames_per_s > 0.0) {
-      const auto left_s = static_cast<std::int64_t>(
-          std::lround(static_cast<double>(std::max<std::int64_t>(0, total_frames - frame)) /
-                      source_frames_per_s));
-      eta = fmt::format(" | ETA {}:{:02}", left_s / 60, left_s % 60);
+      eta = " | ETA " +
+            minutes_seconds(static_cast<double>(std::max<std::int64_t>(0, total_frames - frame)) /
+                            source_frames_per_s);
     }
   }
   return fmt::format(

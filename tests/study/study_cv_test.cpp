@@ -5,10 +5,13 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <filesystem>
+#include <mutex>
 
 #include "mot/metrics.hpp"
+#include "mot/run_progress.hpp"
 #include "shared_data.hpp"
 #include "tracker/presets.hpp"
 
@@ -51,7 +54,22 @@ TEST(CrossValidation, FoldsChooseOnWhatTheyMaySeeAndScoreWhatTheyLeftOut) {
   const std::vector<StudyInput> inputs = {StudyInput::detections,
                                           StudyInput::synthetic_detector(0)};
   const std::vector<int> intervals = {1, 5};
-  const CrossValidation cv = cross_validate(dataset, candidates, inputs, intervals, 2);
+  // Progress: every run reported once, from the workers, counting up to all of them.
+  std::mutex progress_mutex;
+  std::vector<std::size_t> reported;
+  std::size_t reported_total = 0;
+  const CrossValidation cv =
+      cross_validate(dataset, candidates, inputs, intervals, 2, nullptr, {},
+                     [&](std::size_t done, std::size_t total) {
+                       const std::lock_guard<std::mutex> lock(progress_mutex);
+                       reported.push_back(done);
+                       reported_total = total;
+                     });
+  const std::size_t runs = candidates.size() * inputs.size() * intervals.size() * dataset.size();
+  EXPECT_EQ(reported_total, runs);
+  ASSERT_EQ(reported.size(), runs);
+  std::sort(reported.begin(), reported.end());
+  for (std::size_t i = 0; i < runs; ++i) EXPECT_EQ(reported[i], i + 1);
 
   ASSERT_EQ(cv.folds.size(), 4U);
   ASSERT_EQ(cv.tables.size(), 4U);  // held-out and in-sample, per detector
@@ -152,6 +170,14 @@ TEST(CrossValidation, WithReferencesTheMostCellsHeldComeBeforeTheMean) {
     EXPECT_NEAR(cv.in_sample_scores[c].mean, expected.second, 1e-9) << candidates[c].name;
   }
   EXPECT_EQ(cv.in_sample_scores.back().cells_held, 4);
+}
+
+// What `rtmot study` prints while the cross-validation runs (apps/cmd_study.cpp).
+TEST(RunProgressLine, SaysHowFarAndTheTimeLeftAtThePaceSoFar) {
+  EXPECT_EQ(run_progress_line(120, 600, 30.0), "run 120 of 600 (20%) | ETA 2:00");
+  EXPECT_EQ(run_progress_line(1, 3, 0.4), "run 1 of 3 (33%) | ETA 0:01");
+  EXPECT_EQ(run_progress_line(0, 600, 0.0), "run 0 of 600 (0%)");
+  EXPECT_EQ(run_progress_line(600, 600, 150.0), "run 600 of 600 (100%)");
 }
 
 TEST(CrossValidation, AStopBeforeItStartsGivesAnEmptyResultAtOnce) {
