@@ -41,38 +41,53 @@ call = re.compile(r'\b(find_package|pkg_check_modules|pkg_search_module|find_pat
 keywords = {'REQUIRED', 'QUIET', 'IMPORTED_TARGET', 'GLOBAL', 'NO_CMAKE_PATH', 'NO_CMAKE_ENVIRONMENT_PATH',
             'NO_MODULE', 'CONFIG', 'MODULE', 'EXACT', 'COMPONENTS', 'OPTIONAL_COMPONENTS', 'NAMES', 'HINTS',
             'PATHS', 'PATH_SUFFIXES', 'NO_DEFAULT_PATH', 'DOC'}
-for top, dirs, files in os.walk(root):
-    # not build trees (any folder with a CMakeCache.txt), hidden folders, fetched data
-    dirs[:] = sorted(d for d in dirs if not d.startswith('.') and d not in ('models', 'data')
-                     and not os.path.exists(os.path.join(top, d, 'CMakeCache.txt')))
-    for name in sorted(files):
-        if name != 'CMakeLists.txt' and not name.endswith('.cmake'):
+import subprocess
+def cmake_files():
+    # In a checkout: the files git tracks or would track. What it ignores (build trees, the pinned
+    # OpenCV's unpacked source in build-opencv/, fetched data) is not the product's, and scanning it
+    # made OpenCV's own find_package(Java) a requirement. Elsewhere (a source tarball): every
+    # folder but build trees, hidden folders and fetched data.
+    listed = subprocess.run(['git', '-C', root, 'ls-files', '-co', '--exclude-standard', '--full-name',
+                             '--', ':(glob)**/CMakeLists.txt', ':(glob)**/*.cmake'],
+                            capture_output=True, text=True)
+    top_level = subprocess.run(['git', '-C', root, 'rev-parse', '--show-toplevel'],
+                               capture_output=True, text=True)
+    if listed.returncode == 0 and top_level.returncode == 0 and \
+            os.path.realpath(top_level.stdout.strip()) == os.path.realpath(root):
+        return sorted(os.path.join(root, f) for f in listed.stdout.splitlines() if f)
+    found = []
+    for top, dirs, files in os.walk(root):
+        dirs[:] = sorted(d for d in dirs if not d.startswith('.') and not d.startswith('build')
+                         and d not in ('models', 'data')
+                         and not os.path.exists(os.path.join(top, d, 'CMakeCache.txt')))
+        found += [os.path.join(top, n) for n in sorted(files)
+                  if n == 'CMakeLists.txt' or n.endswith('.cmake')]
+    return found
+for path in cmake_files():
+    text = open(path, encoding='utf-8').read()
+    # comments and quoted strings out (a string may hold CMake code), line numbers kept
+    text = re.sub(r'"(?:[^"\\]|\\.)*"', lambda m: '\n' * m.group(0).count('\n'), text)
+    text = re.sub(r'#[^\n]*', '', text)
+    for m in call.finditer(text):
+        kind = m.group(1).lower()
+        args = m.group(2).split()
+        line = text.count('\n', 0, m.start()) + 1
+        where = f'{os.path.relpath(path, root)}:{line}'
+        if not args:
             continue
-        path = os.path.join(top, name)
-        text = open(path, encoding='utf-8').read()
-        # comments and quoted strings out (a string may hold CMake code), line numbers kept
-        text = re.sub(r'"(?:[^"\\]|\\.)*"', lambda m: '\n' * m.group(0).count('\n'), text)
-        text = re.sub(r'#[^\n]*', '', text)
-        for m in call.finditer(text):
-            kind = m.group(1).lower()
-            args = m.group(2).split()
-            line = text.count('\n', 0, m.start()) + 1
-            where = f'{os.path.relpath(path, root)}:{line}'
-            if not args:
-                continue
-            if kind == 'find_package':
-                print(f'find_package\t{args[0]}\t{where}\t{args[0]}')
-            elif kind in ('pkg_check_modules', 'pkg_search_module'):
-                for module in args[1:]:
-                    if module.upper() in keywords:
-                        continue
-                    module = re.split(r'[<>=]', module)[0]
-                    print(f'{kind}\t{module}\t{where}\t{args[0]}')
-            else:  # find_path / find_library: VAR name | VAR NAMES n1 n2 ...
-                rest = args[1:]
-                if rest and rest[0].upper() == 'NAMES':
-                    rest = rest[1:]
-                print(f'{kind}\t{rest[0] if rest else "?"}\t{where}\t{args[0]}')
+        if kind == 'find_package':
+            print(f'find_package\t{args[0]}\t{where}\t{args[0]}')
+        elif kind in ('pkg_check_modules', 'pkg_search_module'):
+            for module in args[1:]:
+                if module.upper() in keywords:
+                    continue
+                module = re.split(r'[<>=]', module)[0]
+                print(f'{kind}\t{module}\t{where}\t{args[0]}')
+        else:  # find_path / find_library: VAR name | VAR NAMES n1 n2 ...
+            rest = args[1:]
+            if rest and rest[0].upper() == 'NAMES':
+                rest = rest[1:]
+            print(f'{kind}\t{rest[0] if rest else "?"}\t{where}\t{args[0]}')
 PY
 }
 
