@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "apps/cli_error.hpp"
+#include "apps/name_check.hpp"
 #include "apps/subcommand.hpp"
 #include "common/exit_codes.hpp"
 #include "common/input_error.hpp"
@@ -95,14 +96,17 @@ int main(int argc, char** argv) {
   // inherit fallthrough and hand options they do not know to this parser.
   app.fallthrough();
   app.set_version_flag("--version", "rtmot " RTMOT_VERSION);
-  std::string log_level = "info";
-  app.add_option("--log-level", log_level, "trace, debug, info, warn, error, off")
-      ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "off"}));
-  std::string log_format = "text";
+  using rtmot::platform::kLogFormatNames;
+  using rtmot::platform::kLogLevelNames;
+  std::string log_level{kLogLevelNames.name(rtmot::platform::LogLevel::info)};
+  // The accepted names are listed by the check (--help: "TEXT:trace, debug, ...").
+  app.add_option("--log-level", log_level, "the least severe lines shown")
+      ->check(rtmot::app::one_of(kLogLevelNames));
+  std::string log_format{kLogFormatNames.name(rtmot::platform::LogFormat::text)};
   app.add_option("--log-format", log_format,
-                 "text, or json: one JSON object per line (time, level, thread, message) for "
-                 "log shippers")
-      ->check(CLI::IsMember({"text", "json"}));
+                 "json: one JSON object per line (time, level, thread, message) for log "
+                 "shippers")
+      ->check(rtmot::app::one_of(kLogFormatNames));
   std::string log_file;
   app.add_option("--log-file", log_file, "also append the log to this file");
 
@@ -120,12 +124,13 @@ int main(int argc, char** argv) {
     spdlog::error("{}", rtmot::app::parse_error_line(app, argc, argv, error));
     return rtmot::to_int(rtmot::ExitCode::usage);
   }
-  spdlog::set_level(spdlog::level::from_str(log_level));
-  if (log_format != "text" || !log_file.empty()) {
+  // Both were checked against their tables by the parser.
+  const auto level = *kLogLevelNames.parse(log_level);
+  const auto format = *kLogFormatNames.parse(log_format);
+  rtmot::platform::set_log_level(level);
+  if (format != rtmot::platform::LogFormat::text || !log_file.empty()) {
     try {
-      rtmot::platform::configure_logging(log_format == "json" ? rtmot::platform::LogFormat::json
-                                                              : rtmot::platform::LogFormat::text,
-                                         log_file);
+      rtmot::platform::configure_logging(format, log_file);
     } catch (const rtmot::InputError& error) {
       spdlog::error("{}", error.what());
       return rtmot::to_int(error.exit_code());
@@ -133,7 +138,7 @@ int main(int argc, char** argv) {
   }
   // OpenCV's own warnings would surround our one error line with lines of its own: it speaks only
   // when asked for debug output.
-  cv::utils::logging::setLogLevel(log_level == "trace" || log_level == "debug"
+  cv::utils::logging::setLogLevel(level <= rtmot::platform::LogLevel::debug
                                       ? cv::utils::logging::LOG_LEVEL_INFO
                                       : cv::utils::logging::LOG_LEVEL_SILENT);
   for (const auto& subcommand : subcommands) {

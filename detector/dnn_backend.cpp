@@ -43,9 +43,9 @@ std::optional<BackendRequest> parse_backend_request(const std::string& text) {
 }
 
 std::optional<Fp16Request> parse_fp16_request(const std::string& text) {
-  if (text == "auto") return Fp16Request::automatic;
-  if (text == "on" || text == "true") return Fp16Request::on;
-  if (text == "off" || text == "false") return Fp16Request::off;
+  if (const auto named = kFp16Names.parse(text)) return named;
+  if (text == "true") return Fp16Request::on;
+  if (text == "false") return Fp16Request::off;
   return std::nullopt;
 }
 

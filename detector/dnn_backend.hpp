@@ -2,11 +2,19 @@
 // Which engine (OpenCV DNN backend/target, or XNNPACK) runs the SSD, decided once at start-up.
 #include <optional>
 #include <string>
+#include <string_view>
+
+#include "tracker/enum_names.hpp"
 
 namespace rtmot::detector {
 
 enum class BackendRequest { automatic, cpu, cuda, xnnpack };
 enum class Fp16Request { automatic, on, off };
+/// The one table of fp16 names, for parsing, messages and docs/config.md.
+inline constexpr auto kFp16Names = tracker::make_enum_names<Fp16Request>(
+    std::pair{Fp16Request::automatic, std::string_view("auto")},
+    std::pair{Fp16Request::on, std::string_view("on")},
+    std::pair{Fp16Request::off, std::string_view("off")});
 
 /// The one table of backend names ("auto", "cpu", "cuda", "xnnpack"), for parsing and messages.
 const char* backend_request_name(BackendRequest request);
@@ -14,7 +22,8 @@ const char* backend_request_name(BackendRequest request);
 std::string backend_request_names();
 /// A name of the table -> request; nullopt otherwise.
 std::optional<BackendRequest> parse_backend_request(const std::string& text);
-/// "auto"/"on"/"off" (also "true"/"false") -> request; nullopt otherwise.
+/// A name of kFp16Names -> request; YAML's booleans true/false also read as on/off (`fp16: true`
+/// is what a YAML writer types). nullopt otherwise.
 std::optional<Fp16Request> parse_fp16_request(const std::string& text);
 
 /// What runs the forward pass: OpenCV DNN (backend/target below) or the XNNPACK subgraph.

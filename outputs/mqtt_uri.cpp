@@ -23,11 +23,13 @@ bool read_parameter(std::string_view key, std::string_view value, MqttUri& uri,
     return true;
   }
   if (key == "format") {
-    if (value != "binary" && value != "json") {
-      problem = "format must be binary or json, got '" + std::string(value) + "'";
+    const auto payload = kMqttPayloadNames.parse(value);
+    if (!payload) {
+      problem = "format must be " + kMqttPayloadNames.alternatives() + ", got '" +
+                std::string(value) + "'";
       return false;
     }
-    uri.payload = value == "json" ? MqttPayload::json : MqttPayload::binary;
+    uri.payload = *payload;
     return true;
   }
   problem = "unknown parameter '" + std::string(key) + "' (qos, format)";
@@ -102,10 +104,18 @@ std::optional<MqttUri> parse_mqtt_uri(const std::string& text, std::string& prob
   return uri;
 }
 
+std::string mqtt_uri_syntax() {
+  std::string formats;
+  for (const auto& entry : kMqttPayloadNames.entries()) {
+    formats += (formats.empty() ? "" : "|") + std::string(entry.second);
+  }
+  return "mqtt://HOST[:PORT]/TOPIC[?qos=0|1&format=" + formats + "]";
+}
+
 std::string to_string(const MqttUri& uri) {
   return "mqtt://" + platform::format_host_port(uri.host, uri.port) + "/" + uri.topic +
          "?qos=" + std::to_string(uri.qos) +
-         (uri.payload == MqttPayload::json ? "&format=json" : "&format=binary");
+         "&format=" + std::string(kMqttPayloadNames.name(uri.payload));
 }
 
 }  // namespace rtmot::outputs

@@ -4,10 +4,17 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <string_view>
+
+#include "tracker/enum_names.hpp"
 
 namespace rtmot::outputs {
 
 enum class MqttPayload { binary, json };
+/// The one table of payload names: the URI's `format=` values.
+inline constexpr auto kMqttPayloadNames = tracker::make_enum_names<MqttPayload>(
+    std::pair{MqttPayload::binary, std::string_view("binary")},
+    std::pair{MqttPayload::json, std::string_view("json")});
 
 struct MqttUri {
   std::string host;
@@ -32,6 +39,10 @@ std::optional<MqttUri> parse_mqtt_uri(const std::string& text, std::string& prob
 
 /// "" when `topic` is valid for `use` (the rules above), else why not.
 std::string check_mqtt_topic(const std::string& topic, MqttTopicUse use);
+
+/// "mqtt://HOST[:PORT]/TOPIC[?qos=0|1&format=binary|json]", the formats from kMqttPayloadNames:
+/// for help texts, errors and docs/config.md.
+std::string mqtt_uri_syntax();
 
 /// The URI back as text (for logs).
 std::string to_string(const MqttUri& uri);

@@ -62,6 +62,23 @@ std::unique_ptr<spdlog::formatter> make_formatter(LogFormat format) {
 
 }  // namespace
 
+void set_log_level(LogLevel level) {
+  switch (level) {
+    case LogLevel::trace:
+      return spdlog::set_level(spdlog::level::trace);
+    case LogLevel::debug:
+      return spdlog::set_level(spdlog::level::debug);
+    case LogLevel::info:
+      return spdlog::set_level(spdlog::level::info);
+    case LogLevel::warn:
+      return spdlog::set_level(spdlog::level::warn);
+    case LogLevel::error:
+      return spdlog::set_level(spdlog::level::err);
+    case LogLevel::off:
+      return spdlog::set_level(spdlog::level::off);
+  }
+}
+
 void configure_logging(LogFormat format, const std::string& file) {
   std::vector<spdlog::sink_ptr> sinks{std::make_shared<spdlog::sinks::stderr_color_sink_mt>()};
   if (!file.empty()) {

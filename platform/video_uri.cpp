@@ -193,59 +193,70 @@ VideoUri parse_video_uri(const std::string& text) {
   const std::string scheme = lowercase(text.substr(0, separator));
   const std::string rest = text.substr(separator + 3);
 
-  if (scheme == "file") {
-    uri.kind = SourceKind::file;
-    // file://localhost/abs is the same file as file:///abs.
-    const bool localhost = rest.rfind("localhost/", 0) == 0;
-    uri.location = percent_decode(text, localhost ? rest.substr(9) : rest);
-    if (uri.location.empty()) fail(text, "path", "no file path after file://");
-  } else if (scheme == "v4l2") {
-    uri.kind = SourceKind::v4l2;
-    if (all_digits(rest)) {
-      uri.location = "/dev/video" + rest;
-    } else if (rest.size() > 1 && rest[0] == '/') {
-      uri.location = rest;
-    } else {
-      fail(text, "device", "expected v4l2:///dev/videoN or v4l2://N");
-    }
-    // A missing device is a camera not plugged in yet (a cold start, retried); a file or a folder
-    // there never becomes a camera: retrying it forever hid the mistake.
-    struct stat status {};
-    if (::stat(uri.location.c_str(), &status) == 0 && !S_ISCHR(status.st_mode)) {
-      fail(text, "device",
-           "'" + uri.location + "' is " + (S_ISDIR(status.st_mode) ? "a folder" : "not a device") +
-               ", expected a video device (/dev/videoN)");
-    }
-  } else if (scheme == "csi") {
-    uri.kind = SourceKind::csi;
-    if (!all_digits(rest)) fail(text, "sensor-id", "expected csi://N with a sensor number");
-    uri.sensor_id = parse_int(text, "sensor-id", rest, 0, 63);
-  } else if (scheme == "rtsp" || scheme == "rtsps") {
-    uri.kind = SourceKind::rtsp;
-    std::string authority = rest.substr(0, rest.find('/'));
-    authority = authority.substr(authority.rfind('@') == std::string::npos
-                                     ? 0
-                                     : authority.rfind('@') + 1);  // user:password@
-    if (authority.empty() || authority[0] == ':') fail(text, "host", "no host in the rtsp:// URL");
-    // The one HOST:PORT parser: [::1]:8554 works, a port out of range fails here, at once.
-    std::string problem;
-    if (!parse_host_port(authority, problem, scheme == "rtsps" ? 322 : 554)) {
-      fail(text, "host", problem);
-    }
-    uri.location = text;
-  } else if (scheme == "images") {
-    uri.kind = SourceKind::images;
-    const auto question = rest.find('?');
-    uri.location = percent_decode(text, rest.substr(0, question));
-    if (uri.location.empty()) fail(text, "path", "no folder after images://");
-    if (question != std::string::npos)
-      uri.images = parse_images_query(text, rest.substr(question + 1));
-  } else if (scheme == "test") {
-    uri.kind = SourceKind::test;
-    uri.test = parse_test(text, rest);
-  } else {
+  const auto kind = kSourceSchemes.parse(scheme);
+  if (!kind) {
     fail(text, "scheme",
-         "unknown scheme '" + scheme + "' (known: file, v4l2, csi, rtsp, rtsps, test, images)");
+         "unknown scheme '" + scheme + "' (known: " + kSourceSchemes.alternatives() + ")");
+  }
+  uri.kind = *kind;
+  switch (*kind) {
+    case SourceKind::file: {
+      // file://localhost/abs is the same file as file:///abs.
+      const bool localhost = rest.rfind("localhost/", 0) == 0;
+      uri.location = percent_decode(text, localhost ? rest.substr(9) : rest);
+      if (uri.location.empty()) fail(text, "path", "no file path after file://");
+      break;
+    }
+    case SourceKind::v4l2: {
+      if (all_digits(rest)) {
+        uri.location = "/dev/video" + rest;
+      } else if (rest.size() > 1 && rest[0] == '/') {
+        uri.location = rest;
+      } else {
+        fail(text, "device", "expected v4l2:///dev/videoN or v4l2://N");
+      }
+      // A missing device is a camera not plugged in yet (a cold start, retried); a file or a
+      // folder there never becomes a camera: retrying it forever hid the mistake.
+      struct stat status {};
+      if (::stat(uri.location.c_str(), &status) == 0 && !S_ISCHR(status.st_mode)) {
+        fail(text, "device",
+             "'" + uri.location + "' is " +
+                 (S_ISDIR(status.st_mode) ? "a folder" : "not a device") +
+                 ", expected a video device (/dev/videoN)");
+      }
+      break;
+    }
+    case SourceKind::csi:
+      if (!all_digits(rest)) fail(text, "sensor-id", "expected csi://N with a sensor number");
+      uri.sensor_id = parse_int(text, "sensor-id", rest, 0, 63);
+      break;
+    case SourceKind::rtsp: {
+      std::string authority = rest.substr(0, rest.find('/'));
+      authority = authority.substr(authority.rfind('@') == std::string::npos
+                                       ? 0
+                                       : authority.rfind('@') + 1);  // user:password@
+      if (authority.empty() || authority[0] == ':') {
+        fail(text, "host", "no host in the rtsp:// URL");
+      }
+      // The one HOST:PORT parser: [::1]:8554 works, a port out of range fails here, at once.
+      std::string problem;
+      if (!parse_host_port(authority, problem, scheme == "rtsps" ? 322 : 554)) {
+        fail(text, "host", problem);
+      }
+      uri.location = text;
+      break;
+    }
+    case SourceKind::images: {
+      const auto question = rest.find('?');
+      uri.location = percent_decode(text, rest.substr(0, question));
+      if (uri.location.empty()) fail(text, "path", "no folder after images://");
+      if (question != std::string::npos)
+        uri.images = parse_images_query(text, rest.substr(question + 1));
+      break;
+    }
+    case SourceKind::test:
+      uri.test = parse_test(text, rest);
+      break;
   }
   return uri;
 }
@@ -265,22 +276,17 @@ bool is_live(const VideoUri& uri) {
   return true;
 }
 
-const char* to_string(SourceKind kind) {
-  switch (kind) {
-    case SourceKind::file:
-      return "file";
-    case SourceKind::v4l2:
-      return "v4l2";
-    case SourceKind::csi:
-      return "csi";
-    case SourceKind::rtsp:
-      return "rtsp";
-    case SourceKind::test:
-      return "test";
-    case SourceKind::images:
-      return "images";
+std::string source_uri_schemes() {
+  std::string text;
+  for (const auto& entry : kSourceSchemes.entries()) {
+    text += (text.empty() ? "" : ", ") + std::string(entry.second) + "://";
   }
-  return "unknown";
+  return text;
+}
+
+const char* to_string(SourceKind kind) {
+  // Every name in the table is a literal, so its view is NUL-terminated.
+  return kSourceSchemes.name(kind).data();
 }
 
 }  // namespace rtmot::platform

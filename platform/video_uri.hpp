@@ -2,10 +2,23 @@
 // A video-source URI taken apart into what the capture code needs. Parsing needs no GStreamer, so
 // it is cheap to test and to validate command lines with.
 #include <string>
+#include <string_view>
+
+#include "tracker/enum_names.hpp"
 
 namespace rtmot::platform {
 
 enum class SourceKind { file, v4l2, csi, rtsp, test, images };
+/// The one table of source kinds, named by their URI schemes (parsing, messages, logs). rtsps (RTSP
+/// over TLS) is a second name of rtsp, after it, so that a kind's name is its first.
+inline constexpr auto kSourceSchemes =
+    tracker::make_enum_names<SourceKind>(std::pair{SourceKind::file, std::string_view("file")},
+                                         std::pair{SourceKind::v4l2, std::string_view("v4l2")},
+                                         std::pair{SourceKind::csi, std::string_view("csi")},
+                                         std::pair{SourceKind::rtsp, std::string_view("rtsp")},
+                                         std::pair{SourceKind::rtsp, std::string_view("rtsps")},
+                                         std::pair{SourceKind::test, std::string_view("test")},
+                                         std::pair{SourceKind::images, std::string_view("images")});
 
 /// test://PATTERN?key=value&... : GStreamer's videotestsrc plus injected faults. -1 means "off".
 struct TestSourceParams {
@@ -42,6 +55,11 @@ VideoUri parse_video_uri(const std::string& uri);
 /// Cameras, streams and live test sources deliver frames in real time (and drop old ones).
 bool is_live(const VideoUri& uri);
 
+/// "file://, v4l2://, csi://, rtsp://, rtsps://, test://, images://": kSourceSchemes as URI
+/// prefixes, for help texts and docs/config.md.
+std::string source_uri_schemes();
+
+/// The kind's scheme name (kSourceSchemes).
 const char* to_string(SourceKind kind);
 
 }  // namespace rtmot::platform

@@ -6,6 +6,7 @@
 #include "common/checked_number.hpp"
 #include "common/frame_rate.hpp"
 #include "detector/coco_labels.hpp"
+#include "platform/video_uri.hpp"
 
 namespace rtmot::runner {
 namespace {
@@ -135,7 +136,8 @@ auto off_or(Parse parse, bool quote = true) {
 std::vector<RunSetting> source_settings() {
   const auto side = IntegerRange{0, kMaxImageSide};
   return {
-      text("source.uri", "", "what to track: a file, v4l2://, csi://, rtsp://, test://, mot-seq://",
+      text("source.uri", "",
+           "what to track: a file or folder, " + platform::source_uri_schemes() + ", mot-seq://",
            [](RunConfig& c) -> std::string& { return c.source.uri; }),
       integer<int>("source.width", "", "requested camera width; 0 = the source's", side,
                    [](RunConfig& c) -> int& { return c.source.width; }),
@@ -185,7 +187,7 @@ std::vector<RunSetting> detector_settings() {
           [](RunConfig& c) -> detector::BackendRequest& { return c.detector.backend; }),
       parsed<detector::Fp16Request>(
           "detector.fp16", "--fp16", "half precision on CUDA (auto: on Jetson boards)",
-          "auto, on or off",
+          detector::kFp16Names.alternatives(),
           [](const std::string& t, std::string&) { return detector::parse_fp16_request(t); },
           [](RunConfig& c) -> detector::Fp16Request& { return c.detector.fp16; }),
       real<float>("detector.score_threshold", "--threshold",
@@ -214,7 +216,7 @@ std::vector<RunSetting> output_settings() {
            [](RunConfig& c) -> std::string& { return c.output.jsonl_file; }),
       parsed<std::optional<outputs::MqttUri>>(
           "output.mqtt", "--mqtt", "publish track messages to an MQTT broker",
-          "mqtt://HOST[:PORT]/TOPIC[?qos=0|1&format=binary|json]", off_or(publish_uri),
+          outputs::mqtt_uri_syntax(), off_or(publish_uri),
           [](RunConfig& c) -> std::optional<outputs::MqttUri>& { return c.output.mqtt; }),
       parsed<std::optional<outputs::VideoTarget>>(
           "output.video_file", "--video-out", "the annotated video",

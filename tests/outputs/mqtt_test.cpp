@@ -88,6 +88,22 @@ TEST(MqttUri, ReadsBrokerTopicQosAndFormat) {
   EXPECT_FALSE(parse_mqtt_uri("udp://broker/t", problem));
 }
 
+// The payload formats are kMqttPayloadNames: each name is read, written back by to_string, and an
+// unknown one is refused with the table's names.
+TEST(MqttUri, FormatsAreTheTablesNames) {
+  for (const auto& [payload, name] : kMqttPayloadNames.entries()) {
+    SCOPED_TRACE(std::string(name));
+    const MqttUri uri = uri_of("mqtt://broker/t?format=" + std::string(name));
+    EXPECT_EQ(uri.payload, payload);
+    EXPECT_EQ(to_string(uri), "mqtt://broker:1883/t?qos=1&format=" + std::string(name));
+    EXPECT_EQ(uri_of(to_string(uri)).payload, payload);
+  }
+  std::string problem;
+  EXPECT_FALSE(parse_mqtt_uri("mqtt://broker/t?format=xml", problem));
+  EXPECT_EQ(problem, "format must be binary or json, got 'xml'");
+  EXPECT_EQ(mqtt_uri_syntax(), "mqtt://HOST[:PORT]/TOPIC[?qos=0|1&format=binary|json]");
+}
+
 // Issue 23, class 9: the MQTT specification's rules, checked at start for the topic's use.
 TEST(MqttTopics, AreCheckedForTheirUse) {
   using Use = MqttTopicUse;

@@ -43,6 +43,34 @@ TEST(VideoUri, CamerasAndStreamsAreLive) {
   EXPECT_TRUE(is_live(rtsp));
 }
 
+// kSourceSchemes is what the parser reads: every scheme in it is known to the parser (a bare
+// "scheme://" may lack its path, never be an unknown scheme), names its kind back, and an unknown
+// scheme is refused listing them all.
+TEST(VideoUri, SchemesAreTheTablesNames) {
+  for (const auto& [kind, scheme] : kSourceSchemes.entries()) {
+    SCOPED_TRACE(std::string(scheme));
+    try {
+      EXPECT_EQ(parse_video_uri(std::string(scheme) + "://").kind, kind);
+    } catch (const InputError& error) {
+      EXPECT_NE(error.field(), "scheme") << error.what();
+    }
+    EXPECT_EQ(kSourceSchemes.parse(to_string(kind)), kind);
+  }
+  EXPECT_STREQ(to_string(SourceKind::rtsp), "rtsp");
+  EXPECT_EQ(parse_video_uri("RTSPS://camera/live").kind, SourceKind::rtsp);
+  EXPECT_EQ(parse_video_uri("images:///tmp/frames?fps=5").kind, SourceKind::images);
+  try {
+    parse_video_uri("http://example.com/x.avi");
+    ADD_FAILURE() << "accepted";
+  } catch (const InputError& error) {
+    EXPECT_NE(std::string(error.what())
+                  .find("unknown scheme 'http' (known: file, v4l2, csi, rtsp, rtsps, test or "
+                        "images)"),
+              std::string::npos)
+        << error.what();
+  }
+}
+
 TEST(VideoUri, TestSourceDefaults) {
   const VideoUri uri = parse_video_uri("test://");
   EXPECT_EQ(uri.kind, SourceKind::test);

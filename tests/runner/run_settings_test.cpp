@@ -116,6 +116,32 @@ TEST(RunSettings, RefusedFlagsNameTheFlag) {
   }
 }
 
+// An enum's names come from its one table: every name sets its value, by flag and by file, and the
+// accepted values the docs and errors show are the table's.
+TEST(RunSettings, NamedValuesComeFromTheirTables) {
+  for (const auto& [fp16, name] : detector::kFp16Names.entries()) {
+    SCOPED_TRACE(std::string(name));
+    EXPECT_EQ(with_flags("stream_id: 0\n", "--fp16 " + std::string(name)).detector.fp16, fp16);
+    EXPECT_EQ(
+        parse_run_config("detector:\n  fp16: " + std::string(name) + "\n", "f.yaml").detector.fp16,
+        fp16);
+  }
+  // YAML's booleans read as on and off.
+  EXPECT_EQ(with_flags("detector:\n  fp16: true\n", "").detector.fp16, detector::Fp16Request::on);
+  EXPECT_EQ(find_run_setting("detector.fp16")->expected, "auto, on or off");
+  EXPECT_EQ(find_run_setting("detector.fp16")->expected, detector::kFp16Names.alternatives());
+
+  for (const auto& [payload, name] : outputs::kMqttPayloadNames.entries()) {
+    SCOPED_TRACE(std::string(name));
+    const auto config =
+        with_flags("stream_id: 0\n", "--mqtt mqtt://broker/t?format=" + std::string(name));
+    ASSERT_TRUE(config.output.mqtt.has_value());
+    EXPECT_EQ(config.output.mqtt->payload, payload);
+  }
+  EXPECT_EQ(find_run_setting("output.mqtt")->expected,
+            "mqtt://HOST[:PORT]/TOPIC[?qos=0|1&format=binary|json]");
+}
+
 TEST(RunSettings, EveryKeyAndFlagIsDeclaredOnce) {
   std::set<std::string> keys;
   std::set<std::string> flags{"--config", "--preset", "--source"};
