@@ -13,6 +13,7 @@
 #include "common/nearest_name.hpp"
 #include "runner/run_settings.hpp"
 #include "runner/sequence_clock_source.hpp"
+#include "runner/yaml_document.hpp"
 #include "runner/yaml_section.hpp"
 #include "tracker/presets.hpp"
 #include "tracker/tracker_options.hpp"
@@ -156,26 +157,6 @@ void read_tracker(Section section, tracker::TrackerConfig& config) {
     }
     section.fail(YAML::Node{}, "", *problem);
   }
-}
-
-// The one document of the file. yaml-cpp's Load() reads the first and drops the rest silently: a
-// second document (after `---`) is an error naming its line, not settings that never apply.
-YAML::Node load_one_document(const std::string& yaml_text, const std::string& file_name) {
-  std::vector<YAML::Node> documents;
-  try {
-    documents = YAML::LoadAll(yaml_text);
-  } catch (const YAML::ParserException& error) {
-    throw InputError(file_name, error.mark.line + 1, "", "not valid YAML: " + error.msg);
-  }
-  if (documents.size() > 1) {
-    throw InputError(file_name, line_of(documents[1]), "",
-                     "a second YAML document: a run configuration is one document (remove the "
-                     "'---' and what follows, or merge it into the first)");
-  }
-  if (documents.empty() || documents.front().IsNull()) {
-    throw InputError(file_name, 0, "", "the configuration is empty");
-  }
-  return documents.front();
 }
 
 }  // namespace

@@ -36,6 +36,28 @@ TEST(FuzzRegression, RunConfigComplexKeyIsABadInputError) {
 // fuzz_run_config, 2026-11-23: validate() asked stream_id_of() for every source, which kept a
 // reference into the temporary vector source_list() returned: a heap use-after-free on any valid
 // configuration (ASan; the plain build read freed memory silently). Fix: runner/run_config.cpp.
+// fuzz_run_config, 2026-11-25: a stray ',' at the top level made yaml-cpp 0.7's LoadAll() (the
+// second-document check) read empty documents without end, memory growing: a hang. Fix:
+// runner/yaml_document.cpp counts at most two documents. Each input is refused, in bounded time.
+TEST(FuzzRegression, RunConfigStrayCommaIsRefusedNotAnEndlessParse) {
+  const std::string inputs[] = {
+      ",so:\n  caputre: {cpupriority: 45}\n  sink: {cpu: -1}\ndete.tor:\n  kin$: replay\n",
+      ",",
+      ",\nsource:\n  uri: test://ball\n",
+  };
+  for (const auto& text : inputs) {
+    try {
+      runner::parse_run_config(text, "fuzz.yaml");
+      ADD_FAILURE() << "accepted: " << text;
+    } catch (const InputError& error) {
+      EXPECT_EQ(error.exit_code(), ExitCode::bad_input) << error.what();
+      EXPECT_EQ(error.file(), "fuzz.yaml");
+    } catch (const std::exception& error) {
+      ADD_FAILURE() << "escaped as " << typeid(error).name() << ": " << error.what();
+    }
+  }
+}
+
 TEST(FuzzRegression, StreamIdsOfAValidConfigurationReadNoFreedMemory) {
   const std::string text =
       "source:\n  uri: test://ball\ndetector:\n  kind: ssd\n  model: models/x.onnx\n"
