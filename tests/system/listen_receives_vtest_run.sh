@@ -10,7 +10,10 @@ for file in "$video" "$model"; do
   [[ -f $file ]] || { echo "FAIL: missing test input $file (model: scripts/fetch_model.sh)"; exit 1; }
 done
 work=$(mktemp -d)
-trap 'kill "$listener" 2>/dev/null || true; rm -rf "$work"' EXIT
+trap 'kill "${listener:-}" 2>/dev/null || true; rm -rf "$work"' EXIT
+# Made before the listener starts: the loop below may read it before the listener's shell has
+# opened it, and a sed of a missing file ended the script under set -e (seen once in CI).
+: >"$work/listen.err"
 
 # Port 0: the listener takes a free ephemeral port and logs it.
 "$rtmot" listen --port 0 --bind 127.0.0.1 --count "$frames" --duration 600 --quiet \
