@@ -24,7 +24,7 @@ struct TrackOptions {
   int interval{1};
   /// When set and true, the run stops before its next frame (TrackRun::stopped).
   const std::atomic<bool>* stop{nullptr};
-  /// The study's rules (mot/study_knobs.hpp) for the Tracker; empty in the product.
+  /// The study's rules (study/study_knobs.hpp) for the Tracker; empty in the product.
   tracker::TrackerExtensionFactory extension;
 };
 
