@@ -180,11 +180,10 @@ std::vector<RunSetting> detector_settings() {
            [](RunConfig& c) -> std::string& { return c.detector.model; }),
       text("detector.anchors", "", "ssd: the anchors CSV; empty = beside the model",
            [](RunConfig& c) -> std::string& { return c.detector.anchors; }),
-      parsed<detector::BackendRequest>(
-          "detector.backend", "--backend", "the engine that runs the model",
-          detector::backend_request_names(),
-          [](const std::string& t, std::string&) { return detector::parse_backend_request(t); },
-          [](RunConfig& c) -> detector::BackendRequest& { return c.detector.backend; }),
+      named("detector.backend", "--backend", "the engine that runs the model",
+            detector::kBackendNames,
+            Field<detector::BackendRequest>(
+                [](RunConfig& c) -> detector::BackendRequest& { return c.detector.backend; })),
       parsed<detector::Fp16Request>(
           "detector.fp16", "--fp16", "half precision on CUDA (auto: on Jetson boards)",
           detector::kFp16Names.alternatives(),
@@ -251,6 +250,11 @@ std::vector<RunSetting> output_settings() {
                           "the address the metrics endpoint listens on", "an IPv4 or IPv6 address",
                           platform::parse_bind_address,
                           [](RunConfig& c) -> std::string& { return c.output.metrics_bind; }),
+      real<double>("output.metrics_linger_s", "--metrics-linger",
+                   "after the run, keep serving the final metrics this many seconds (a scraper "
+                   "sees the last counts; SIGINT/SIGTERM ends it); 0 = off",
+                   {0.0, 86'400.0},
+                   [](RunConfig& c) -> double& { return c.output.metrics_linger_s; }),
   };
 }
 
