@@ -71,6 +71,8 @@ struct OutputConfig {
   std::string report_file;                    // JSON report, empty = off
   int metrics_port{0};                        // Prometheus endpoint on this TCP port, 0 = off
   std::string metrics_bind{"127.0.0.1"};      // an IP literal the endpoint listens on
+  /// MOTChallenge results per source, in this folder (runner/mot_results_output.hpp); empty = off.
+  std::string mot_results;
 };
 
 struct RunConfig {
