@@ -3,8 +3,10 @@
 // SIGINT/SIGTERM (all exit 0), after draining, flushing and the final report.
 #include <spdlog/spdlog.h>
 
+#include <chrono>
 #include <memory>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "apps/subcommand.hpp"
@@ -26,6 +28,22 @@ struct RunCommand {
   std::string config_file;
   runner::RunFlags flags;
 };
+
+// A run shorter than a scrape interval (a recorded file) ends before Prometheus sees its last
+// counts: with metrics_linger_s the endpoint stays up, showing the final values, until the time is
+// up or a signal asks to stop. Polled every 100 ms: StopSignals offers a flag, not a wait.
+void linger_with_final_metrics(const runner::OutputConfig& output,
+                               const runner::RunOutputs& outputs,
+                               const platform::StopSignals& signals) {
+  if (!outputs.metrics_server || !(output.metrics_linger_s > 0.0) || signals.stop_requested())
+    return;
+  spdlog::info("metrics: the final values served at {} for {} s more (SIGINT/SIGTERM ends it)",
+               outputs.metrics_server->url(), output.metrics_linger_s);
+  const auto until =
+      std::chrono::steady_clock::now() + std::chrono::duration<double>(output.metrics_linger_s);
+  while (!signals.stop_requested() && std::chrono::steady_clock::now() < until)
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+}
 
 int run(const RunCommand& command) {
   // Before any thread exists: every thread inherits the blocked SIGINT/SIGTERM.
@@ -82,6 +100,7 @@ int run(const RunCommand& command) {
       spdlog::error("output {}", line);
     }
   }
+  linger_with_final_metrics(config.output, outputs, signals);
   const bool files_written = !config.output.jsonl_file.empty() ||
                              !config.output.binary_file.empty() ||
                              config.output.video.has_value() || !config.output.mot_results.empty();

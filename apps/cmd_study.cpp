@@ -1,6 +1,6 @@
-// `rtmot study`: the frame-rate study. Tracks every configuration of mot/study_plan.hpp on both
+// `rtmot study`: the frame-rate study. Tracks every configuration of study/study_plan.hpp on both
 // inputs at every interval, the presets on the synthetic detectors, and the cross-validation of the
-// default's candidates (mot/study_cv.hpp); scores each run with the `rtmot eval` scorer on the
+// default's candidates (study/study_cv.hpp); scores each run with the `rtmot eval` scorer on the
 // processed frames, and writes tables and plots (docs/study/ is made by scripts/study.sh).
 #include <spdlog/spdlog.h>
 
@@ -17,15 +17,14 @@
 #include "common/exit_codes.hpp"
 #include "common/input_error.hpp"
 #include "common/output_file.hpp"
-#include "mot/metrics_report.hpp"
-#include "mot/run_progress.hpp"
-#include "mot/study_cv.hpp"
-#include "mot/study_dataset.hpp"
-#include "mot/study_plan.hpp"
-#include "mot/study_report.hpp"
-#include "mot/study_runner.hpp"
 #include "motio/mot_files.hpp"
 #include "platform/signals.hpp"
+#include "study/run_progress.hpp"
+#include "study/study_cv.hpp"
+#include "study/study_dataset.hpp"
+#include "study/study_plan.hpp"
+#include "study/study_report.hpp"
+#include "study/study_runner.hpp"
 #include "tracker/presets.hpp"
 
 namespace rtmot::app {
@@ -35,7 +34,7 @@ struct StudyCommandOptions {
   std::string dataset;
   std::string out_dir;
   int jobs{2};
-  std::vector<int> intervals{mot::default_study_intervals()};
+  std::vector<int> intervals{study::default_study_intervals()};
   bool quick{false};
   bool no_synthetic{false};
   bool no_cv{false};
@@ -50,7 +49,7 @@ int stopped(const char* phase) {
   return to_int(ExitCode::ok);
 }
 
-// Prints mot::run_progress_line at most every `interval` (and at the last run), from whichever
+// Prints study::run_progress_line at most every `interval` (and at the last run), from whichever
 // worker thread finished a run.
 class RunProgressPrinter {
  public:
@@ -68,7 +67,7 @@ class RunProgressPrinter {
     last_line_ = now;
     spdlog::info(
         "{}: {}", what_,
-        mot::run_progress_line(done, total, std::chrono::duration<double>(now - start_).count()));
+        study::run_progress_line(done, total, std::chrono::duration<double>(now - start_).count()));
   }
 
  private:
@@ -87,8 +86,8 @@ int run_study_command(const StudyCommandOptions& options) {
   std::vector<int> intervals = options.intervals;
   std::sort(intervals.begin(), intervals.end());
   intervals.erase(std::unique(intervals.begin(), intervals.end()), intervals.end());
-  const auto dataset = mot::load_study_dataset(options.dataset);
-  auto configurations = mot::study_configurations(options.quick);
+  const auto dataset = study::load_study_dataset(options.dataset);
+  auto configurations = study::study_configurations(options.quick);
   if (!options.only.empty()) {
     configurations.erase(std::remove_if(configurations.begin(), configurations.end(),
                                         [&](const auto& c) {
@@ -100,63 +99,63 @@ int run_study_command(const StudyCommandOptions& options) {
                        ExitCode::usage);
     }
   }
-  const std::vector<mot::StudyInput> inputs = {mot::StudyInput::detections,
-                                               mot::StudyInput::ground_truth};
+  const std::vector<study::StudyInput> inputs = {study::StudyInput::detections,
+                                                 study::StudyInput::ground_truth};
   spdlog::info("study: {} sequences, {} configurations x {} inputs x {} intervals on {} threads",
                dataset.size(), configurations.size(), inputs.size(), intervals.size(),
                options.jobs);
-  const auto progress = [](int done, int total, const mot::StudyTable& table, int interval) {
+  const auto progress = [](int done, int total, const study::StudyTable& table, int interval) {
     for (const auto& row : table.rows) {
       if (row.interval == interval) {
         spdlog::info("[{}/{}] {} on {} interval {}: MOTA {:.1f} IDF1 {:.1f}", done, total,
-                     table.configuration.name, mot::to_string(table.input), interval,
+                     table.configuration.name, study::to_string(table.input), interval,
                      row.metrics.mota, row.metrics.idf1);
         return;
       }
     }
   };
-  auto tables = mot::run_study(dataset, configurations, inputs, intervals, options.jobs, progress,
-                               &signals.stop_flag());
+  auto tables = study::run_study(dataset, configurations, inputs, intervals, options.jobs, progress,
+                                 &signals.stop_flag());
   if (signals.stop_requested()) return stopped("the runs");
   if (!options.no_synthetic) {
-    // The presets on detectors they were never tuned on (mot/synthetic_detector.hpp).
-    std::vector<mot::StudyConfiguration> presets;
+    // The presets on detectors they were never tuned on (study/synthetic_detector.hpp).
+    std::vector<study::StudyConfiguration> presets;
     for (const auto& configuration : configurations) {
       if (configuration.group == "presets") presets.push_back(configuration);
     }
     // Those the cross-validation chooses on, and those held back from every choice.
-    std::vector<mot::StudyInput> detectors = mot::synthetic_inputs();
-    for (const auto& input : mot::held_back_inputs()) detectors.push_back(input);
+    std::vector<study::StudyInput> detectors = study::synthetic_inputs();
+    for (const auto& input : study::held_back_inputs()) detectors.push_back(input);
     spdlog::info("study: {} presets x {} synthetic detectors ({} held back)", presets.size(),
-                 detectors.size(), mot::held_back_inputs().size());
-    for (auto& table : mot::run_study(dataset, presets, detectors, intervals, options.jobs,
-                                      progress, &signals.stop_flag()))
+                 detectors.size(), study::held_back_inputs().size());
+    for (auto& table : study::run_study(dataset, presets, detectors, intervals, options.jobs,
+                                        progress, &signals.stop_flag()))
       tables.push_back(std::move(table));
     if (signals.stop_requested()) return stopped("the synthetic detectors");
   }
   std::string folds;
   if (!options.no_cv && dataset.size() >= 2) {
-    const auto candidates = mot::cv_candidates(options.quick);
+    const auto candidates = study::cv_candidates(options.quick);
     spdlog::info(
         "study: cross-validation (one sequence and one detector left out) of {} candidates",
         candidates.size());
     // The public detections and every synthetic detector: each is left out in turn.
-    std::vector<mot::StudyInput> detectors = {mot::StudyInput::detections};
-    for (const auto& input : mot::synthetic_inputs()) detectors.push_back(input);
+    std::vector<study::StudyInput> detectors = {study::StudyInput::detections};
+    for (const auto& input : study::synthetic_inputs()) detectors.push_back(input);
     // What the default must hold against on every detector and interval: SORT and ByteTrack.
-    std::vector<mot::StudyConfiguration> references;
+    std::vector<study::StudyConfiguration> references;
     for (const char* name : {"sort", "bytetrack"})
       references.push_back({std::string("preset-") + name, "cv", *tracker::find_preset(name)});
     RunProgressPrinter printer("study: cross-validation", std::chrono::seconds(10));
-    const auto cv = mot::cross_validate(
+    const auto cv = study::cross_validate(
         dataset, candidates, detectors, intervals, options.jobs, &signals.stop_flag(), references,
         [&printer](std::size_t done, std::size_t total) { printer.update(done, total); });
     if (signals.stop_requested()) return stopped("the cross-validation");
     for (const auto& table : cv.tables) tables.push_back(table);
-    folds = mot::format_folds_markdown(cv);
+    folds = study::format_folds_markdown(cv);
     spdlog::info("study: cross-validation chose {} on all sequences", cv.in_sample_choice);
   }
-  auto files = mot::write_study(options.out_dir, tables, options.link_prefix);
+  auto files = study::write_study(options.out_dir, tables, options.link_prefix);
   if (!folds.empty()) {
     const auto path = std::filesystem::path(options.out_dir) / "cv-folds.md";
     write_whole_file(path, folds);

@@ -242,6 +242,11 @@ std::vector<RunSetting> output_settings() {
                           "the address the metrics endpoint listens on", "an IPv4 or IPv6 address",
                           platform::parse_bind_address,
                           [](RunConfig& c) -> std::string& { return c.output.metrics_bind; }),
+      real<double>("output.metrics_linger_s", "--metrics-linger",
+                   "after the run, keep serving the final metrics this many seconds (a scraper "
+                   "sees the last counts; SIGINT/SIGTERM ends it); 0 = off",
+                   {0.0, 86'400.0},
+                   [](RunConfig& c) -> double& { return c.output.metrics_linger_s; }),
   };
 }
 

@@ -137,7 +137,7 @@ struct TrackerConfig {
 /// `base` with every optional mechanism of the product switched on (the relative score cut,
 /// second round, re-update, widened and noise gates, confirmed tracks first, confirmation by
 /// duration, strong births, minimum coasting): the costliest configuration, for benchmarks and the
-/// allocation tests. The study's own rules (mot/study_knobs.hpp) are not settings.
+/// allocation tests. The study's own rules (study/study_knobs.hpp) are not settings.
 TrackerConfig with_every_option(TrackerConfig base);
 
 /// The usual threshold for an affinity, as in C++SORT.

@@ -1,6 +1,6 @@
 #pragma once
 // The seam through which research code adds rules to a Tracker that the product does not carry
-// as settings. The study (mot/study_knobs.hpp) measures rules no preset uses (a cut at a score
+// as settings. The study (study/study_knobs.hpp) measures rules no preset uses (a cut at a score
 // quantile, a birth cut and a track-level confidence cut relative to the score range, weak births
 // proven by count only, DeepSORT's matching cascade); they live there, and a Tracker built with an
 // extension asks it at the few points where those rules act. Without one (the product) each

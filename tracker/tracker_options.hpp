@@ -1,7 +1,7 @@
 #pragma once
 // The one table of the tracker's settings: name, doc, accepted range and setter. The YAML
 // `tracker:` section (runner/run_config.cpp), the command-line flags of `rtmot track` and `rtmot
-// run` (apps/tracker_flags.hpp), the study's configurations (mot/study_plan.cpp) and --help all
+// run` (apps/tracker_flags.hpp), the study's configurations (study/study_plan.cpp) and --help all
 // read it, so a new knob is one line here.
 #include <functional>
 #include <string>

@@ -12,6 +12,7 @@
 #include "events/event_counter.hpp"
 #include "messages/json_line_decoder.hpp"
 #include "messages/jsonl_sink.hpp"
+#include "metrics_scrape.hpp"
 #include "motio/frame_detections.hpp"
 #include "motio/mot_files.hpp"
 #include "outputs/pipeline_metrics.hpp"
@@ -22,16 +23,7 @@
 namespace rtmot::outputs {
 namespace {
 
-double value_of(const std::string& text, const std::string& series) {
-  const std::regex line("(^|\n)" + std::regex_replace(series, std::regex(R"([{}+."])"), R"(\$&)") +
-                        " ([0-9.e+-]+)");
-  std::smatch match;
-  if (!std::regex_search(text, match, line)) {
-    ADD_FAILURE() << "no series " << series;
-    return -1.0;
-  }
-  return std::stod(match[2]);
-}
+using test::value_of;
 
 TEST(EventMetrics, SeriesEqualTheEventsSentAndTheCountersTotals) {
   const auto dir = test::shared_path("data/mot15-train/PETS09-S2L1");

@@ -10,11 +10,11 @@
 #include <vector>
 
 #include "mot/metrics.hpp"
-#include "mot/study_dataset.hpp"
 #include "shared_data.hpp"
+#include "study/study_dataset.hpp"
 #include "tracker/presets.hpp"
 
-namespace rtmot::mot {
+namespace rtmot::study {
 namespace {
 
 class PresetVsSort : public ::testing::Test {
@@ -26,7 +26,7 @@ class PresetVsSort : public ::testing::Test {
   }
   static void TearDownTestSuite() { dataset_.reset(); }
 
-  static Metrics score(const std::string& preset, int interval) {
+  static mot::Metrics score(const std::string& preset, int interval) {
     const auto config = tracker::find_preset(preset);
     EXPECT_TRUE(config.has_value()) << preset;
     return track_and_score(*dataset_, StudyInput::detections, *config, interval, {});
@@ -51,8 +51,8 @@ TEST_F(PresetVsSort, DefaultPresetIsRtmot) {
 
 TEST_F(PresetVsSort, BeatsSortAtFullRate) {
   REQUIRE_DATASET();
-  const Metrics sort = score("sort", 1);
-  const Metrics best = score(std::string(tracker::default_preset_name()), 1);
+  const mot::Metrics sort = score("sort", 1);
+  const mot::Metrics best = score(std::string(tracker::default_preset_name()), 1);
   RecordProperty("sort_MOTA", std::to_string(sort.mota));
   RecordProperty("sort_IDF1", std::to_string(sort.idf1));
   RecordProperty("rtmot_MOTA", std::to_string(best.mota));
@@ -72,8 +72,8 @@ TEST_F(PresetVsSort, BeatsSortAtFullRate) {
 TEST_F(PresetVsSort, BeatsBytetrackAtEveryInterval) {
   REQUIRE_DATASET();
   for (const int interval : {1, 5, 10}) {
-    const Metrics byte = score("bytetrack", interval);
-    const Metrics best = score(std::string(tracker::default_preset_name()), interval);
+    const mot::Metrics byte = score("bytetrack", interval);
+    const mot::Metrics best = score(std::string(tracker::default_preset_name()), interval);
     EXPECT_GE(best.mota, byte.mota + 1.0) << "interval " << interval;
     EXPECT_GE(best.idf1, byte.idf1 + 1.0) << "interval " << interval;
   }
@@ -90,10 +90,10 @@ TEST_F(PresetVsSort, DefaultTracksDoNotDependOnTheScoreScale) {
   });
   const auto config = *tracker::find_preset(tracker::default_preset_name());
   for (const int interval : {1, 5}) {
-    const Metrics original =
-        summarize(track_and_count((*dataset_)[8], StudyInput::detections, config, interval, {}));
-    const Metrics dpm =
-        summarize(track_and_count(rescaled, StudyInput::detections, config, interval, {}));
+    const mot::Metrics original = mot::summarize(
+        track_and_count((*dataset_)[8], StudyInput::detections, config, interval, {}));
+    const mot::Metrics dpm =
+        mot::summarize(track_and_count(rescaled, StudyInput::detections, config, interval, {}));
     EXPECT_EQ(original.false_positives, dpm.false_positives) << interval;
     EXPECT_EQ(original.false_negatives, dpm.false_negatives) << interval;
     EXPECT_EQ(original.id_switches, dpm.id_switches) << interval;
@@ -105,8 +105,8 @@ class PresetVsSortAtInterval : public PresetVsSort, public ::testing::WithParamI
 TEST_P(PresetVsSortAtInterval, ThirtyPercentBetterThanSort) {
   REQUIRE_DATASET();
   const int interval = GetParam();
-  const Metrics sort = score("sort", interval);
-  const Metrics best = score(std::string(tracker::default_preset_name()), interval);
+  const mot::Metrics sort = score("sort", interval);
+  const mot::Metrics best = score(std::string(tracker::default_preset_name()), interval);
   RecordProperty("sort_MOTA", std::to_string(sort.mota));
   RecordProperty("sort_IDF1", std::to_string(sort.idf1));
   RecordProperty("rtmot_MOTA", std::to_string(best.mota));
@@ -120,4 +120,4 @@ TEST_P(PresetVsSortAtInterval, ThirtyPercentBetterThanSort) {
 INSTANTIATE_TEST_SUITE_P(ReducedRates, PresetVsSortAtInterval, ::testing::Values(5, 10));
 
 }  // namespace
-}  // namespace rtmot::mot
+}  // namespace rtmot::study

@@ -1,7 +1,7 @@
 // Cross-validation on two real MOT15 sequences and two detectors: each fold's choice is the best
 // candidate on what the fold may see, and the held-out table is exactly that choice's score on
 // what the fold left out.
-#include "mot/study_cv.hpp"
+#include "study/study_cv.hpp"
 
 #include <gtest/gtest.h>
 
@@ -11,11 +11,11 @@
 #include <mutex>
 
 #include "mot/metrics.hpp"
-#include "mot/run_progress.hpp"
 #include "shared_data.hpp"
+#include "study/run_progress.hpp"
 #include "tracker/presets.hpp"
 
-namespace rtmot::mot {
+namespace rtmot::study {
 namespace {
 
 namespace fs = std::filesystem;
@@ -33,16 +33,16 @@ std::vector<LoadedSequence> two_sequences() {
   return dataset;
 }
 
-SequenceCounts score_counts(const LoadedSequence& sequence, StudyInput input,
-                            const StudyConfiguration& c, int interval) {
+mot::SequenceCounts score_counts(const LoadedSequence& sequence, StudyInput input,
+                                 const StudyConfiguration& c, int interval) {
   return track_and_count(sequence, input, c.config, interval, c.knobs);
 }
 
-Metrics score(const std::vector<const LoadedSequence*>& sequences, StudyInput input,
-              const StudyConfiguration& c, int interval) {
-  SequenceCounts total;
+mot::Metrics score(const std::vector<const LoadedSequence*>& sequences, StudyInput input,
+                   const StudyConfiguration& c, int interval) {
+  mot::SequenceCounts total;
   for (const auto* s : sequences) total += track_and_count(*s, input, c.config, interval, c.knobs);
-  return summarize(total);
+  return mot::summarize(total);
 }
 
 TEST(CrossValidation, FoldsChooseOnWhatTheyMaySeeAndScoreWhatTheyLeftOut) {
@@ -89,7 +89,7 @@ TEST(CrossValidation, FoldsChooseOnWhatTheyMaySeeAndScoreWhatTheyLeftOut) {
   double best = -1e300;
   std::string best_name;
   for (const auto& c : candidates) {
-    std::vector<Metrics> by_interval;
+    std::vector<mot::Metrics> by_interval;
     for (const int i : intervals) by_interval.push_back(score({&dataset[1]}, inputs[1], c, i));
     const double s = selection_score(by_interval);
     if (s > best) best = s, best_name = c.name;
@@ -101,10 +101,10 @@ TEST(CrossValidation, FoldsChooseOnWhatTheyMaySeeAndScoreWhatTheyLeftOut) {
   EXPECT_EQ(held_out.configuration.name, "cv-held-out");
   EXPECT_EQ(held_out.input, StudyInput::detections);
   for (std::size_t i = 0; i < intervals.size(); ++i) {
-    SequenceCounts total =
+    mot::SequenceCounts total =
         score_counts(dataset[0], inputs[0], find(cv.folds[0].chosen), intervals[i]);
     total += score_counts(dataset[1], inputs[0], find(cv.folds[1].chosen), intervals[i]);
-    const Metrics expected = summarize(total);
+    const mot::Metrics expected = mot::summarize(total);
     EXPECT_DOUBLE_EQ(held_out.rows[i].metrics.mota, expected.mota);
     EXPECT_DOUBLE_EQ(held_out.rows[i].metrics.idf1, expected.idf1);
   }
@@ -135,20 +135,20 @@ TEST(CrossValidation, WithReferencesTheMostCellsHeldComeBeforeTheMean) {
                                  const std::vector<StudyInput>& seen,
                                  const StudyConfiguration& config) {
     int held = 0;
-    std::vector<Metrics> pooled_by_interval;
+    std::vector<mot::Metrics> pooled_by_interval;
     for (const int i : intervals) {
-      SequenceCounts pooled;
+      mot::SequenceCounts pooled;
       for (const StudyInput input : seen) {
-        const Metrics mine = score(sequences, input, config, i);
+        const mot::Metrics mine = score(sequences, input, config, i);
         bool holds = true;
         for (const auto& r : references) {
-          const Metrics theirs = score(sequences, input, r, i);
+          const mot::Metrics theirs = score(sequences, input, r, i);
           holds = holds && mine.mota >= theirs.mota && mine.idf1 >= theirs.idf1;
         }
         held += holds ? 1 : 0;
         for (const auto* s : sequences) pooled += score_counts(*s, input, config, i);
       }
-      pooled_by_interval.push_back(summarize(pooled));
+      pooled_by_interval.push_back(mot::summarize(pooled));
     }
     return std::pair{held, selection_score(pooled_by_interval)};
   };
@@ -192,4 +192,4 @@ TEST(CrossValidation, AStopBeforeItStartsGivesAnEmptyResultAtOnce) {
 }
 
 }  // namespace
-}  // namespace rtmot::mot
+}  // namespace rtmot::study

@@ -1,7 +1,7 @@
-// The study's own tracker rules (mot/study_knobs.hpp), which reach a Tracker through
+// The study's own tracker rules (study/study_knobs.hpp), which reach a Tracker through
 // tracker::TrackerExtension: each on a small scene where it changes which tracks start, match or
 // are reported; and no knob, no extension.
-#include "mot/study_knobs.hpp"
+#include "study/study_knobs.hpp"
 
 #include <gtest/gtest.h>
 
@@ -11,7 +11,7 @@
 #include "../tracker/scene.hpp"
 #include "tracker/tracker.hpp"
 
-namespace rtmot::mot {
+namespace rtmot::study {
 namespace {
 using test::detection;
 using test::reports_id;
@@ -178,4 +178,4 @@ TEST(StudyKnobs, RecentTracksFirstKeepsAnOldLostTrackFromStealingADetection) {
 }
 
 }  // namespace
-}  // namespace rtmot::mot
+}  // namespace rtmot::study

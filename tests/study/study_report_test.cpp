@@ -1,11 +1,11 @@
-#include "mot/study_report.hpp"
+#include "study/study_report.hpp"
 
 #include <gtest/gtest.h>
 
 #include <fstream>
 #include <sstream>
 
-namespace rtmot::mot {
+namespace rtmot::study {
 namespace {
 
 StudyTable example_table() {
@@ -48,7 +48,7 @@ TEST(StudyReport, MarkdownIsAPipeTable) {
 
 TEST(StudyReport, NotMostlyLostIsTheShareOfGtTracksWithSomeCoverage) {
   EXPECT_DOUBLE_EQ(not_mostly_lost_percent(example_table().rows[0].metrics), 75.0);
-  EXPECT_DOUBLE_EQ(not_mostly_lost_percent(Metrics{}), 0.0);
+  EXPECT_DOUBLE_EQ(not_mostly_lost_percent(mot::Metrics{}), 0.0);
 }
 
 TEST(StudyReport, WritesTablesPlotsAndSummary) {
@@ -67,4 +67,4 @@ TEST(StudyReport, WritesTablesPlotsAndSummary) {
 }
 
 }  // namespace
-}  // namespace rtmot::mot
+}  // namespace rtmot::study

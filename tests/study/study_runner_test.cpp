@@ -1,5 +1,5 @@
 // The thread pool must give the same numbers as running each configuration alone.
-#include "mot/study_runner.hpp"
+#include "study/study_runner.hpp"
 
 #include <gtest/gtest.h>
 
@@ -7,7 +7,7 @@
 
 #include "shared_data.hpp"
 
-namespace rtmot::mot {
+namespace rtmot::study {
 namespace {
 
 TEST(StudyRunner, ParallelRunsEqualSerialScoresOnARealSequence) {
@@ -29,8 +29,8 @@ TEST(StudyRunner, ParallelRunsEqualSerialScoresOnARealSequence) {
   for (const auto& table : tables) {
     ASSERT_EQ(table.rows.size(), 2U);
     for (const auto& row : table.rows) {
-      const Metrics alone = track_and_score(dataset, table.input, table.configuration.config,
-                                            row.interval, table.configuration.knobs);
+      const mot::Metrics alone = track_and_score(dataset, table.input, table.configuration.config,
+                                                 row.interval, table.configuration.knobs);
       EXPECT_EQ(row.metrics.false_positives, alone.false_positives);
       EXPECT_EQ(row.metrics.id_switches, alone.id_switches);
       EXPECT_DOUBLE_EQ(row.metrics.mota, alone.mota);
@@ -62,4 +62,4 @@ TEST(StudyRunner, AStopEndsTheRunsEarly) {
 }
 
 }  // namespace
-}  // namespace rtmot::mot
+}  // namespace rtmot::study

@@ -1,10 +1,10 @@
-#include "mot/svg_line_plot.hpp"
+#include "study/svg_line_plot.hpp"
 
 #include <gtest/gtest.h>
 
 #include <string>
 
-namespace rtmot::mot {
+namespace rtmot::study {
 namespace {
 
 int count(const std::string& text, const std::string& what) {
@@ -60,4 +60,4 @@ TEST(SvgLinePlot, SkipsNonFiniteValues) {
 }
 
 }  // namespace
-}  // namespace rtmot::mot
+}  // namespace rtmot::study

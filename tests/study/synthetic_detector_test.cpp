@@ -1,7 +1,7 @@
 // The synthetic detectors on real ground truth (MOT15's TUD-Campus): seeded (the same detections
 // twice, other detections with another seed), and they make what their recipe says: the share of
 // boxes missed, false positives, jitter and the score scale.
-#include "mot/synthetic_detector.hpp"
+#include "study/synthetic_detector.hpp"
 
 #include <gtest/gtest.h>
 
@@ -9,7 +9,7 @@
 #include "shared_data.hpp"
 #include "tracker/box_geometry.hpp"
 
-namespace rtmot::mot {
+namespace rtmot::study {
 namespace {
 
 struct Truth {
@@ -94,4 +94,4 @@ TEST(SyntheticDetector, MakesWhatItsRecipeSays) {
 }
 
 }  // namespace
-}  // namespace rtmot::mot
+}  // namespace rtmot::study

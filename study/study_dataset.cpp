@@ -1,14 +1,14 @@
-#include "mot/study_dataset.hpp"
+#include "study/study_dataset.hpp"
 
 #include <fmt/format.h>
 
 #include "mot/prepared_sequence.hpp"
 #include "mot/scorer.hpp"
-#include "mot/synthetic_detector.hpp"
 #include "motio/sequence_folders.hpp"
 #include "motio/track_runner.hpp"
+#include "study/synthetic_detector.hpp"
 
-namespace rtmot::mot {
+namespace rtmot::study {
 
 namespace fs = std::filesystem;
 
@@ -85,9 +85,9 @@ std::vector<LoadedSequence> load_study_dataset(const fs::path& dataset) {
   return sequences;
 }
 
-SequenceCounts track_and_count(const LoadedSequence& sequence, StudyInput input,
-                               const tracker::TrackerConfig& config, int interval,
-                               const StudyKnobs& knobs) {
+mot::SequenceCounts track_and_count(const LoadedSequence& sequence, StudyInput input,
+                                    const tracker::TrackerConfig& config, int interval,
+                                    const StudyKnobs& knobs) {
   motio::TrackOptions options;
   options.config = config;
   options.extension = study_extension(knobs, config);
@@ -98,21 +98,21 @@ SequenceCounts track_and_count(const LoadedSequence& sequence, StudyInput input,
           ? sequence.gt_detections
           : sequence.synthetic.at(static_cast<std::size_t>(input.synthetic));
   const motio::TrackRun run = motio::track_detections(detections, sequence.info, options);
-  PrepareOptions prepare;
+  mot::PrepareOptions prepare;
   prepare.interval = interval;
   prepare.sequence_length = sequence.info.length;
   prepare.gt_file = sequence.info.name + "/gt/gt.txt";
   prepare.results_file = sequence.info.name + " (tracked in memory)";
-  return count_all(prepare_sequence(sequence.gt_rows, run.tracks, prepare));
+  return mot::count_all(mot::prepare_sequence(sequence.gt_rows, run.tracks, prepare));
 }
 
-Metrics track_and_score(const std::vector<LoadedSequence>& dataset, StudyInput input,
-                        const tracker::TrackerConfig& config, int interval,
-                        const StudyKnobs& knobs) {
-  SequenceCounts total;
+mot::Metrics track_and_score(const std::vector<LoadedSequence>& dataset, StudyInput input,
+                             const tracker::TrackerConfig& config, int interval,
+                             const StudyKnobs& knobs) {
+  mot::SequenceCounts total;
   for (const auto& sequence : dataset)
     total += track_and_count(sequence, input, config, interval, knobs);
-  return summarize(total);
+  return mot::summarize(total);
 }
 
-}  // namespace rtmot::mot
+}  // namespace rtmot::study

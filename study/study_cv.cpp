@@ -1,4 +1,4 @@
-#include "mot/study_cv.hpp"
+#include "study/study_cv.hpp"
 
 #include <fmt/format.h>
 
@@ -12,11 +12,11 @@
 #include "mot/metrics.hpp"
 #include "mot/sequence_counts.hpp"
 
-namespace rtmot::mot {
+namespace rtmot::study {
 namespace {
 
 // counts[candidate][input][interval][sequence], every run once.
-using Counts = std::vector<std::vector<std::vector<std::vector<SequenceCounts>>>>;
+using Counts = std::vector<std::vector<std::vector<std::vector<mot::SequenceCounts>>>>;
 // use[input][sequence]: which runs a score pools.
 using Mask = std::vector<std::vector<bool>>;
 
@@ -27,9 +27,9 @@ Counts count_everything(const std::vector<LoadedSequence>& dataset,
   const std::size_t n_s = dataset.size();
   const std::size_t n_i = intervals.size();
   const std::size_t n_d = inputs.size();
-  Counts counts(candidates.size(), std::vector<std::vector<std::vector<SequenceCounts>>>(
-                                       n_d, std::vector<std::vector<SequenceCounts>>(
-                                                n_i, std::vector<SequenceCounts>(n_s))));
+  Counts counts(candidates.size(), std::vector<std::vector<std::vector<mot::SequenceCounts>>>(
+                                       n_d, std::vector<std::vector<mot::SequenceCounts>>(
+                                                n_i, std::vector<mot::SequenceCounts>(n_s))));
   const std::size_t total = candidates.size() * n_d * n_i * n_s;
   // As run_study: each run writes only its own preallocated cell; join() publishes them.
   std::atomic<std::size_t> next{0};
@@ -64,31 +64,31 @@ Counts count_everything(const std::vector<LoadedSequence>& dataset,
 }
 
 // The candidate's metrics per interval, pooled over the runs `use` marks.
-std::vector<Metrics> pooled(const Counts& counts, std::size_t candidate, const Mask& use) {
+std::vector<mot::Metrics> pooled(const Counts& counts, std::size_t candidate, const Mask& use) {
   const auto& by_input = counts[candidate];
-  std::vector<Metrics> by_interval;
+  std::vector<mot::Metrics> by_interval;
   for (std::size_t i = 0; i < by_input.front().size(); ++i) {
-    SequenceCounts total;
+    mot::SequenceCounts total;
     for (std::size_t d = 0; d < by_input.size(); ++d) {
       for (std::size_t s = 0; s < by_input[d][i].size(); ++s) {
         if (use[d][s]) total += by_input[d][i][s];
       }
     }
-    by_interval.push_back(summarize(total));
+    by_interval.push_back(mot::summarize(total));
   }
   return by_interval;
 }
 
 // One cell's metrics: the candidate's counts for one input and interval, pooled over the
 // sequences `use` marks.
-Metrics pooled_cell(const Counts& counts, std::size_t candidate, std::size_t input,
-                    std::size_t interval, const Mask& use) {
-  SequenceCounts total;
+mot::Metrics pooled_cell(const Counts& counts, std::size_t candidate, std::size_t input,
+                         std::size_t interval, const Mask& use) {
+  mot::SequenceCounts total;
   const auto& runs = counts[candidate][input][interval];
   for (std::size_t s = 0; s < runs.size(); ++s) {
     if (use[input][s]) total += runs[s];
   }
-  return summarize(total);
+  return mot::summarize(total);
 }
 
 // How many (input, interval) cells of the runs `use` marks the candidate holds against every
@@ -99,10 +99,10 @@ int cells_held(const Counts& counts, std::size_t candidate, std::size_t first_re
   for (std::size_t d = 0; d < use.size(); ++d) {
     if (std::none_of(use[d].begin(), use[d].end(), [](bool u) { return u; })) continue;
     for (std::size_t i = 0; i < counts[candidate][d].size(); ++i) {
-      const Metrics mine = pooled_cell(counts, candidate, d, i, use);
+      const mot::Metrics mine = pooled_cell(counts, candidate, d, i, use);
       bool holds = true;
       for (std::size_t r = first_reference; r < counts.size() && holds; ++r) {
-        const Metrics theirs = pooled_cell(counts, r, d, i, use);
+        const mot::Metrics theirs = pooled_cell(counts, r, d, i, use);
         holds = mine.mota >= theirs.mota && mine.idf1 >= theirs.idf1;
       }
       held += holds ? 1 : 0;
@@ -131,7 +131,8 @@ std::size_t choose(const Counts& counts, std::size_t candidates, const Mask& use
 }
 
 StudyTable table_of(const std::string& name, StudyInput input, const std::vector<int>& intervals,
-                    const std::vector<Metrics>& by_interval, const tracker::TrackerConfig& config) {
+                    const std::vector<mot::Metrics>& by_interval,
+                    const tracker::TrackerConfig& config) {
   StudyTable table{StudyConfiguration{name, "cv", config}, input, {}};
   for (std::size_t i = 0; i < intervals.size(); ++i)
     table.rows.push_back(StudyRow{intervals[i], by_interval[i]});
@@ -140,10 +141,10 @@ StudyTable table_of(const std::string& name, StudyInput input, const std::vector
 
 }  // namespace
 
-double selection_score(const std::vector<Metrics>& by_interval) {
+double selection_score(const std::vector<mot::Metrics>& by_interval) {
   if (by_interval.empty()) return 0.0;
   double sum = 0.0;
-  for (const Metrics& m : by_interval) sum += 0.5 * (m.mota + m.idf1);
+  for (const mot::Metrics& m : by_interval) sum += 0.5 * (m.mota + m.idf1);
   return sum / static_cast<double>(by_interval.size());
 }
 
@@ -176,7 +177,7 @@ CrossValidation cross_validate(const std::vector<LoadedSequence>& dataset,
         selection_score(pooled(counts, c, everything))});
 
   for (std::size_t d = 0; d < n_d; ++d) {
-    std::vector<SequenceCounts> held_out(intervals.size());
+    std::vector<mot::SequenceCounts> held_out(intervals.size());
     for (std::size_t k = 0; k < n_s; ++k) {
       // Train on the other sequences through the other detectors (the same one if it is alone).
       Mask train(n_d, std::vector<bool>(n_s, true));
@@ -189,8 +190,8 @@ CrossValidation cross_validate(const std::vector<LoadedSequence>& dataset,
       cv.folds.push_back(FoldChoice{dataset[k].info.name, std::string(to_string(inputs[d])),
                                     candidates[chosen].name});
     }
-    std::vector<Metrics> held_out_metrics;
-    for (const auto& total : held_out) held_out_metrics.push_back(summarize(total));
+    std::vector<mot::Metrics> held_out_metrics;
+    for (const auto& total : held_out) held_out_metrics.push_back(mot::summarize(total));
     // The held-out table has no single configuration: it carries the in-sample choice's, which
     // is what the folds estimate.
     cv.tables.push_back(table_of("cv-held-out", inputs[d], intervals, held_out_metrics,
@@ -221,4 +222,4 @@ std::string format_folds_markdown(const CrossValidation& cv) {
   return out;
 }
 
-}  // namespace rtmot::mot
+}  // namespace rtmot::study

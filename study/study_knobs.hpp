@@ -5,7 +5,7 @@
 #include "tracker/tracker_config.hpp"
 #include "tracker/tracker_extension.hpp"
 
-namespace rtmot::mot {
+namespace rtmot::study {
 
 struct StudyKnobs {
   /// Detections below this quantile of the stream's recent scores are low too (a cut that holds
@@ -38,4 +38,4 @@ StudyKnobs merged(StudyKnobs a, const StudyKnobs& b);
 tracker::TrackerExtensionFactory study_extension(const StudyKnobs& knobs,
                                                  const tracker::TrackerConfig& config);
 
-}  // namespace rtmot::mot
+}  // namespace rtmot::study

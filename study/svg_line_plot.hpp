@@ -5,7 +5,7 @@
 #include <utility>
 #include <vector>
 
-namespace rtmot::mot {
+namespace rtmot::study {
 
 struct LineSeries {
   std::string name;
@@ -26,4 +26,4 @@ struct LinePlot {
 /// series and a legend to the right.
 std::string render_svg(const LinePlot& plot);
 
-}  // namespace rtmot::mot
+}  // namespace rtmot::study

@@ -4,10 +4,10 @@
 #include <cstddef>
 #include <string>
 
-namespace rtmot::mot {
+namespace rtmot::study {
 
 /// "run 120 of 624 (19%) | ETA 2:05": the ETA from the pace so far (`elapsed_s` since the batch
 /// started); no ETA before the first run or after the last.
 std::string run_progress_line(std::size_t done, std::size_t total, double elapsed_s);
 
-}  // namespace rtmot::mot
+}  // namespace rtmot::study

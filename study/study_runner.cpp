@@ -1,4 +1,4 @@
-#include "mot/study_runner.hpp"
+#include "study/study_runner.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -6,7 +6,7 @@
 #include <mutex>
 #include <thread>
 
-namespace rtmot::mot {
+namespace rtmot::study {
 
 std::vector<StudyTable> run_study(const std::vector<LoadedSequence>& dataset,
                                   const std::vector<StudyConfiguration>& configurations,
@@ -55,4 +55,4 @@ std::vector<StudyTable> run_study(const std::vector<LoadedSequence>& dataset,
   return tables;
 }
 
-}  // namespace rtmot::mot
+}  // namespace rtmot::study

@@ -1,11 +1,11 @@
-#include "mot/study_knobs.hpp"
+#include "study/study_knobs.hpp"
 
 #include <limits>
 #include <memory>
 
 #include "tracker/score_cut.hpp"
 
-namespace rtmot::mot {
+namespace rtmot::study {
 namespace {
 
 constexpr float kNoCut = std::numeric_limits<float>::lowest();
@@ -75,4 +75,4 @@ tracker::TrackerExtensionFactory study_extension(const StudyKnobs& knobs,
   };
 }
 
-}  // namespace rtmot::mot
+}  // namespace rtmot::study

@@ -3,10 +3,10 @@
 #include <string>
 #include <vector>
 
-#include "mot/study_knobs.hpp"
+#include "study/study_knobs.hpp"
 #include "tracker/tracker_config.hpp"
 
-namespace rtmot::mot {
+namespace rtmot::study {
 
 struct StudyConfiguration {
   std::string name;  // file-name safe, e.g. "kalman-iou" or "kalman-iou+oru"
@@ -31,4 +31,4 @@ std::vector<StudyConfiguration> cv_candidates(bool quick);
 /// 1, 2, 3, 5, 10, 15, 30.
 std::vector<int> default_study_intervals();
 
-}  // namespace rtmot::mot
+}  // namespace rtmot::study

@@ -1,4 +1,4 @@
-#include "mot/study_report.hpp"
+#include "study/study_report.hpp"
 
 #include <fmt/format.h>
 
@@ -7,10 +7,9 @@
 
 #include "common/input_error.hpp"
 #include "common/output_file.hpp"
-#include "mot/metrics_report.hpp"
-#include "mot/svg_line_plot.hpp"
+#include "study/svg_line_plot.hpp"
 
-namespace rtmot::mot {
+namespace rtmot::study {
 namespace {
 
 namespace fs = std::filesystem;
@@ -20,7 +19,7 @@ constexpr const char* kColumns[] = {"interval", "Rcll", "Prcn", "FAR", "GT",  "M
                                     "MOTA",     "MOTP", "IDF1", "HOTA"};
 
 std::vector<std::string> cells(const StudyRow& row) {
-  const Metrics& m = row.metrics;
+  const mot::Metrics& m = row.metrics;
   return {std::to_string(row.interval),       fmt::format("{:.1f}", m.recall),
           fmt::format("{:.1f}", m.precision), fmt::format("{:.2f}", m.false_alarms_per_frame),
           std::to_string(m.gt_tracks),        std::to_string(m.mostly_tracked),
@@ -60,19 +59,19 @@ std::string table_title(const StudyTable& table) {
 struct PlottedMetric {
   const char* file_name;
   const char* label;
-  double (*value)(const Metrics&);
+  double (*value)(const mot::Metrics&);
 };
 
 const PlottedMetric kPlottedMetrics[] = {
-    {"mota", "MOTA (%)", [](const Metrics& m) { return m.mota; }},
-    {"idf1", "IDF1 (%)", [](const Metrics& m) { return m.idf1; }},
-    {"motp", "MOTP (%)", [](const Metrics& m) { return m.motp; }},
+    {"mota", "MOTA (%)", [](const mot::Metrics& m) { return m.mota; }},
+    {"idf1", "IDF1 (%)", [](const mot::Metrics& m) { return m.idf1; }},
+    {"motp", "MOTP (%)", [](const mot::Metrics& m) { return m.motp; }},
     {"not-ml", "GT tracks not mostly lost (%)", &not_mostly_lost_percent},
 };
 
 }  // namespace
 
-double not_mostly_lost_percent(const Metrics& metrics) {
+double not_mostly_lost_percent(const mot::Metrics& metrics) {
   if (metrics.gt_tracks == 0) return 0.0;
   return 100.0 *
          (1.0 - static_cast<double>(metrics.mostly_lost) / static_cast<double>(metrics.gt_tracks));
@@ -161,4 +160,4 @@ std::vector<fs::path> write_study(const fs::path& out_dir, const std::vector<Stu
   return written;
 }
 
-}  // namespace rtmot::mot
+}  // namespace rtmot::study

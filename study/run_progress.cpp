@@ -1,10 +1,10 @@
-#include "mot/run_progress.hpp"
+#include "study/run_progress.hpp"
 
 #include <fmt/format.h>
 
 #include "common/duration_text.hpp"
 
-namespace rtmot::mot {
+namespace rtmot::study {
 
 std::string run_progress_line(std::size_t done, std::size_t total, double elapsed_s) {
   const double percent =
@@ -17,4 +17,4 @@ std::string run_progress_line(std::size_t done, std::size_t total, double elapse
   return line;
 }
 
-}  // namespace rtmot::mot
+}  // namespace rtmot::study

@@ -1,4 +1,4 @@
-#include "mot/svg_line_plot.hpp"
+#include "study/svg_line_plot.hpp"
 
 #include <fmt/format.h>
 
@@ -7,7 +7,7 @@
 #include <cmath>
 #include <limits>
 
-namespace rtmot::mot {
+namespace rtmot::study {
 namespace {
 
 constexpr double kWidth = 900;
@@ -141,4 +141,4 @@ std::string render_svg(const LinePlot& plot) {
   return svg;
 }
 
-}  // namespace rtmot::mot
+}  // namespace rtmot::study

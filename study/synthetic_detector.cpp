@@ -1,11 +1,11 @@
-#include "mot/synthetic_detector.hpp"
+#include "study/synthetic_detector.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <map>
 #include <random>
 
-namespace rtmot::mot {
+namespace rtmot::study {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
@@ -166,4 +166,4 @@ std::vector<std::vector<tracker::Detection>> synthesize_detections(
   return frames;
 }
 
-}  // namespace rtmot::mot
+}  // namespace rtmot::study

@@ -6,14 +6,14 @@
 #include <vector>
 
 #include "mot/metrics.hpp"
-#include "mot/study_dataset.hpp"
-#include "mot/study_plan.hpp"
+#include "study/study_dataset.hpp"
+#include "study/study_plan.hpp"
 
-namespace rtmot::mot {
+namespace rtmot::study {
 
 struct StudyRow {
   int interval{1};
-  Metrics metrics;
+  mot::Metrics metrics;
 };
 
 /// One configuration on one input: a row per interval, in the order asked.
@@ -37,4 +37,4 @@ std::vector<StudyTable> run_study(const std::vector<LoadedSequence>& dataset,
                                   const StudyProgress& progress = {},
                                   const std::atomic<bool>* stop = nullptr);
 
-}  // namespace rtmot::mot
+}  // namespace rtmot::study

@@ -13,7 +13,7 @@
 #include "tracker/box.hpp"
 #include "tracker/enum_names.hpp"
 
-namespace rtmot::mot {
+namespace rtmot::study {
 
 /// How a latent confidence z (true positives around `separation`, false positives around 0, unit
 /// spread) is reported.
@@ -58,4 +58,4 @@ std::vector<std::vector<tracker::Detection>> synthesize_detections(
     const SyntheticDetectorSpec& spec, const std::vector<motio::MotRow>& gt_rows,
     const motio::SequenceInfo& info, int sequence_index);
 
-}  // namespace rtmot::mot
+}  // namespace rtmot::study

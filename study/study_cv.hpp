@@ -14,11 +14,11 @@
 #include <string>
 #include <vector>
 
-#include "mot/study_dataset.hpp"
-#include "mot/study_plan.hpp"
-#include "mot/study_runner.hpp"
+#include "study/study_dataset.hpp"
+#include "study/study_plan.hpp"
+#include "study/study_runner.hpp"
 
-namespace rtmot::mot {
+namespace rtmot::study {
 
 struct FoldChoice {
   std::string held_out;  // the sequence left out
@@ -47,7 +47,7 @@ struct CrossValidation {
 using RunProgress = std::function<void(std::size_t done, std::size_t total)>;
 
 /// The selection score: the mean over `intervals` of (MOTA + IDF1) / 2, pooled over sequences.
-double selection_score(const std::vector<Metrics>& by_interval);
+double selection_score(const std::vector<mot::Metrics>& by_interval);
 
 /// Over `dataset` (at least two sequences) and `inputs` (the detectors). Runs every candidate and
 /// every reference on every sequence, detector and interval once, on `jobs` threads; without
@@ -65,4 +65,4 @@ CrossValidation cross_validate(const std::vector<LoadedSequence>& dataset,
 /// The folds as a Markdown table.
 std::string format_folds_markdown(const CrossValidation& cv);
 
-}  // namespace rtmot::mot
+}  // namespace rtmot::study

@@ -1,4 +1,4 @@
-#include "mot/study_plan.hpp"
+#include "study/study_plan.hpp"
 
 #include <fmt/format.h>
 
@@ -7,7 +7,7 @@
 #include "tracker/presets.hpp"
 #include "tracker/tracker_options.hpp"
 
-namespace rtmot::mot {
+namespace rtmot::study {
 namespace {
 
 using tracker::AffinityKind;
@@ -40,7 +40,7 @@ StudyConfiguration option(
           tracker::with_options(grid_config(PredictorKind::kalman, AffinityKind::iou), values)};
 }
 
-// DeepSORT's cascade: a rule of the study's own (mot/study_knobs.hpp), not a tracker option.
+// DeepSORT's cascade: a rule of the study's own (study/study_knobs.hpp), not a tracker option.
 StudyConfiguration cascade_option() {
   StudyConfiguration configuration = option("cascade", {});
   configuration.knobs.recent_tracks_first = true;
@@ -168,7 +168,7 @@ std::vector<StudyConfiguration> cv_candidates(bool quick) {
   struct Choice {
     std::string name;
     std::vector<std::pair<std::string_view, std::string_view>> options;
-    StudyKnobs knobs{};  // the study's own rules (mot/study_knobs.hpp)
+    StudyKnobs knobs{};  // the study's own rules (study/study_knobs.hpp)
   };
   const auto split = [](std::string name, std::string_view option, std::string_view value) {
     return Choice{std::move(name) + "-split",
@@ -256,4 +256,4 @@ std::vector<int> default_study_intervals() {
   return {1, 2, 3, 5, 10, 15, 30};
 }
 
-}  // namespace rtmot::mot
+}  // namespace rtmot::study

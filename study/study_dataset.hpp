@@ -8,13 +8,13 @@
 
 #include "mot/metrics.hpp"
 #include "mot/sequence_counts.hpp"
-#include "mot/study_knobs.hpp"
 #include "motio/frame_detections.hpp"
 #include "motio/mot_files.hpp"
+#include "study/study_knobs.hpp"
 #include "tracker/box.hpp"
 #include "tracker/tracker_config.hpp"
 
-namespace rtmot::mot {
+namespace rtmot::study {
 
 /// Where a run's detections come from.
 struct StudyInput {
@@ -59,13 +59,13 @@ std::vector<LoadedSequence> load_study_dataset(const std::filesystem::path& data
 
 /// Tracks one sequence as `rtmot track` would (frames 1, 1 + interval, ...; time (frame - 1) /
 /// frame rate) and scores it on the kept frames with the `rtmot eval` scorer.
-SequenceCounts track_and_count(const LoadedSequence& sequence, StudyInput input,
-                               const tracker::TrackerConfig& config, int interval,
-                               const StudyKnobs& knobs);
+mot::SequenceCounts track_and_count(const LoadedSequence& sequence, StudyInput input,
+                                    const tracker::TrackerConfig& config, int interval,
+                                    const StudyKnobs& knobs);
 
 /// All sequences pooled, as the OVERALL line of `rtmot eval`.
-Metrics track_and_score(const std::vector<LoadedSequence>& dataset, StudyInput input,
-                        const tracker::TrackerConfig& config, int interval,
-                        const StudyKnobs& knobs);
+mot::Metrics track_and_score(const std::vector<LoadedSequence>& dataset, StudyInput input,
+                             const tracker::TrackerConfig& config, int interval,
+                             const StudyKnobs& knobs);
 
-}  // namespace rtmot::mot
+}  // namespace rtmot::study
