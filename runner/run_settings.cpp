@@ -180,11 +180,10 @@ std::vector<RunSetting> detector_settings() {
            [](RunConfig& c) -> std::string& { return c.detector.model; }),
       text("detector.anchors", "", "ssd: the anchors CSV; empty = beside the model",
            [](RunConfig& c) -> std::string& { return c.detector.anchors; }),
-      parsed<detector::BackendRequest>(
-          "detector.backend", "--backend", "the engine that runs the model",
-          detector::backend_request_names(),
-          [](const std::string& t, std::string&) { return detector::parse_backend_request(t); },
-          [](RunConfig& c) -> detector::BackendRequest& { return c.detector.backend; }),
+      named("detector.backend", "--backend", "the engine that runs the model",
+            detector::kBackendNames,
+            Field<detector::BackendRequest>(
+                [](RunConfig& c) -> detector::BackendRequest& { return c.detector.backend; })),
       parsed<detector::Fp16Request>(
           "detector.fp16", "--fp16", "half precision on CUDA (auto: on Jetson boards)",
           detector::kFp16Names.alternatives(),
