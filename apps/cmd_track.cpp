@@ -11,6 +11,7 @@
 #include "apps/number_checks.hpp"
 #include "apps/subcommand.hpp"
 #include "common/exit_codes.hpp"
+#include "common/frame_rate.hpp"
 #include "common/input_error.hpp"
 #include "motio/mot_files.hpp"
 #include "motio/processed_frames.hpp"
@@ -64,10 +65,6 @@ void warn_on_score_scale(const fs::path& file, const tracker::TrackerConfig& con
     spdlog::warn("{}: {}", file.string(), *warning);
 }
 
-double hz(int frames, double seconds) {
-  return seconds > 0.0 ? frames / seconds : 0.0;
-}
-
 int run_track(const TrackCommandOptions& options) {
   platform::StopSignals signals;  // a stop ends the sequence in progress, unwritten
   motio::TrackOptions track_options;
@@ -85,7 +82,7 @@ int run_track(const TrackCommandOptions& options) {
   if (error) throw InputError(options.out_dir, 0, "--out", "cannot create: " + error.message());
 
   int total_frames = 0;
-  double total_seconds = 0.0;
+  std::int64_t total_update_ns = 0;
   int written = 0;
   for (const auto& sequence : sequences) {
     warn_on_score_scale(sequence.dir / options.detections, track_options.config);
@@ -115,10 +112,10 @@ int run_track(const TrackCommandOptions& options) {
     ++written;
     fmt::print("{:<16} {:>6} frames {:>7} boxes  tracker {:>9.0f} Hz  -> {}\n", run.info.name,
                run.frames_processed, run.tracks.size(),
-               hz(run.frames_processed, run.seconds_in_update), out_file.string());
+               frames_per_second(run.frames_processed, run.update_ns), out_file.string());
     std::fflush(stdout);
     total_frames += run.frames_processed;
-    total_seconds += run.seconds_in_update;
+    total_update_ns += run.update_ns;
   }
   if (signals.stop_requested()) {
     spdlog::warn("stopped: {} of {} sequences written (each whole), the rest not started", written,
@@ -126,7 +123,7 @@ int run_track(const TrackCommandOptions& options) {
     return to_int(ExitCode::ok);
   }
   fmt::print("{:<16} {:>6} frames  tracker {:.0f} Hz (time inside Tracker::update only)\n",
-             "OVERALL", total_frames, hz(total_frames, total_seconds));
+             "OVERALL", total_frames, frames_per_second(total_frames, total_update_ns));
   return to_int(ExitCode::ok);
 }
 

@@ -10,38 +10,6 @@
 
 namespace rtmot::detector {
 
-namespace {
-
-constexpr std::pair<BackendRequest, const char*> kBackendNames[] = {
-    {BackendRequest::automatic, "auto"},
-    {BackendRequest::cpu, "cpu"},
-    {BackendRequest::cuda, "cuda"},
-    {BackendRequest::xnnpack, "xnnpack"},
-};
-
-}  // namespace
-
-const char* backend_request_name(BackendRequest request) {
-  for (const auto& [value, name] : kBackendNames) {
-    if (value == request) return name;
-  }
-  return "?";
-}
-
-std::string backend_request_names() {
-  std::string names;
-  for (const auto& entry : kBackendNames)
-    names += (names.empty() ? "" : ", ") + std::string(entry.second);
-  return names;
-}
-
-std::optional<BackendRequest> parse_backend_request(const std::string& text) {
-  for (const auto& [value, name] : kBackendNames) {
-    if (text == name) return value;
-  }
-  return std::nullopt;
-}
-
 std::optional<Fp16Request> parse_fp16_request(const std::string& text) {
   if (const auto named = kFp16Names.parse(text)) return named;
   if (text == "true") return Fp16Request::on;

@@ -9,6 +9,13 @@
 namespace rtmot::detector {
 
 enum class BackendRequest { automatic, cpu, cuda, xnnpack };
+/// The one table of backend names, for parsing, messages and docs/config.md.
+inline constexpr auto kBackendNames = tracker::make_enum_names<BackendRequest>(
+    std::pair{BackendRequest::automatic, std::string_view("auto")},
+    std::pair{BackendRequest::cpu, std::string_view("cpu")},
+    std::pair{BackendRequest::cuda, std::string_view("cuda")},
+    std::pair{BackendRequest::xnnpack, std::string_view("xnnpack")});
+
 enum class Fp16Request { automatic, on, off };
 /// The one table of fp16 names, for parsing, messages and docs/config.md.
 inline constexpr auto kFp16Names = tracker::make_enum_names<Fp16Request>(
@@ -16,12 +23,6 @@ inline constexpr auto kFp16Names = tracker::make_enum_names<Fp16Request>(
     std::pair{Fp16Request::on, std::string_view("on")},
     std::pair{Fp16Request::off, std::string_view("off")});
 
-/// The one table of backend names ("auto", "cpu", "cuda", "xnnpack"), for parsing and messages.
-const char* backend_request_name(BackendRequest request);
-/// "auto, cpu, cuda, xnnpack": what the settings accept, for messages and help.
-std::string backend_request_names();
-/// A name of the table -> request; nullopt otherwise.
-std::optional<BackendRequest> parse_backend_request(const std::string& text);
 /// A name of kFp16Names -> request; YAML's booleans true/false also read as on/off (`fp16: true`
 /// is what a YAML writer types). nullopt otherwise.
 std::optional<Fp16Request> parse_fp16_request(const std::string& text);

@@ -80,7 +80,7 @@ TrackRun track_detections(const FrameDetections& detections, const SequenceInfo&
     run.processed_frames.push_back(static_cast<int>(frame));
     if (progress) progress(static_cast<int>(frame), info.length);
   }
-  run.seconds_in_update = std::chrono::duration<double>(in_update).count();
+  run.update_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(in_update).count();
   return run;
 }
 

@@ -2,6 +2,7 @@
 // Runs the tracker over a MOTChallenge sequence's detections: the library side of `rtmot track`,
 // and the loop the study runs too.
 #include <atomic>
+#include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <string>
@@ -33,7 +34,7 @@ struct TrackRun {
   std::vector<MotRow> tracks;  // one row per reported track and frame
   int frames_processed{0};
   std::vector<int> processed_frames;  // their numbers, ascending (motio/processed_frames.hpp)
-  double seconds_in_update{0.0};      // time spent inside Tracker::update only
+  std::int64_t update_ns{0};          // time spent inside Tracker::update only
   bool stopped{false};                // by TrackOptions::stop, before the sequence's end
   /// Frames with more detections than the tracker's max_detections (it used the first ones of
   /// each), and the most detections one frame had: the caller says so rather than cut silently.

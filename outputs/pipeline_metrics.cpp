@@ -6,7 +6,7 @@
 #include <iterator>
 #include <opencv2/core/version.hpp>
 
-#include "pipeline/frame_rate.hpp"
+#include "common/frame_rate.hpp"
 
 namespace rtmot::outputs {
 namespace {
@@ -127,8 +127,8 @@ std::string PipelineMetrics::render() const {
                const std::int64_t first = s.first_captured_ns.load(relaxed);
                const std::int64_t last = s.last_sent_ns.load(relaxed);
                const auto processed = static_cast<std::int64_t>(s.frames_processed.load(relaxed));
-               return fmt::format(
-                   "{:.3f}", pipeline::frames_per_second(processed, first > 0 ? last - first : 0));
+               return fmt::format("{:.3f}",
+                                  frames_per_second(processed, first > 0 ? last - first : 0));
              });
   fmt::format_to(to,
                  "# HELP rtmot_stage_latency_seconds Time per pipeline stage, every source "

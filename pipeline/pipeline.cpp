@@ -6,9 +6,9 @@
 #include <thread>
 #include <utility>
 
+#include "common/frame_rate.hpp"
 #include "pipeline/capture_stage.hpp"
 #include "pipeline/detect_stage.hpp"
-#include "pipeline/frame_rate.hpp"
 #include "pipeline/run_control.hpp"
 #include "pipeline/sink_stage.hpp"
 #include "pipeline/track_stage.hpp"

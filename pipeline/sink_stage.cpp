@@ -6,7 +6,7 @@
 #include <exception>
 #include <utility>
 
-#include "pipeline/frame_rate.hpp"
+#include "common/frame_rate.hpp"
 #include "platform/clock.hpp"
 
 namespace rtmot::pipeline {

@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "common/duration_text.hpp"
-#include "pipeline/frame_rate.hpp"
+#include "common/frame_rate.hpp"
 
 namespace rtmot::runner {
 
@@ -46,15 +46,13 @@ void ProgressSink::write(const messages::FrameResult& result) {
   ++interval_processed_;
   const std::int64_t elapsed = now - interval_start_ns_;
   if (elapsed < interval_ns_) return;
-  spdlog::info(
-      "{}",
-      progress_line(
-          result.frame_number, total_frames_,
-          pipeline::frames_per_second(static_cast<std::int64_t>(interval_processed_), elapsed),
-          pipeline::frames_per_second(result.frame_number - interval_start_frame_, elapsed),
-          static_cast<double>(latency_.quantile_ns(0.5)) / 1e6,
-          static_cast<double>(latency_.quantile_ns(0.95)) / 1e6, processed_,
-          result.frames_dropped));
+  spdlog::info("{}", progress_line(
+                         result.frame_number, total_frames_,
+                         frames_per_second(static_cast<std::int64_t>(interval_processed_), elapsed),
+                         frames_per_second(result.frame_number - interval_start_frame_, elapsed),
+                         static_cast<double>(latency_.quantile_ns(0.5)) / 1e6,
+                         static_cast<double>(latency_.quantile_ns(0.95)) / 1e6, processed_,
+                         result.frames_dropped));
   latency_.clear();
   interval_start_ns_ = now;
   interval_start_frame_ = result.frame_number;

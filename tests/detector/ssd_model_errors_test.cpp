@@ -166,7 +166,7 @@ TEST(DnnBackend, AutomaticPicksXnnpackOnOneThreadWithoutCuda) {
     EXPECT_EQ(e.exit_code(), ExitCode::usage);
     EXPECT_NE(std::string(e.what()).find("libxnnpack-dev"), std::string::npos) << e.what();
   }
-  EXPECT_EQ(parse_backend_request("xnnpack"), BackendRequest::xnnpack);
+  EXPECT_EQ(kBackendNames.parse("xnnpack"), BackendRequest::xnnpack);
 }
 
 TEST(DnnBackend, ForcingWhatCannotBeHadIsAClearError) {
@@ -206,8 +206,8 @@ TEST_F(SsdModelErrors, CudaRequestedWhereItCannotBeHad) {
 }
 
 TEST(DnnBackend, ParsesConfigWords) {
-  EXPECT_EQ(parse_backend_request("cuda"), BackendRequest::cuda);
-  EXPECT_EQ(parse_backend_request("gpu"), std::nullopt);
+  EXPECT_EQ(kBackendNames.parse("cuda"), BackendRequest::cuda);
+  EXPECT_EQ(kBackendNames.parse("gpu"), std::nullopt);
   EXPECT_EQ(parse_fp16_request("auto"), Fp16Request::automatic);
   EXPECT_EQ(parse_fp16_request("false"), Fp16Request::off);
   EXPECT_EQ(parse_fp16_request("maybe"), std::nullopt);
