@@ -69,7 +69,9 @@ int run(const RunCommand& command) {
   runner::RunOutputs outputs = runner::make_outputs(config, inputs);
   for (const auto& destination : outputs.destinations) spdlog::info("output: {}", destination);
   if (outputs.destinations.empty()) {
-    spdlog::warn("no output configured: tracks go nowhere (--udp, --mqtt, --jsonl, --video-out)");
+    spdlog::warn(
+        "no output configured: tracks go nowhere (--udp, --mqtt, --jsonl, --video-out, "
+        "--mot-results)");
   }
   auto detector = runner::make_detector(config);
   spdlog::info("detector: {}", detector->describe());
@@ -100,7 +102,8 @@ int run(const RunCommand& command) {
   }
   linger_with_final_metrics(config.output, outputs, signals);
   const bool files_written = !config.output.jsonl_file.empty() ||
-                             !config.output.binary_file.empty() || config.output.video.has_value();
+                             !config.output.binary_file.empty() ||
+                             config.output.video.has_value() || !config.output.mot_results.empty();
   spdlog::set_level(level);
   if (delivered.nothing_delivered && !files_written) {
     spdlog::error("no output delivered any message: the tracks of this run went nowhere (exit {})",

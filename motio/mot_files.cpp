@@ -169,14 +169,28 @@ std::optional<double> ini_number(std::string_view text) {
 
 }  // namespace
 
+namespace {
+
+bool plain_name_char(char c) {
+  return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '-' ||
+         c == '_' || c == '.' || c == '+';
+}
+
+}  // namespace
+
+std::string plain_sequence_name(const std::string& text) {
+  std::string name = text.substr(0, kMaxNameBytes);
+  for (char& c : name) {
+    if (!plain_name_char(c)) c = '_';
+  }
+  if (!name.empty() && (name.front() == '.' || name.front() == '-')) name.front() = '_';
+  return name;
+}
+
 void check_sequence_name(const std::string& name, const std::string& file, int line) {
   if (name.empty()) throw InputError(file, line, "name", "is empty");
-  const auto plain = [](char c) {
-    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '-' ||
-           c == '_' || c == '.' || c == '+';
-  };
   const bool ok = name.size() <= kMaxNameBytes && name.front() != '.' && name.front() != '-' &&
-                  std::all_of(name.begin(), name.end(), plain);
+                  std::all_of(name.begin(), name.end(), plain_name_char);
   if (!ok) {
     throw InputError(file, line, "name",
                      "'" + name +

@@ -37,6 +37,9 @@ SequenceInfo read_seqinfo(const std::filesystem::path& ini_path);
 /// Throws InputError (file, line, field "name") unless `name` is a plain file name: letters,
 /// digits and - _ . + (not first: . or -), at most 128 bytes. No folders, no "..", no "/abs".
 void check_sequence_name(const std::string& name, const std::string& file, int line);
+/// `text` made a name check_sequence_name() accepts: every other character replaced by '_', a
+/// leading . or - too, cut to 128 bytes; empty stays empty.
+std::string plain_sequence_name(const std::string& text);
 std::vector<MotRow> read_mot_file(const std::filesystem::path& path, MotFileKind kind);
 /// As above, and a row whose frame is beyond `max_frame` (the sequence's length) is an error too.
 std::vector<MotRow> read_mot_file(const std::filesystem::path& path, MotFileKind kind,

@@ -61,6 +61,8 @@ void RunFlags::apply(RunConfig& config) const {
     }
     // --model names the SSD's model: it means the SSD, whatever the file's detector.kind.
     if (settings[i].key == "detector.model") config.detector.kind = DetectorKind::ssd;
+    // --det-file names replayed detections: it means the replay detector, the same way.
+    if (settings[i].key == "detector.det_file") config.detector.kind = DetectorKind::replay;
   }
   tracker_flags_.apply(config.tracker);
 }

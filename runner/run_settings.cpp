@@ -198,7 +198,8 @@ std::vector<RunSetting> detector_settings() {
                    "the detector's CPU threads; 0 = every CPU this process may use",
                    {0, kMaxThreads}, [](RunConfig& c) -> int& { return c.detector.threads; }),
       std::move(classes),
-      text("detector.det_file", "--det-file", "replay: a MOTChallenge det.txt",
+      text("detector.det_file", "--det-file",
+           "replay: a MOTChallenge det.txt (the flag also sets kind replay)",
            [](RunConfig& c) -> std::string& { return c.detector.det_file; }),
   };
 }
@@ -229,6 +230,10 @@ std::vector<RunSetting> output_settings() {
           [](RunConfig& c) -> outputs::OverlayFlags& { return c.output.overlay; }),
       text("output.report_file", "--report", "write the final report as JSON to this file",
            [](RunConfig& c) -> std::string& { return c.output.report_file; }),
+      text("output.mot_results", "--mot-results",
+           "write MOTChallenge results per source into this folder: NAME.txt and NAME.frames "
+           "(the frames processed), for rtmot eval",
+           [](RunConfig& c) -> std::string& { return c.output.mot_results; }),
       integer<int>("output.metrics_port", "--metrics-port",
                    "serve Prometheus metrics on this TCP port; 0 = off", {0, 65535},
                    [](RunConfig& c) -> int& { return c.output.metrics_port; }),

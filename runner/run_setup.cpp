@@ -25,6 +25,7 @@
 #include "outputs/video_target.hpp"
 #include "platform/host_port.hpp"
 #include "platform/video_uri.hpp"
+#include "runner/mot_results_output.hpp"
 #include "runner/progress_sink.hpp"
 #include "runner/sequence_clock_source.hpp"
 #include "runner/source_factory.hpp"
@@ -143,6 +144,18 @@ RunOutputs make_outputs(const RunConfig& config, std::vector<pipeline::PipelineI
     return fmt::format("{} -> {}{}", kind, path,
                        std::filesystem::exists(path, error) ? " (replaces the existing file)" : "");
   };
+  // First: the results folder is created here, and one that cannot be fails before any other
+  // output is opened.
+  std::unique_ptr<pipeline::FrameConsumer> mot_results;
+  if (!output.mot_results.empty()) {
+    const std::vector<MotResultsTarget> targets = mot_results_targets(config);
+    mot_results = std::make_unique<MotResultsOutput>(output.mot_results, targets);
+    for (const auto& target : targets) {
+      outputs.destinations.push_back(
+          file_line("mot results", mot_results_file(output.mot_results, target.name).string()) +
+          " and " + target.name + ".frames");
+    }
+  }
   if (output.udp) {
     const HostPort& target = *output.udp;
     auto sink = std::make_unique<messages::UdpSink>(target.host, target.port);
@@ -233,6 +246,7 @@ RunOutputs make_outputs(const RunConfig& config, std::vector<pipeline::PipelineI
     outputs.destinations.push_back("metrics -> " + outputs.metrics_server->url());
   }
   outputs.consumers = pipeline::as_consumers(std::move(sinks));
+  if (mot_results) outputs.consumers.push_back(std::move(mot_results));
   // The video last: it draws on the picture, after every message went out.
   if (video) outputs.consumers.push_back(std::move(video));
   return outputs;
@@ -242,6 +256,7 @@ std::vector<std::unique_ptr<messages::TrackSink>> make_sinks(const RunConfig& co
   RunConfig messages_only = config;
   messages_only.output.video.reset();
   messages_only.output.metrics_port = 0;
+  messages_only.output.mot_results.clear();
   messages_only.stats_interval_s = 0.0;
   std::vector<std::unique_ptr<messages::TrackSink>> sinks;
   // make_outputs' consumers are the message sinks in order; unwrap them.
@@ -290,6 +305,12 @@ void check_run_files(const RunConfig& config) {
   if (video && (video->kind == outputs::VideoTargetKind::mp4_file ||
                 video->kind == outputs::VideoTargetKind::mkv_file)) {
     outputs.push_back({video->path, "output.video_file"});
+  }
+  if (!output.mot_results.empty()) {
+    for (const auto& target : mot_results_targets(config)) {
+      outputs.push_back({mot_results_file(output.mot_results, target.name), "output.mot_results"});
+      outputs.push_back({mot_frames_file(output.mot_results, target.name), "output.mot_results"});
+    }
   }
   check_distinct_files(inputs, outputs);
 }

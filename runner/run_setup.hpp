@@ -25,7 +25,8 @@ std::unique_ptr<detector::Detector> make_detector(const RunConfig& config);
 /// What a run sends its tracks to, built from the output section.
 struct RunOutputs {
   /// For the sink stage, in order: UDP, binary file, MQTT, JSON lines as configured, the progress
-  /// line (one source), the metrics (with metrics_port), then the annotated video.
+  /// line (one source), the metrics (with metrics_port), the MOTChallenge results (with
+  /// mot_results: runner/mot_results_output.hpp), then the annotated video.
   std::vector<std::unique_ptr<pipeline::FrameConsumer>> consumers;
   /// With output.metrics_port: the numbers (fed by the MetricsSink) and the HTTP endpoint. Keep
   /// both alive longer than the Pipeline that owns the consumers.
