@@ -5,6 +5,7 @@
 // the stream's own box jitter, so a box wobbling on a line does not count again and again.
 // Allocation-free after construction: the track table, the per-line and per-zone state and the
 // event list are sized once for config.max_tracks tracks.
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -56,11 +57,14 @@ class EventCounter {
     double distance{0.0};         // signed distance of the last position
     std::int8_t side{0};          // -1 left, +1 right, 0 not yet known
     bool met_within_ends{false};  // the path since the last decided side met the segment
+    std::int64_t looked_at{-1};   // the update that computed `distance`
+    double horizon{0.0};          // not looked at again before the odometer passes this (follow())
   };
   struct ZoneState {
     bool inside{false};
     bool dwell_sent{false};
     double entered_at{0.0};
+    double horizon{0.0};  // as LineState's
   };
   struct Size {
     double w{0.0};
@@ -77,11 +81,17 @@ class EventCounter {
     Point anchor;
     Size size;
     Size previous_size;
+    // The path so far (|dx| + |dy| summed) and the nearest of its shapes' horizons (follow()).
+    double odometer{0.0};
+    double horizon{0.0};
   };
 
   static constexpr std::uint32_t kNone = ~std::uint32_t{0};
 
-  bool counts_class(std::int32_t class_id) const;
+  bool counts_class(std::int32_t class_id) const {
+    return config_.classes.empty() || std::find(config_.classes.begin(), config_.classes.end(),
+                                                class_id) != config_.classes.end();
+  }
   std::uint32_t find_live(std::int32_t track_id, std::size_t position) const;
   std::uint32_t find_broken_off(const tracker::TrackReport& report, double time) const;
   Point anchor_of(const tracker::Box& box) const;
@@ -89,10 +99,11 @@ class EventCounter {
   void count_crossing(std::size_t line, const Slot& slot, int side, const Point& where,
                       double time);
   void follow(std::uint32_t index, const tracker::TrackReport& report, double time);
-  void cross_lines(std::uint32_t index, const Point& from, const Point& to, double band, bool first,
-                   double time);
-  void visit_zones(std::uint32_t index, const Point& from, const Point& to, double band, bool first,
-                   double time);
+  // Each returns the nearest horizon of its shapes (follow(); INFINITY without shapes).
+  double cross_lines(std::uint32_t index, const Point& from, const Point& to, double band,
+                     bool first, double time);
+  double visit_zones(std::uint32_t index, const Point& from, const Point& to, double band,
+                     bool first, double time);
   void enter(std::uint32_t index, std::size_t zone, const Point& where, double time);
   void leave(std::uint32_t index, std::size_t zone, const Point& where, double time, bool lost);
   void dwell(double time);
@@ -119,6 +130,8 @@ class EventCounter {
   std::vector<Event> events_;
   std::vector<LineCounts> line_counts_;
   std::vector<ZoneCounts> zone_counts_;
+  // Per zone: no visit without its dwell event entered before this (INFINITY: none waits).
+  std::vector<double> earliest_pending_;
   tracker::RecentWindow noise_window_;
   double box_noise_{0.0};
   std::int64_t updates_{0};

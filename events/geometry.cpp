@@ -47,13 +47,23 @@ bool crossing_position(const Segment& s, const Point& p, const Point& q, double&
   return true;
 }
 
-double distance_to_segment(const Point& p, const Segment& s) {
+namespace {
+
+double squared_distance_to_segment(const Point& p, const Segment& s) {
   const double dx = s.to.x - s.from.x;
   const double dy = s.to.y - s.from.y;
   const double squared = dx * dx + dy * dy;
   double t = squared > 0.0 ? ((p.x - s.from.x) * dx + (p.y - s.from.y) * dy) / squared : 0.0;
   t = std::clamp(t, 0.0, 1.0);
-  return std::hypot(p.x - (s.from.x + t * dx), p.y - (s.from.y + t * dy));
+  const double ex = p.x - (s.from.x + t * dx);
+  const double ey = p.y - (s.from.y + t * dy);
+  return ex * ex + ey * ey;
+}
+
+}  // namespace
+
+double distance_to_segment(const Point& p, const Segment& s) {
+  return std::sqrt(squared_distance_to_segment(p, s));
 }
 
 bool segments_intersect(const Segment& a, const Segment& b) {
@@ -78,10 +88,11 @@ bool inside_polygon(const std::vector<Point>& polygon, const Point& p) {
 }
 
 double distance_to_boundary(const std::vector<Point>& polygon, const Point& p) {
+  // Squared per edge, one root at the end: the counter asks this of every track near a zone.
   double nearest = INFINITY;
   for (std::size_t i = 0; i < polygon.size(); ++i)
-    nearest = std::min(nearest, distance_to_segment(p, edge(polygon, i)));
-  return nearest;
+    nearest = std::min(nearest, squared_distance_to_segment(p, edge(polygon, i)));
+  return std::sqrt(nearest);
 }
 
 bool move_meets_boundary(const std::vector<Point>& polygon, const Point& p, const Point& q) {

@@ -72,10 +72,7 @@ void RtspVideoServer::close() {
   loop_thread_.join();
   {
     const std::lock_guard<std::mutex> lock(media_mutex_);
-    if (appsrc_ != nullptr) gst_object_unref(appsrc_);
-    if (padding_ != nullptr) gst_object_unref(padding_);
-    appsrc_ = nullptr;
-    padding_ = nullptr;
+    forget_media();
   }
   GSource* source = g_main_context_find_source_by_id(context_, source_id_);
   if (source != nullptr) g_source_destroy(source);
@@ -97,20 +94,43 @@ void RtspVideoServer::on_media_configure(GstRTSPMediaFactory*, GstRTSPMedia* med
   gst_object_unref(element);
   g_signal_connect(media, "unprepared", G_CALLBACK(&RtspVideoServer::on_media_unprepared), self);
   const std::lock_guard<std::mutex> lock(server.media_mutex_);
-  if (server.appsrc_ != nullptr) gst_object_unref(server.appsrc_);
-  if (server.padding_ != nullptr) gst_object_unref(server.padding_);
+  server.forget_media();
   server.appsrc_ = appsrc;
   server.padding_ = padding;
   server.caps_set_ = false;
+  if (appsrc != nullptr) {
+    server.probed_pad_ = gst_element_get_static_pad(appsrc, "src");
+    if (server.probed_pad_ != nullptr) {
+      server.probe_id_ = gst_pad_add_probe(server.probed_pad_, GST_PAD_PROBE_TYPE_BUFFER,
+                                           &RtspVideoServer::on_frame_streamed, self, nullptr);
+    }
+  }
 }
 
 void RtspVideoServer::on_media_unprepared(GstRTSPMedia*, gpointer self) {
   auto& server = *static_cast<RtspVideoServer*>(self);
   const std::lock_guard<std::mutex> lock(server.media_mutex_);
-  if (server.appsrc_ != nullptr) gst_object_unref(server.appsrc_);
-  if (server.padding_ != nullptr) gst_object_unref(server.padding_);
-  server.appsrc_ = nullptr;
-  server.padding_ = nullptr;
+  server.forget_media();
+}
+
+GstPadProbeReturn RtspVideoServer::on_frame_streamed(GstPad*, GstPadProbeInfo*, gpointer self) {
+  static_cast<RtspVideoServer*>(self)->frames_streamed_.fetch_add(1, std::memory_order_relaxed);
+  return GST_PAD_PROBE_OK;
+}
+
+// The probe goes with the media: a media that outlives this server (a client still holding it)
+// must not call back into it.
+void RtspVideoServer::forget_media() {
+  if (probed_pad_ != nullptr) {
+    if (probe_id_ != 0) gst_pad_remove_probe(probed_pad_, probe_id_);
+    gst_object_unref(probed_pad_);
+  }
+  probed_pad_ = nullptr;
+  probe_id_ = 0;
+  if (appsrc_ != nullptr) gst_object_unref(appsrc_);
+  if (padding_ != nullptr) gst_object_unref(padding_);
+  appsrc_ = nullptr;
+  padding_ = nullptr;
 }
 
 void RtspVideoServer::push(const cv::Mat& bgr) {

@@ -34,10 +34,16 @@ class RtspVideoServer final : public VideoStream {
 
   /// Whether a client is watching (its media is prepared): for tests and logs.
   bool has_client();
+  /// Frames that left the appsrc into the encoder (counted by a pad probe): what a client that
+  /// watched throughout received. Fewer than pushed when no client watched yet, or when the encoder
+  /// fell behind and the two-frame leaky queue dropped the oldest (a live stream shows the newest).
+  std::uint64_t frames_streamed() const { return frames_streamed_.load(std::memory_order_relaxed); }
 
  private:
   static void on_media_configure(GstRTSPMediaFactory*, GstRTSPMedia* media, gpointer self);
   static void on_media_unprepared(GstRTSPMedia* media, gpointer self);
+  static GstPadProbeReturn on_frame_streamed(GstPad*, GstPadProbeInfo*, gpointer self);
+  void forget_media();  // with media_mutex_ held
 
   VideoTarget target_;
   double fps_;
@@ -51,9 +57,14 @@ class RtspVideoServer final : public VideoStream {
   std::mutex media_mutex_;
   GstElement* appsrc_{nullptr};
   GstElement* padding_{nullptr};  // the media's videobox: sized at its first frame
+  GstPad* probed_pad_{nullptr};   // the appsrc's src pad, while the probe counts its buffers
+  gulong probe_id_{0};
   bool caps_set_{false};
   bool padding_warned_{false};
   std::uint64_t frames_{0};
+  // Written by the media's streaming thread, read by anyone: a statistic, no other memory is
+  // published through it, so relaxed order is enough.
+  std::atomic<std::uint64_t> frames_streamed_{0};
   bool closed_{false};
 };
 

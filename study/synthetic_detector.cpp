@@ -122,17 +122,28 @@ std::vector<std::vector<tracker::Detection>> synthesize_detections(
       until = row->frame + length - 1;
       continue;
     }
-    emit(row->frame, jittered(random, row->box, spec.jitter), spec.separation + random.normal());
+    // Every draw in its own statement: the order of a call's arguments is unspecified (g++ drew the
+    // score before the box, clang the box first, and the synthetic detectors differed between the
+    // Release and the sanitizer builds). The score comes first, as the tables were pinned with g++.
+    const double z = spec.separation + random.normal();
+    const tracker::Box box = jittered(random, row->box, spec.jitter);
+    emit(row->frame, box, z);
   }
 
   std::vector<tracker::Box> clutter;
   for (int s = 0; s < spec.clutter_sites; ++s) clutter.push_back(random_box(random, shapes, info));
   for (int frame = 1; frame <= info.length; ++frame) {
     const int count = random.poisson(spec.false_per_frame);
-    for (int i = 0; i < count; ++i) emit(frame, random_box(random, shapes, info), random.normal());
+    for (int i = 0; i < count; ++i) {
+      const double z = random.normal();
+      const tracker::Box box = random_box(random, shapes, info);
+      emit(frame, box, z);
+    }
     for (const auto& site : clutter) {
-      if (random.chance(spec.clutter_rate))
-        emit(frame, jittered(random, site, spec.jitter), random.normal());
+      if (!random.chance(spec.clutter_rate)) continue;
+      const double z = random.normal();
+      const tracker::Box box = jittered(random, site, spec.jitter);
+      emit(frame, box, z);
     }
   }
   return frames;

@@ -11,7 +11,8 @@ constexpr std::int64_t kMaxSnapshotGap = 256;
 
 }  // namespace
 
-RecentWindow::RecentWindow(std::size_t capacity) : values_(capacity), scratch_(capacity) {}
+RecentWindow::RecentWindow(std::size_t capacity, std::int64_t full_snapshot_gap)
+    : values_(capacity), scratch_(capacity), full_snapshot_gap_(full_snapshot_gap) {}
 
 void RecentWindow::reset() {
   filled_ = 0;
@@ -32,8 +33,11 @@ void RecentWindow::push(float value) {
 void RecentWindow::snapshot() {
   std::copy_n(values_.begin(), filled_, scratch_.begin());
   snapshot_size_ = filled_;
+  const bool full = filled_ == values_.size();
   next_snapshot_ =
-      seen_ + std::clamp(static_cast<std::int64_t>(filled_), kMinSnapshotGap, kMaxSnapshotGap);
+      seen_ + (full && full_snapshot_gap_ > 0 ? full_snapshot_gap_
+                                              : std::clamp(static_cast<std::int64_t>(filled_),
+                                                           kMinSnapshotGap, kMaxSnapshotGap));
 }
 
 float RecentWindow::order_statistic(double quantile) {

@@ -13,8 +13,10 @@ namespace rtmot::tracker {
 
 class RecentWindow {
  public:
-  /// Remembers the last `capacity` values; a capacity of 0 remembers nothing.
-  explicit RecentWindow(std::size_t capacity);
+  /// Remembers the last `capacity` values; a capacity of 0 remembers nothing. Once it is full,
+  /// due() every `full_snapshot_gap` values (0: the schedule above; a statistic that moves slowly
+  /// and is read by a hot loop may take a longer gap).
+  explicit RecentWindow(std::size_t capacity, std::int64_t full_snapshot_gap = 0);
 
   bool enabled() const { return !values_.empty(); }
   std::int64_t seen() const { return seen_; }
@@ -41,6 +43,7 @@ class RecentWindow {
   std::size_t snapshot_size_{0};
   std::int64_t seen_{0};
   std::int64_t next_snapshot_{1};
+  std::int64_t full_snapshot_gap_{0};
 };
 
 }  // namespace rtmot::tracker

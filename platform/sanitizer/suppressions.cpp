@@ -41,3 +41,11 @@ extern "C" const char* __tsan_default_suppressions() {
 extern "C" const char* __tsan_default_options() {
   return "ignore_noninstrumented_modules=1";
 }
+
+// LeakSanitizer's tracer crashed after a passing test (SIGSEGV, "DTLS 25 at 0x224a-0x4000334c"):
+// clang 14's runtime misreads glibc 2.36's dynamic TLS blocks of dlopen'ed modules (GStreamer's
+// plugins), google/sanitizers#1322. Not intercepting __tls_get_addr drops only that bookkeeping;
+// static TLS, stacks and the heap are still scanned for leaks.
+extern "C" const char* __asan_default_options() {
+  return "intercept_tls_get_addr=0";
+}

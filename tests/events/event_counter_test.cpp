@@ -332,6 +332,49 @@ TEST(Zones, FinishEmptiesTheZones) {
   EXPECT_EQ(w.counter.zone_counts()[0].occupancy, 0);
 }
 
+// The counter looks at a track's lines and zones only when its path since could have reached one
+// (EventCounter::follow's odometer). Whatever it skipped, every crossing still counts: slow creeps
+// over many skipped updates, uneven steps, a long stay far away and then jumps over two lines and
+// into and out of a zone, and several tracks at once, each with its own horizon.
+TEST(SkippedGeometry, FarTracksStillCountEveryCrossingAndVisit) {
+  EventsConfig config = one_line();
+  config.lines.push_back({"second", {{300.0, 0.0}, {300.0, 200.0}}, true});
+  config.zones.push_back({"room", {{400, 50}, {500, 50}, {500, 150}, {400, 150}}, 0.0});
+  Walk w(config);
+  std::vector<double> right;  // track 1: -500 to 700 in steps of 7 px
+  for (double x = -500; x <= 700; x += 7) right.push_back(x);
+  std::vector<double> left;  // track 2: back in uneven steps of 1, 3 and 11 px
+  const double steps[] = {1, 3, 11};
+  for (double x = 700; x >= -500; x -= steps[left.size() % 3]) left.push_back(x);
+  std::vector<double> creep;  // track 3: 0.3 px per update over the first line
+  for (double x = 60; x <= 140; x += 0.3) creep.push_back(x);
+  const std::size_t updates = std::max({right.size(), left.size(), creep.size()}) + 60;
+  for (std::size_t u = 0; u < updates; ++u) {
+    std::vector<tracker::TrackReport> reports;
+    reports.push_back(feet_at(1, right[std::min(u, right.size() - 1)], 100));
+    reports.push_back(feet_at(2, left[std::min(u, left.size() - 1)], 100));
+    reports.push_back(feet_at(3, creep[std::min(u, creep.size() - 1)], 120));
+    // Track 4 stays far away, then jumps over both lines, into the room and out of the frame.
+    const double x4 = u < updates - 3    ? -1000.0
+                      : u == updates - 3 ? 350.0
+                      : u == updates - 2 ? 450.0
+                                         : 1000.0;
+    reports.push_back(feet_at(4, x4, 100));
+    w.step(reports);
+  }
+  EXPECT_EQ(w.counter.line_counts()[0].in, 3);   // tracks 1, 3 and 4
+  EXPECT_EQ(w.counter.line_counts()[0].out, 1);  // track 2
+  EXPECT_EQ(w.counter.line_counts()[1].in, 2);   // tracks 1 and 4
+  EXPECT_EQ(w.counter.line_counts()[1].out, 1);
+  EXPECT_EQ(w.counter.zone_counts()[0].entered, 3);  // tracks 1, 2 and 4
+  EXPECT_EQ(w.counter.zone_counts()[0].exited, 3);
+  std::vector<EventKind> jumps;  // track 4's, in order
+  for (const Event& e : w.events)
+    if (e.track_id == 4) jumps.push_back(e.kind);
+  EXPECT_EQ(jumps, (std::vector<EventKind>{EventKind::line_in, EventKind::line_in,
+                                           EventKind::zone_enter, EventKind::zone_exit}));
+}
+
 TEST(Capacity, TracksBeyondTheTableAreNotFollowedAndSaySo) {
   EventsConfig config = one_line();
   config.max_tracks = 2;

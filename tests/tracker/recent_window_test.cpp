@@ -38,5 +38,21 @@ TEST(RecentWindow, RedoesItsStatisticsOnASchedule) {
   EXPECT_FALSE(RecentWindow(0).enabled());
 }
 
+// A full window with its own gap (the event counter's box noise): the filling schedule as
+// before, then every `full_snapshot_gap` values, longer than the window itself.
+TEST(RecentWindow, TakesALongerGapOnceFullWhenAsked) {
+  RecentWindow window(100, 250);
+  std::vector<int> snapshots;
+  for (int i = 1; i <= 1000; ++i) {
+    window.push(static_cast<float>(i));
+    if (window.due()) {
+      window.snapshot();
+      snapshots.push_back(i);
+    }
+  }
+  EXPECT_EQ(snapshots, (std::vector<int>{1, 9, 18, 36, 72, 144, 394, 644, 894}));
+  EXPECT_FLOAT_EQ(window.order_statistic(0.5), 845.F);  // the last 100 values: 795..894
+}
+
 }  // namespace
 }  // namespace rtmot::tracker
