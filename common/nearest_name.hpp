@@ -1,6 +1,6 @@
 #pragma once
 // "Did you mean ...?" for a mistyped name: the command line's flags (apps/main.cpp) and the keys of
-// a configuration file (runner/yaml_section.hpp, runner/run_config.cpp) both ask here, so that a
+// a configuration file (common/yaml_section.hpp, runner/run_config.cpp) both ask here, so that a
 // typo is answered the same way everywhere.
 #include <optional>
 #include <string>

@@ -4,13 +4,10 @@
 #include <set>
 
 #include "common/input_error.hpp"
-#include "runner/yaml_section.hpp"  // header-only strict YAML reading, shared with the run config
+#include "common/yaml_section.hpp"
 
 namespace rtmot::events {
 namespace {
-
-using runner::line_of;
-using runner::Section;
 
 // Every class id, time and size a user writes stays far from int and double limits.
 constexpr double kMaxSeconds = 1e7;
@@ -86,8 +83,8 @@ void read_zone(const YAML::Node& item, const std::string& field, double default_
                  "a zone needs at least 3 points, got " + std::to_string(zone.polygon.size()));
   }
   zone.dwell_seconds = default_dwell;
-  runner::read_checked(section, "dwell_s", zone.dwell_seconds, runner::within(0.0, kMaxSeconds),
-                       "seconds from 0 (no dwell events) to 1e7");
+  read_checked(section, "dwell_s", zone.dwell_seconds, within(0.0, kMaxSeconds),
+               "seconds from 0 (no dwell events) to 1e7");
   section.reject_unknown();
   spec.zone_lines.push_back(line_of(item));
   spec.written.zones.push_back(std::move(zone));
@@ -121,21 +118,21 @@ EventsSpec read_events_spec(const YAML::Node& node, const std::string& file,
     }
     config.anchor = *parsed;
   }
-  runner::read_checked(
+  read_checked(
       section, "lost_after_s", config.lost_after_seconds,
       [](double v) { return v > 0.0 && v <= kMaxSeconds; }, "seconds above 0, at most 1e7");
-  runner::read_checked(section, "link_radius", config.link_radius, runner::within(0.0, 100.0),
-                       "box heights from 0 (off) to 100");
+  read_checked(section, "link_radius", config.link_radius, within(0.0, 100.0),
+               "box heights from 0 (off) to 100");
   section.read("classes", config.classes);
   double default_dwell = 0.0;
-  runner::read_checked(section, "dwell_s", default_dwell, runner::within(0.0, kMaxSeconds),
-                       "seconds from 0 (no dwell events) to 1e7");
+  read_checked(section, "dwell_s", default_dwell, within(0.0, kMaxSeconds),
+               "seconds from 0 (no dwell events) to 1e7");
   {
     Section band(section.child("dead_band"), file, section.field("dead_band"));
-    runner::read_checked(band, "min_px", config.dead_band.min_px, runner::within(0.0, 1e4),
-                         "pixels from 0 to 10000");
-    runner::read_checked(band, "noise_factor", config.dead_band.noise_factor,
-                         runner::within(0.0, 100.0), "a factor from 0 to 100");
+    read_checked(band, "min_px", config.dead_band.min_px, within(0.0, 1e4),
+                 "pixels from 0 to 10000");
+    read_checked(band, "noise_factor", config.dead_band.noise_factor, within(0.0, 100.0),
+                 "a factor from 0 to 100");
     band.reject_unknown();
   }
   std::set<std::string> line_names;

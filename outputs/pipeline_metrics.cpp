@@ -6,8 +6,6 @@
 #include <iterator>
 #include <opencv2/core/version.hpp>
 
-#include "common/frame_rate.hpp"
-
 namespace rtmot::outputs {
 namespace {
 
@@ -22,7 +20,6 @@ void LatencyBuckets::record(std::int64_t ns) {
   while (bucket < bounds_ms.size() && ms > bounds_ms[bucket]) ++bucket;
   counts_[bucket].fetch_add(1, relaxed);
   sum_ns_.fetch_add(static_cast<std::uint64_t>(ns), relaxed);
-  count_.fetch_add(1, relaxed);
 }
 
 void LatencyBuckets::render(const std::string& name, const std::string& labels,
@@ -38,7 +35,7 @@ void LatencyBuckets::render(const std::string& name, const std::string& labels,
   fmt::format_to(to, "{}_bucket{{{},le=\"+Inf\"}} {}\n", name, labels, cumulative);
   fmt::format_to(to, "{}_sum{{{}}} {}\n", name, labels,
                  static_cast<double>(sum_ns_.load(relaxed)) / 1e9);
-  fmt::format_to(to, "{}_count{{{}}} {}\n", name, labels, count_.load(relaxed));
+  fmt::format_to(to, "{}_count{{{}}} {}\n", name, labels, cumulative);
 }
 
 PipelineMetrics::PipelineMetrics(std::vector<OutputProbe> outputs,
@@ -57,13 +54,13 @@ void PipelineMetrics::observe(const messages::FrameResult& result) {
     if (stream.first_captured_ns.load(relaxed) == 0 && t.captured_ns > 0) {
       stream.first_captured_ns.store(t.captured_ns, relaxed);
     }
-    stream.last_sent_ns.store(t.sent_ns, relaxed);
     stream.frames_processed.fetch_add(1, relaxed);
     stream.frames_captured.store(result.frame_number, relaxed);
     stream.frames_skipped.store(result.frames_dropped, relaxed);
     stream.tracks_reported.fetch_add(result.tracks.size(), relaxed);
     stream.tracks_last_frame.store(static_cast<std::uint32_t>(result.tracks.size()), relaxed);
     stream.up.store(!result.source_outage, relaxed);
+    if (!result.source_outage) stream.last_sent_ns.store(t.sent_ns, relaxed);
     if (result.source_outage) {
       stream.outage_frames.fetch_add(1, relaxed);
       if (!stream.in_outage) stream.outages.fetch_add(1, relaxed);
@@ -122,13 +119,19 @@ std::string PipelineMetrics::render() const {
              "Tracks reported over all processed frames (divide by frames processed: tracks per "
              "frame).",
              [](const StreamCounters& s) { return s.tracks_reported.load(relaxed); });
-  per_stream("rtmot_fps", "gauge", "Frames processed per second since the source's first frame.",
+  per_stream("rtmot_fps", "gauge",
+             "Frames processed per second since the source's first frame (outage ticks not "
+             "counted): the report's fps.",
              [](const StreamCounters& s) {
-               const std::int64_t first = s.first_captured_ns.load(relaxed);
-               const std::int64_t last = s.last_sent_ns.load(relaxed);
-               const auto processed = static_cast<std::int64_t>(s.frames_processed.load(relaxed));
+               // Pictures = messages - ticks. Two relaxed loads of two counters may straddle a
+               // frame: off by one for one scrape, never below zero.
+               const std::uint64_t messages = s.frames_processed.load(relaxed);
+               const std::uint64_t ticks = s.outage_frames.load(relaxed);
+               const auto pictures =
+                   static_cast<std::int64_t>(messages > ticks ? messages - ticks : 0);
                return fmt::format("{:.3f}",
-                                  frames_per_second(processed, first > 0 ? last - first : 0));
+                                  pipeline::output_rate(pictures, s.first_captured_ns.load(relaxed),
+                                                        s.last_sent_ns.load(relaxed)));
              });
   fmt::format_to(to,
                  "# HELP rtmot_stage_latency_seconds Time per pipeline stage, every source "

@@ -8,7 +8,12 @@
 // FrameResult (counts, outage flag, per-stage timestamps) and in the other outputs' counters, which
 // it reads on the sink stage's own thread. It stores into relaxed atomics (statistics, not
 // synchronisation: a scrape may see one frame's counters half-updated, never a torn value), so the
-// sink stage takes no lock and the HTTP thread reads whenever a scrape comes.
+// sink stage takes no lock and the HTTP thread reads whenever a scrape comes. Every counter has
+// that one writer, so a reader never sees one go down between scrapes (the loads of one atomic
+// object follow its modification order, whatever the memory order).
+// The numbers are the pipeline's own definitions: the stage split is pipeline::stage_span_ns
+// under pipeline::kStageNames, rtmot_fps is pipeline::output_rate (what the run's report says).
+// Only the latency histogram is a class of its own (LatencyBuckets, below).
 #include <array>
 #include <atomic>
 #include <cstdint>
@@ -23,6 +28,12 @@
 namespace rtmot::outputs {
 
 /// A latency histogram with fixed bucket bounds (ms), cumulative as Prometheus wants them.
+/// Not pipeline::LatencyHistogram, on purpose: the two hold different facts. That one answers "what
+/// was the p95" to 2 % for the run's report (932 log-scale buckets, one thread, cleared per log
+/// interval); this one answers "how many frames took at most `le`" at the bounds a dashboard is
+/// queried on (Prometheus interpolates its quantiles inside them), is never cleared and is read
+/// while it is written. A 2 % bucket's edges do not fall on these bounds (5 ms lies inside one),
+/// so neither could be derived from the other exactly.
 class LatencyBuckets {
  public:
   // Fine where a frame's latencies are on a CPU or a Jetson (0.5..200 ms: histogram_quantile
@@ -31,14 +42,16 @@ class LatencyBuckets {
   static constexpr std::array<double, 25> bounds_ms = {
       0.5, 1,  2,  3,   5,   7.5, 10,  15,  20,  25,   30,   35,  40,
       50,  60, 75, 100, 125, 150, 200, 300, 500, 1000, 2000, 5000};
+  /// One writer (the sink stage); allocation-free, lock-free.
   void record(std::int64_t ns);
-  /// Appends `name`'s _bucket, _sum and _count lines with `labels` (e.g. stage="detect").
+  /// Any thread. Appends `name`'s _bucket, _sum and _count lines with `labels` (e.g.
+  /// stage="detect"). _count is the +Inf bucket as read, so the two always agree, as Prometheus
+  /// requires; _sum may lag or lead them by the frame being recorded.
   void render(const std::string& name, const std::string& labels, std::string& out) const;
 
  private:
   std::array<std::atomic<std::uint64_t>, bounds_ms.size() + 1> counts_{};  // last: +Inf
   std::atomic<std::uint64_t> sum_ns_{0};
-  std::atomic<std::uint64_t> count_{0};
 };
 
 /// How one output reports what it did (read on the sink stage's thread, after its write(), and
@@ -81,9 +94,9 @@ class PipelineMetrics {
     std::atomic<std::uint64_t> tracks_reported{0};
     std::atomic<std::uint32_t> tracks_last_frame{0};
     std::atomic<bool> up{false};  // false until its first frame: a cold start is not "up"
-    std::atomic<std::int64_t> first_captured_ns{0};
-    std::atomic<std::int64_t> last_sent_ns{0};
-    bool in_outage{false};  // sink stage only
+    std::atomic<std::int64_t> first_captured_ns{0};  // the first message's (a tick's too)
+    std::atomic<std::int64_t> last_sent_ns{0};       // the last picture's (not a tick's)
+    bool in_outage{false};                           // sink stage only
   };
 
   std::vector<OutputProbe> probes_;

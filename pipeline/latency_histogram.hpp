@@ -3,6 +3,9 @@
 // with 2% wide buckets (so a percentile is exact to 2%), plus exact count, sum and max. Written by
 // one thread; read by it or after it finished. Hand-written because the one library for this,
 // HdrHistogram_c, is not packaged for Debian 12, and this needs ~60 lines.
+// The run's report and log lines read it. The Prometheus endpoint keeps a different fact in its own
+// class (outputs::LatencyBuckets: counts at fixed `le` bounds, read while written; why not this
+// one: outputs/pipeline_metrics.hpp).
 #include <array>
 #include <cstdint>
 

@@ -108,8 +108,7 @@ PipelineReport Pipeline::Stages::report() const {
     stream.frames_lost = counts.frames_lost;
     stream.source_outages = counts.outages;
     stream.source_error = counts.source_error;
-    stream.fps =
-        frames_per_second(stream.frames_processed, sent.last_sent_ns - counts.first_capture_ns);
+    stream.fps = output_rate(stream.frames_processed, counts.first_capture_ns, sent.last_sent_ns);
     stream.latency = sent.latency;
 
     report.source += (i == 0 ? "" : ", ") + stream.source;
@@ -128,8 +127,8 @@ PipelineReport Pipeline::Stages::report() const {
   report.frames_dropped = report.frames_captured - report.frames_processed;
   if (report.frames_processed > 0 && total.last_sent_ns > first_capture_ns) {
     report.wall_seconds = static_cast<double>(total.last_sent_ns - first_capture_ns) * 1e-9;
-    report.fps = frames_per_second(report.frames_processed, total.last_sent_ns - first_capture_ns);
   }
+  report.fps = output_rate(report.frames_processed, first_capture_ns, total.last_sent_ns);
   const DetectCounts detected = detect->counts();
   report.detector_fps = frames_per_second(detected.frames, detected.busy_ns);
   report.detector_batches = detected.batches;

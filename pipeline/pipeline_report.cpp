@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include "common/frame_rate.hpp"
+
 namespace rtmot::pipeline {
 namespace {
 
@@ -37,6 +39,12 @@ std::int64_t stage_span_ns(Stage stage, const messages::FrameTimes& t) {
       return between(t.captured_ns, t.sent_ns);
   }
   return -1;
+}
+
+double output_rate(std::int64_t frames_processed, std::int64_t first_capture_ns,
+                   std::int64_t last_sent_ns) {
+  return first_capture_ns > 0 ? frames_per_second(frames_processed, last_sent_ns - first_capture_ns)
+                              : 0.0;
 }
 
 void StageLatencies::record(const messages::FrameTimes& times) {

@@ -30,6 +30,13 @@ inline constexpr std::size_t kStageCount = kStageNames.entries().size();
 /// place the split is computed (the report and the metrics both record it).
 std::int64_t stage_span_ns(Stage stage, const messages::FrameTimes& times);
 
+/// The output rate of a run or of one source: frames processed (pictures through every stage;
+/// outage ticks are not frames) over first capture -> last picture sent; 0 until there is a span.
+/// The one definition behind the report's fps (total and per source) and the Prometheus rtmot_fps
+/// gauge (outputs/pipeline_metrics.cpp), so the last scrape of a run reads what its report says.
+double output_rate(std::int64_t frames_processed, std::int64_t first_capture_ns,
+                   std::int64_t last_sent_ns);
+
 /// Latencies of every stage, recorded per processed frame by the sink stage.
 struct StageLatencies {
   std::array<LatencyHistogram, kStageCount> stages;

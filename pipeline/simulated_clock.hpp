@@ -15,6 +15,10 @@ class SimulatedClock {
  public:
   explicit SimulatedClock(std::int64_t detector_latency_ns) : latency_ns_(detector_latency_ns) {}
 
+  /// The detector's time for the next frame it takes, from now on (a detector whose time per frame
+  /// varies: the study's jittered latencies).
+  void set_latency_ns(std::int64_t detector_latency_ns) { latency_ns_ = detector_latency_ns; }
+
   /// Called for every frame in stream order with its pts and the next frame's (nullopt at the end
   /// of the stream). Returns true when the simulated detector takes this frame.
   bool takes(std::int64_t pts_ns, std::optional<std::int64_t> next_pts_ns) {

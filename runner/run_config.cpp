@@ -11,10 +11,10 @@
 #include "common/input_file.hpp"
 #include "common/input_path.hpp"
 #include "common/nearest_name.hpp"
+#include "common/yaml_section.hpp"
 #include "runner/run_settings.hpp"
 #include "runner/sequence_clock_source.hpp"
 #include "runner/yaml_document.hpp"
-#include "runner/yaml_section.hpp"
 #include "tracker/presets.hpp"
 #include "tracker/tracker_options.hpp"
 

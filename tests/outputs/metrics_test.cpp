@@ -76,7 +76,11 @@ TEST(Metrics, EndpointServesPrometheusText) {
             115.0);
   EXPECT_LE(value_of(response, R"(rtmot_stage_latency_seconds_bucket{stage="detect",le="0.001"})"),
             value_of(response, R"(rtmot_stage_latency_seconds_bucket{stage="detect",le="0.1"})"));
-  EXPECT_GT(value_of(response, R"(rtmot_fps{stream="7"})"), 0.0);
+  // The report's output rate (pipeline::output_rate): the 115 pictures, not the 5 outage ticks,
+  // over first capture -> last picture sent. Counting the ticks as frames read 30.06 here.
+  const double span_s =
+      static_cast<double>(frames.back().times.sent_ns - frames.front().times.captured_ns) / 1e9;
+  EXPECT_NEAR(value_of(response, R"(rtmot_fps{stream="7"})"), 115.0 / span_s, 0.0005);
   EXPECT_NE(http_get(port, "/other").find("404"), std::string::npos);
 }
 

@@ -1,7 +1,9 @@
 #pragma once
 // Reading one YAML mapping of a configuration file strictly: typed reads, ranges, unknown keys, and
 // errors that name file, line and field (rtmot::InputError). Shared by every section of the run
-// configuration (runner/run_config.cpp).
+// configuration (runner/run_config.cpp) and a source's events: section (events/events_yaml.cpp),
+// so it sits at the bottom of the ladder. Header-only: only its includers, which read YAML, link
+// yaml-cpp; the rest of common/ does not.
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
@@ -16,7 +18,7 @@
 #include "common/input_error.hpp"
 #include "common/nearest_name.hpp"
 
-namespace rtmot::runner {
+namespace rtmot {
 
 inline int line_of(const YAML::Node& node) {
   const YAML::Mark mark = node.Mark();
@@ -180,4 +182,4 @@ auto within(T low, T high) {
   return [low, high](T value) { return value >= low && value <= high; };
 }
 
-}  // namespace rtmot::runner
+}  // namespace rtmot
