@@ -19,6 +19,7 @@
 #include "common/output_file.hpp"
 #include "motio/mot_files.hpp"
 #include "platform/signals.hpp"
+#include "study/latency_sweep.hpp"
 #include "study/run_progress.hpp"
 #include "study/study_cv.hpp"
 #include "study/study_dataset.hpp"
@@ -40,6 +41,7 @@ struct StudyCommandOptions {
   bool no_cv{false};
   std::string only;
   std::string link_prefix;
+  bool latency{false};
 };
 
 // A study's tables, plots and folds are only meaningful complete: a stop (SIGINT, SIGTERM) ends
@@ -78,10 +80,33 @@ class RunProgressPrinter {
   std::chrono::steady_clock::time_point last_line_;
 };
 
+// --latency: the default and SORT behind simulated detector latencies (study/latency_sweep.hpp).
+int run_latency_sweep(const StudyCommandOptions& options, const platform::StopSignals& signals) {
+  using Clock = std::chrono::steady_clock;
+  const auto start = Clock::now();
+  const auto dataset = study::load_study_dataset(options.dataset);
+  const std::vector<std::string> presets = {std::string(tracker::default_preset_name()), "sort"};
+  const std::vector<study::StudyInput> inputs = {study::StudyInput::detections,
+                                                 study::StudyInput::ground_truth};
+  const auto latencies = study::default_latencies();
+  spdlog::info(
+      "study: latency sweep: {} sequences, {} presets x {} inputs x {} latencies on {} "
+      "threads",
+      dataset.size(), presets.size(), inputs.size(), latencies.size(), options.jobs);
+  const auto tables = study::run_latency_sweep(dataset, presets, inputs, latencies, options.jobs,
+                                               &signals.stop_flag());
+  if (signals.stop_requested()) return stopped("the latency sweep");
+  const auto files = study::write_latency_sweep(options.out_dir, tables);
+  spdlog::info("study: wrote {} files under {}/latency in {:.0f} s", files.size(), options.out_dir,
+               std::chrono::duration<double>(Clock::now() - start).count());
+  return to_int(ExitCode::ok);
+}
+
 int run_study_command(const StudyCommandOptions& options) {
   using Clock = std::chrono::steady_clock;
   const auto start = Clock::now();
   const platform::StopSignals signals;
+  if (options.latency) return run_latency_sweep(options, signals);
   // Ascending and unique: rows and plot axes follow the interval.
   std::vector<int> intervals = options.intervals;
   std::sort(intervals.begin(), intervals.end());
@@ -195,6 +220,10 @@ Subcommand add_study_command(CLI::App& parent) {
                 "skip the presets on the synthetic detectors made from the ground truth");
   cli->add_flag("--no-cv", options->no_cv,
                 "skip the leave-one-sequence-out cross-validation (with --quick: 2 candidates)");
+  cli->add_flag("--latency", options->latency,
+                "only the latency sweep: the default and the sort preset behind a simulated "
+                "detector of 33..1000 ms (fixed and jittered), skipping frames as the pipeline "
+                "does; scored on the processed frames and at the full frame rate (OUT/latency/)");
   cli->add_option("--link-prefix", options->link_prefix,
                   "prefix of the plot links in summary.md (e.g. study/ when it is included from "
                   "docs/study.md)");

@@ -53,8 +53,24 @@ TrackRun track_detections(const FrameDetections& detections, const SequenceInfo&
 
   using Clock = std::chrono::steady_clock;
   Clock::duration in_update{};
-  // 64-bit: frame + interval cannot overflow whatever the interval.
-  for (std::int64_t frame = 1; frame <= info.length; frame += options.interval) {
+  for (std::size_t i = 1; i < options.frames.size(); ++i) {
+    if (options.frames[i] <= options.frames[i - 1]) {
+      throw InputError("", 0, "frames", "must ascend", ExitCode::usage);
+    }
+  }
+  if (!options.frames.empty() &&
+      (options.frames.front() < 1 || options.frames.back() > info.length)) {
+    throw InputError("", 0, "frames", "must lie in 1.." + std::to_string(info.length),
+                     ExitCode::usage);
+  }
+  // The listed frames, or 1, 1 + interval, ... (64-bit: frame + interval cannot overflow).
+  std::size_t listed = 0;
+  const auto next_frame = [&](std::int64_t frame) -> std::int64_t {
+    if (options.frames.empty()) return frame + options.interval;
+    return listed < options.frames.size() ? options.frames[listed++] : info.length + 1;
+  };
+  for (std::int64_t frame = options.frames.empty() ? 1 : next_frame(0); frame <= info.length;
+       frame = next_frame(frame)) {
     if (options.stop != nullptr && options.stop->load(std::memory_order_acquire)) {
       run.stopped = true;
       break;

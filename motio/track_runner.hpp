@@ -23,6 +23,10 @@ struct TrackOptions {
   std::filesystem::path detections{"det/det.txt"};
   /// Process frames 1, 1 + interval, ... only, keeping their numbers and times. 1..kMaxFrame.
   int interval{1};
+  /// When not empty: process exactly these frames (ascending, in 1..length), e.g. those a
+  /// pipeline with a slow detector would process (common/simulated_clock.hpp); `interval` is
+  /// then not used.
+  std::vector<int> frames;
   /// When set and true, the run stops before its next frame (TrackRun::stopped).
   const std::atomic<bool>* stop{nullptr};
   /// The study's rules (study/study_knobs.hpp) for the Tracker; empty in the product.
@@ -49,7 +53,7 @@ TrackRun track_sequence(const std::filesystem::path& sequence_dir, const TrackOp
                         const ProgressCallback& progress = {});
 
 /// The tracker over `detections` (options.detections is not read): frames 1, 1 + interval, ...
-/// of `info`'s length, at time (frame - 1) / frame rate.
+/// of `info`'s length (or options.frames), at time (frame - 1) / frame rate.
 TrackRun track_detections(const FrameDetections& detections, const SequenceInfo& info,
                           const TrackOptions& options, const ProgressCallback& progress = {});
 

@@ -5,8 +5,10 @@
 
 #include "common/checked_number.hpp"
 #include "common/frame_rate.hpp"
+#include "common/input_error.hpp"
 #include "detector/coco_labels.hpp"
 #include "platform/video_uri.hpp"
+#include "runner/yaml_document.hpp"
 
 namespace rtmot::runner {
 namespace {
@@ -133,6 +135,34 @@ auto off_or(Parse parse, bool quote = true) {
   };
 }
 
+// The source's `events:` section on the command line, written as in the file (a YAML flow
+// mapping) and read by the file's own reader (events/events_yaml.hpp): one syntax of lines and
+// zones, one set of checks. For every source: the flags come after --source made the list.
+RunSetting events_setting() {
+  return {"source.events",
+          "--events",
+          "lines, zones and dwell counted on every source's tracks (docs/events.md)",
+          "a YAML mapping as the events: section, e.g. '{lines: [{name: door, units: fraction, "
+          "from: [0.5, 0], to: [0.5, 1]}]}'",
+          false,
+          [](RunConfig& c, std::string_view text, std::string& problem) {
+            try {
+              const YAML::Node node = load_one_document(std::string(text), "--events");
+              if (!node.IsMap()) {
+                problem = "expected a mapping of lines, zones, ... in braces: {lines: [...]}";
+                return false;
+              }
+              const events::EventsSpec spec = events::read_events_spec(node, "--events");
+              c.source.events = spec;
+              for (SourceConfig& source : c.sources) source.events = spec;
+              return true;
+            } catch (const InputError& e) {
+              problem = (e.field().empty() ? "" : "'" + e.field() + "': ") + e.problem();
+            }
+            return false;
+          }};
+}
+
 std::vector<RunSetting> source_settings() {
   const auto side = IntegerRange{0, kMaxImageSide};
   return {
@@ -148,6 +178,7 @@ std::vector<RunSetting> source_settings() {
       integer<std::int64_t>(
           "source.stream_id", "", "this source's stream id (default: stream_id + its index)",
           {0, 0xFFFFFFFF}, [](RunConfig& c) -> std::int64_t& { return c.source.stream_id; }),
+      events_setting(),
   };
 }
 

@@ -8,6 +8,8 @@
 #                            rests on (presets on det.txt, cross-validation), cut from OUT/summary.md
 #   docs/study/cv-folds.md   per-fold choices of the cross-validation
 #   docs/study/plots/det-{presets,cv}-{mota,idf1}.svg, docs/study/det-grid-mota.png
+#   docs/study/plots/latency-det-mota-{processed,full}.svg and the latency sweep's det tables
+#                            (`rtmot study --latency`, scripts/study_latency_docs.sh)
 #   docs/study/tables.sha256 sha256 of every table of the full run (pinned)
 # A run whose tables differ from docs/study/tables.sha256 still refreshes docs/ but exits 1 naming
 # the tables that changed: review `git diff docs/`, then accept with
@@ -25,8 +27,9 @@ else
   cmake --build "$build" --target rtmot
   rm -rf "$out"
   "$build/apps/rtmot" study --dataset "$dataset" --out "$out" --jobs 2 --link-prefix study/
+  "$build/apps/rtmot" study --latency --dataset "$dataset" --out "$out" --jobs 2
 fi
-for need in summary.md cv-folds.md tables plots; do
+for need in summary.md cv-folds.md tables plots latency/summary.md; do
   [[ -e "$out/$need" ]] || { echo "study.sh: $out/$need missing (not a full study run?)" >&2; exit 1; }
 done
 
@@ -64,6 +67,8 @@ fi
                               $0 ~ /^### preset-[^ ]* on det\/det\.txt$/) }
     keep { print }
   ' "$out/summary.md"
+  echo
+  "$root/scripts/study_latency_docs.sh" "$out" "$docs"
 } > "$root/docs/study.md"
 
 if ! diff -q "$docs/tables.sha256" "$out/tables.sha256" > /dev/null 2>&1; then

@@ -116,6 +116,41 @@ TEST(RunSettings, RefusedFlagsNameTheFlag) {
   }
 }
 
+// Issue 24: lines and zones on the command line are the file's `events:` section written inline,
+// read by the same reader: the same spec as the file's, for every source of the run.
+TEST(RunSettings, EventsFlagIsTheFilesEventsSection) {
+  const std::string section =
+      "{dwell_s: 5, lines: [{name: door, units: fraction, from: [0.5, 0], to: [0.5, 1], in: "
+      "right}], zones: [{name: hall, points: [[10, 10], [90, 10], [90, 90], [10, 90]]}]}";
+  const RunConfig from_file = parse_run_config("source:\n  events: " + section + "\n", "e.yaml");
+  const RunConfig from_flag = with_flags("sources: [a.mp4, b.mp4]\n", "--events '" + section + "'");
+  ASSERT_EQ(from_flag.sources.size(), 2U);
+  for (const auto& events :
+       {from_flag.source.events, from_flag.sources[0].events, from_flag.sources[1].events}) {
+    const events::EventsConfig& got = events.written;
+    const events::EventsConfig& want = from_file.source.events.written;
+    ASSERT_EQ(got.lines.size(), 1U);
+    EXPECT_EQ(got.lines[0].name, want.lines[0].name);
+    EXPECT_EQ(got.lines[0].segment.to.y, 1.0);
+    EXPECT_FALSE(got.lines[0].in_is_left);
+    EXPECT_EQ(events.line_units, from_file.source.events.line_units);
+    ASSERT_EQ(got.zones.size(), 1U);
+    EXPECT_EQ(got.zones[0].polygon.size(), 4U);
+    EXPECT_EQ(got.zones[0].dwell_seconds, 5.0);
+  }
+  for (const std::string bad : {"lines", "'{lines: ['", "'{lines: [{from: [0, 0], to: [1, 1]}]}'",
+                                "'{zones: [{name: z, points: [[0, 0], [1, 1]]}]}'"}) {
+    SCOPED_TRACE(bad);
+    try {
+      with_flags("stream_id: 0\n", "--events " + bad);
+      ADD_FAILURE() << "accepted";
+    } catch (const InputError& error) {
+      EXPECT_EQ(error.field(), "--events");
+      EXPECT_EQ(error.exit_code(), ExitCode::usage);
+    }
+  }
+}
+
 // An enum's names come from its one table: every name sets its value, by flag and by file, and the
 // accepted values the docs and errors show are the table's.
 TEST(RunSettings, NamedValuesComeFromTheirTables) {

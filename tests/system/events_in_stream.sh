@@ -3,7 +3,8 @@
 # (image-less, replay detector, every frame) through `rtmot run`: the events arrive in the binary
 # messages (`rtmot listen --read` counts them per kind and index) and in the JSON lines, with the
 # same counts, and both lines are crossed in both directions. A zero-length line is refused before
-# anything runs: exit 3 naming file:line:field.
+# anything runs: exit 3 naming file:line:field. The same section given inline with --events counts
+# the same.
 # Usage: events_in_stream.sh RTMOT SHARED_DIR
 set -euo pipefail
 rtmot=$1 shared_dir=$2
@@ -48,6 +49,26 @@ for kind in line_in line_out; do
 done
 grep -q "^  stream 0: events zone_dwell 0: [1-9]" "$work/listen.txt" ||
   { echo "FAIL: no dwell in the zone"; exit 1; }
+
+# The same lines and zone given on the command line (--events, the section written inline) count
+# the same events as the file's section.
+cat > "$work/plain.yaml" <<YAML
+source:
+  uri: mot-seq://$seq
+detector:
+  kind: replay
+  det_file: $seq/det/det.txt
+playback:
+  mode: every-frame
+YAML
+"$rtmot" run --config "$work/plain.yaml" --jsonl "$work/flag.jsonl" --events "{dwell_s: 5, lines: [
+  {name: middle, units: fraction, from: [0.5, 0.0], to: [0.5, 1.0]},
+  {name: low, units: fraction, from: [0.0, 0.75], to: [1.0, 0.75]}], zones: [{name: left,
+  units: fraction, points: [[0.05, 0.3], [0.45, 0.3], [0.45, 0.95], [0.05, 0.95]]}]}" \
+  2>"$work/flag.err" || { cat "$work/flag.err"; echo "FAIL: rtmot run --events"; exit 1; }
+events_of() { grep -o '"kind":"[a-z_]*","index":[0-9]*' "$1" | sort | uniq -c; }
+[[ -n "$(events_of "$work/flag.jsonl")" && "$(events_of "$work/flag.jsonl")" == "$(events_of "$work/m.jsonl")" ]] ||
+  { echo "FAIL: --events counted differently from the file's events section"; exit 1; }
 
 sed 's/to: \[0.5, 1.0\]/to: [0.5, 0.0]/' "$work/run.yaml" > "$work/bad.yaml"
 status=0

@@ -83,25 +83,31 @@ awk -v p="$processed" -v f="$full" 'BEGIN { exit !(f < p - 10) }' ||
 echo "$seq at 130 ms: $listed of $length frames; MOTA processed $processed, full rate $full"
 rm -rf "$work/run"
 
-# 3. realtime, stopped by SIGINT part-way (ETH-Bahnhof: 1000 frames at 14 fps, 71 s).
+# 3. realtime, stopped by SIGINT 2 s in (ETH-Bahnhof: 1000 frames at 14 fps, 71 s).
 seq=ETH-Bahnhof
 "$rtmot" run --config "$source_dir/configs/mot.yaml" --source "mot-seq://$mot15/$seq" \
   --det-file "$mot15/$seq/det/det.txt" --playback realtime --mot-results "$work/run" \
   --jsonl "$work/tracks.jsonl" 2>"$work/run.err" &
 pid=$!
-sleep 3
+# Stopped 2 s after the pipeline started (the log's detector line; a loaded machine starts late).
+for ((i = 0; i < 600; ++i)); do
+  grep -q "detector: replay" "$work/run.err" && break
+  kill -0 "$pid" 2>/dev/null || break
+  sleep 0.1
+done
+sleep 2
 kill -INT "$pid"
 status=0
 wait "$pid" || status=$?
 [[ $status == 0 ]] || { cat "$work/run.err"; fail "realtime run stopped by SIGINT: exit $status"; }
 listed=$(grep -vc '^#' "$work/run/$seq.frames" || true)
-((listed > 5 && listed < 1000)) || fail "$seq realtime: $listed frames listed after 3 s"
+((listed >= 10 && listed < 1000)) || fail "$seq realtime: $listed frames listed when stopped"
 [[ -z $(tail -c 1 "$work/run/$seq.txt") ]] || fail "$seq realtime: results end mid-line"
 unlisted=$(awk -F, 'NR == FNR { if ($0 !~ /^#/) listed[$1] = 1; next } !($1 in listed)' \
   "$work/run/$seq.frames" "$work/run/$seq.txt" | wc -l)
 [[ $unlisted == 0 ]] || fail "$seq realtime: $unlisted result rows on frames not listed"
 ls "$work/run" | grep -q tmp && fail "$seq realtime: a temporary was left: $(ls "$work/run")"
-echo "$seq realtime, SIGINT after 3 s: exit 0, $listed frames listed, results whole"
+echo "$seq realtime, SIGINT part-way: exit 0, $listed frames listed, results whole"
 rm -rf "$work/run"
 
 # 4. An image folder in the MOTChallenge layout through the SSD.
