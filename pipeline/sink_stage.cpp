@@ -34,7 +34,8 @@ void SinkStage::run(const std::atomic<bool>& abort) {
       SinkCounts& stream = streams_[in->input];
       stream.latency.record(result.times);
       stream.last_sent_ns = result.times.sent_ns;
-      interval_e2e_.record(result.times.sent_ns - result.times.captured_ns);
+      const std::int64_t e2e_ns = stage_span_ns(Stage::end_to_end, result.times);
+      if (e2e_ns >= 0) interval_e2e_.record(e2e_ns);
       ++interval_frames_;
       elapsed_ns = result.times.sent_ns - interval_start_ns_;
       ++fps_window_frames_;

@@ -7,6 +7,7 @@
 
 #include "common/duration_text.hpp"
 #include "common/frame_rate.hpp"
+#include "pipeline/pipeline_report.hpp"
 
 namespace rtmot::runner {
 
@@ -41,7 +42,8 @@ void ProgressSink::write(const messages::FrameResult& result) {
     interval_start_ns_ = now;
     interval_start_frame_ = result.frame_number;
   }
-  latency_.record(result.times.sent_ns - result.times.captured_ns);
+  const std::int64_t e2e_ns = pipeline::stage_span_ns(pipeline::Stage::end_to_end, result.times);
+  if (e2e_ns >= 0) latency_.record(e2e_ns);
   ++processed_;
   ++interval_processed_;
   const std::int64_t elapsed = now - interval_start_ns_;
