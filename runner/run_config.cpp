@@ -12,6 +12,7 @@
 #include "common/input_path.hpp"
 #include "common/nearest_name.hpp"
 #include "common/yaml_section.hpp"
+#include "platform/video_uri.hpp"
 #include "runner/run_settings.hpp"
 #include "runner/sequence_clock_source.hpp"
 #include "runner/yaml_document.hpp"
@@ -249,6 +250,19 @@ std::uint32_t stream_id_of(const RunConfig& config, std::size_t index) {
   return config.stream_id + static_cast<std::uint32_t>(index);
 }
 
+namespace {
+
+// A camera or stream (a malformed URI is reported when the source opens).
+bool is_live_uri(const std::string& uri) {
+  try {
+    return platform::is_live(platform::parse_video_uri(uri));
+  } catch (const InputError&) {
+    return false;
+  }
+}
+
+}  // namespace
+
 void validate(const RunConfig& config) {
   const auto missing = [&](const std::string& field, const std::string& problem) {
     throw InputError(config.file, 0, field, problem);
@@ -272,6 +286,15 @@ void validate(const RunConfig& config) {
   }
   if (config.detector.kind == DetectorKind::replay && config.detector.det_file.empty()) {
     missing("detector.det_file", "the replay detector needs a det.txt file");
+  }
+  for (std::size_t i = 0; i < sources.size(); ++i) {
+    const SourceConfig& source = sources[i];
+    // A live camera or stream does not end, and a mot-seq:// sequence is scored frame by frame:
+    // looping is for files (and images://, test://).
+    if (source.loop != 0 && (is_sequence_uri(source.uri) || is_live_uri(source.uri))) {
+      missing(config.sources.empty() ? "source.loop" : "sources[" + std::to_string(i) + "].loop",
+              "loops a file, not '" + source.uri + "' (a live source or a mot-seq:// sequence)");
+    }
   }
   for (const SourceConfig& source : sources) {
     if (!is_sequence_uri(source.uri)) continue;

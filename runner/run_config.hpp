@@ -16,6 +16,7 @@
 #include "pipeline/pipeline.hpp"
 #include "pipeline/playback_mode.hpp"
 #include "platform/host_port.hpp"
+#include "platform/oriented_source.hpp"
 #include "tracker/enum_names.hpp"
 #include "tracker/tracker_config.hpp"
 
@@ -36,6 +37,10 @@ struct SourceConfig {
   double fps{0.0};
   /// Stream id in this source's messages; -1 = the top-level stream_id + the source's index.
   std::int64_t stream_id{-1};
+  /// Files: -1 = play for ever, N = N more passes after the first (platform/looping_source.hpp).
+  int loop{0};
+  /// Turned or mirrored before anything sees the frame (platform/oriented_source.hpp).
+  platform::Orientation flip{platform::Orientation::none};
   /// `events:` lines and zones (docs/events.md), resolved against the frame once it is open.
   events::EventsSpec events;
 };

@@ -59,6 +59,16 @@ void RunFlags::apply(RunConfig& config) const {
     if (!settings[i].set(config, values_[i], problem)) {
       refuse(settings[i].flag, refusal(settings[i], values_[i], problem));
     }
+    // A source's flag (--input-flip, ...) is for every source of the run: the file's `sources:`
+    // or several --source, which were copied from `source` above.
+    if (settings[i].key.rfind("source.", 0) == 0) {
+      for (SourceConfig& source : config.sources) {
+        RunConfig scratch;
+        scratch.source = source;
+        settings[i].set(scratch, values_[i], problem);
+        source = scratch.source;
+      }
+    }
     // --model names the SSD's model: it means the SSD, whatever the file's detector.kind.
     if (settings[i].key == "detector.model") config.detector.kind = DetectorKind::ssd;
     // --det-file names replayed detections: it means the replay detector, the same way.

@@ -16,6 +16,7 @@ namespace {
 // The documented ranges (docs/config.md).
 constexpr int kMaxImageSide = 16384;
 constexpr int kMaxThreads = 256;
+constexpr int kMaxLoops = 1'000'000;
 constexpr std::int64_t kMaxFrames = 1'000'000'000'000;
 // CPU_SETSIZE: the most CPUs pthread_setaffinity_np can name. A CPU this machine lacks is not a
 // configuration error (the same file runs on several boards): the thread runs unpinned, logged.
@@ -62,9 +63,10 @@ std::optional<outputs::MqttUri> publish_uri(const std::string& text, std::string
 }
 
 // A frame rate (common/frame_rate.hpp: one range for every rate), or 0 for "the source's own".
-RunSetting frame_rate_or_zero(std::string key, std::string doc, Field<double> field) {
+RunSetting frame_rate_or_zero(std::string key, std::string flag, std::string doc,
+                              Field<double> field) {
   return {std::move(key),
-          "",
+          std::move(flag),
           std::move(doc),
           "0 (the source's rate) or a rate in " + frame_rate_range(),
           false,
@@ -169,12 +171,19 @@ std::vector<RunSetting> source_settings() {
       text("source.uri", "",
            "what to track: a file or folder, " + platform::source_uri_schemes() + ", mot-seq://",
            [](RunConfig& c) -> std::string& { return c.source.uri; }),
-      integer<int>("source.width", "", "requested camera width; 0 = the source's", side,
-                   [](RunConfig& c) -> int& { return c.source.width; }),
-      integer<int>("source.height", "", "requested camera height; 0 = the source's", side,
-                   [](RunConfig& c) -> int& { return c.source.height; }),
-      frame_rate_or_zero("source.fps", "requested camera rate; 0 = the source's",
+      // The flags are jetson-inference's (--input-width, ...), for every source of the run.
+      integer<int>("source.width", "--input-width", "requested camera width; 0 = the source's",
+                   side, [](RunConfig& c) -> int& { return c.source.width; }),
+      integer<int>("source.height", "--input-height", "requested camera height; 0 = the source's",
+                   side, [](RunConfig& c) -> int& { return c.source.height; }),
+      frame_rate_or_zero("source.fps", "--input-rate", "requested camera rate; 0 = the source's",
                          [](RunConfig& c) -> double& { return c.source.fps; }),
+      integer<int>("source.loop", "--input-loop",
+                   "play a file again when it ends: N more times, -1 = for ever, 0 = once",
+                   {-1, kMaxLoops}, [](RunConfig& c) -> int& { return c.source.loop; }),
+      named("source.flip", "--input-flip", "turn or mirror every frame before detection",
+            platform::kOrientationNames,
+            Field<platform::Orientation>([](RunConfig & c) -> auto& { return c.source.flip; })),
       integer<std::int64_t>(
           "source.stream_id", "", "this source's stream id (default: stream_id + its index)",
           {0, 0xFFFFFFFF}, [](RunConfig& c) -> std::int64_t& { return c.source.stream_id; }),

@@ -25,6 +25,8 @@
 #include "outputs/video_stream.hpp"
 #include "outputs/video_target.hpp"
 #include "platform/host_port.hpp"
+#include "platform/looping_source.hpp"
+#include "platform/oriented_source.hpp"
 #include "platform/video_uri.hpp"
 #include "runner/mot_results_output.hpp"
 #include "runner/sequence_clock_source.hpp"
@@ -39,7 +41,19 @@ std::unique_ptr<platform::VideoSource> open_configured(const SourceConfig& sourc
   options.width = source.width;
   options.height = source.height;
   options.fps = source.fps;
-  return open_source(source.uri, options);
+  std::unique_ptr<platform::VideoSource> opened;
+  if (source.loop != 0) {  // a file (validate() refused a live source)
+    opened = std::make_unique<platform::LoopingSource>(
+        [uri = source.uri, options] { return open_source(uri, options); }, source.loop);
+  } else {
+    opened = open_source(source.uri, options);
+  }
+  if (source.flip != platform::Orientation::none) {
+    spdlog::info("{}: every frame turned {}", source.uri,
+                 platform::kOrientationNames.name(source.flip));
+    opened = std::make_unique<platform::OrientedSource>(std::move(opened), source.flip);
+  }
+  return opened;
 }
 
 }  // namespace

@@ -39,6 +39,24 @@ CatalogueCase key_case(std::string name, std::string what, const std::string& ya
 
 const std::string kSource = "source:\n  uri: test://ball?num-buffers=5\n";
 
+// --input-loop on a camera: a live source does not end, refused before anything opens.
+CatalogueCase loop_live_case() {
+  CatalogueCase c{"input_loop_of_a_live_source",
+                  "--input-loop 2 on rtsp:// (a live source never ends)",
+                  [](Workspace&, Vars&) {},
+                  {"run", "--source", "rtsp://127.0.0.1:9/cam", "--input-loop", "2", "--jsonl",
+                   "{dir}/out/t.jsonl"},
+                  ExitCode::bad_input,
+                  {},
+                  [](const Workspace& ws) {
+                    EXPECT_FALSE(fs::exists(ws.path("out"))) << "an output was created";
+                  }};
+  c.message =
+      "(command line): field 'source.loop': loops a file, not 'rtsp://127.0.0.1:9/cam' (a live "
+      "source or a mot-seq:// sequence)";
+  return c;
+}
+
 // An encoder of the other codec: refused before the model loads and before any output exists.
 CatalogueCase encoder_case() {
   CatalogueCase c{"video_encoder_of_another_codec",
@@ -109,6 +127,13 @@ std::vector<CatalogueCase> usage_cases() {
                "hardware, software or an encoder element (nvv4l2h264enc, v4l2h264enc, x264enc, "
                "openh264enc, nvv4l2h265enc, v4l2h265enc, x265enc) (did you mean openh264enc?)"),
       encoder_case(),
+      // The source options of jetson-inference (issue 22): checked names, files only for loops.
+      usage_case("usage_input_flip_unknown", "rtmot run --input-flip sideways",
+                 {"run", "--input-flip", "sideways"},
+                 "command line: field '--input-flip': 'sideways': expected none, clockwise, "
+                 "rotate-180, counterclockwise, horizontal, vertical, upper-left-diagonal or "
+                 "upper-right-diagonal"),
+      loop_live_case(),
       key_case("config_key_far_from_any", "detector.zzzzzz (nothing close: no guess)",
                kSource + "detector:\n  zzzzzz: 1\n",
                "{dir}/run.yaml:4: field 'detector.zzzzzz': unknown key"),

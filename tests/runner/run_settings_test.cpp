@@ -70,6 +70,29 @@ TEST(RunSettings, PresetOnTheCommandLineEqualsPresetInTheFile) {
   EXPECT_EQ(replaced.tracker.max_age, tracker::find_preset("sort")->max_age);
 }
 
+// A source's flag (--input-flip, --input-loop, --input-width...) is for every source of the run:
+// the file's `sources:` list and several --source alike (issue 22).
+TEST(RunSettings, SourceFlagsApplyToEverySource) {
+  const RunConfig listed = with_flags("sources:\n  - a.mp4\n  - {uri: b.mp4, loop: 1}\n",
+                                      "--input-flip rotate-180 --input-loop -1 --input-width 640");
+  ASSERT_EQ(listed.sources.size(), 2U);
+  for (const SourceConfig& source : listed.sources) {
+    EXPECT_EQ(source.flip, platform::Orientation::rotate_180) << source.uri;
+    EXPECT_EQ(source.loop, -1) << source.uri;
+    EXPECT_EQ(source.width, 640) << source.uri;
+  }
+  const RunConfig repeated =
+      with_flags("stream_id: 0\n", "--source a.mp4 --source b.mp4 --input-flip horizontal");
+  ASSERT_EQ(repeated.sources.size(), 2U);
+  for (const SourceConfig& source : repeated.sources) {
+    EXPECT_EQ(source.flip, platform::Orientation::horizontal) << source.uri;
+  }
+  const RunConfig file_only =
+      parse_run_config("source:\n  uri: a.mp4\n  flip: counterclockwise\n  loop: 3\n", "f.yaml");
+  EXPECT_EQ(file_only.source.flip, platform::Orientation::counterclockwise);
+  EXPECT_EQ(file_only.source.loop, 3);
+}
+
 TEST(RunSettings, FlagsAndFileKeysGiveTheSameValues) {
   const RunConfig from_file = parse_run_config(
       "detector:\n  score_threshold: 0.25\n  classes: [person, car]\n  backend: cpu\n"
