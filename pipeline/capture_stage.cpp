@@ -58,6 +58,9 @@ CaptureStage::Next CaptureStage::read_frame(FrameSlotItem& item, const std::atom
   if (in_outage_) {
     spdlog::info("{}: source is back after outage {}", source_->info().uri, outages_);
     in_outage_ = false;
+    if (board_ != nullptr) {
+      if (const auto line = board_->came_back(steady_now_ns())) spdlog::info("{}", *line);
+    }
   }
   if (last_number_ > 0 && item.info.frame_number > last_number_ + 1) {
     frames_lost_ += item.info.frame_number - last_number_ - 1;
@@ -85,11 +88,17 @@ CaptureStage::Next CaptureStage::outage_tick(FrameSlotItem& item) {
     outage_since_ns_ = now_ns;
     next_still_down_ns_ = now_ns + still_down_every_ns;
     spdlog::warn("{}: source outage {}: {}", source_->info().uri, outages_, source_->last_error());
+    if (board_ != nullptr) {
+      if (const auto line = board_->went_down(now_ns)) spdlog::error("{}", *line);
+    }
   } else if (now_ns >= next_still_down_ns_) {
     next_still_down_ns_ = now_ns + still_down_every_ns;
     spdlog::warn("{}: still down after {} s (outage {}; messages flagged source_outage go on): {}",
                  source_->info().uri, (now_ns - outage_since_ns_) / 1'000'000'000, outages_,
                  source_->last_error());
+  }
+  if (board_ != nullptr) {
+    if (const auto line = board_->tick(now_ns)) spdlog::error("{}", *line);
   }
   item.outage = true;
   item.info.frame_number = last_number_;  // no new frame: keeps the dropped-frame count honest

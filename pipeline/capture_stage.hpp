@@ -10,6 +10,7 @@
 
 #include "pipeline/frame_tap.hpp"
 #include "pipeline/latest_frame_slot.hpp"
+#include "pipeline/outage_board.hpp"
 #include "pipeline/playback_mode.hpp"
 #include "platform/video_source.hpp"
 
@@ -44,6 +45,8 @@ class CaptureStage {
   LatestFrameSlot& slot() { return slot_; }
   /// Before run(): every real frame is shown to `tap` (nullptr: none).
   void set_tap(FrameTap* tap) { tap_ = tap; }
+  /// Before run(): the outages of every source of the pipeline, for the all-down lines.
+  void set_outage_board(OutageBoard* board) { board_ = board; }
   const platform::VideoSource& source() const { return *source_; }
   bool live() const { return live_; }
   PlaybackMode playback() const { return playback_; }
@@ -82,6 +85,7 @@ class CaptureStage {
   std::int64_t first_capture_ns_{0};
   std::string source_error_;
   FrameTap* tap_{nullptr};
+  OutageBoard* board_{nullptr};
 };
 
 }  // namespace rtmot::pipeline

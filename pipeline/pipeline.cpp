@@ -37,6 +37,7 @@ struct Pipeline::Stages {
   PipelineOptions options;
   RunControl control;
   WakeSignal frames_ready;  // the detect stage sleeps here until any source publishes
+  std::unique_ptr<OutageBoard> outage_board;  // the capture stages' outages, together
   std::vector<std::unique_ptr<CaptureStage>> captures;
   std::unique_ptr<DetectStage> detect;
   std::unique_ptr<TrackStage> track;
@@ -56,10 +57,12 @@ struct Pipeline::Stages {
     std::vector<LatestFrameSlot*> slots;
     std::vector<TrackInput> trackers;
     std::size_t max_detections = 0;
+    outage_board = std::make_unique<OutageBoard>(static_cast<int>(inputs.size()));
     for (auto& input : inputs) {
       captures.push_back(
           std::make_unique<CaptureStage>(std::move(input.source), capture, &frames_ready));
       captures.back()->set_tap(input.tap);
+      captures.back()->set_outage_board(outage_board.get());
       slots.push_back(&captures.back()->slot());
       trackers.push_back({input.tracker, input.events, input.stream_id});
       stream_ids.push_back(input.stream_id);
