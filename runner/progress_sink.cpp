@@ -35,7 +35,7 @@ ProgressSink::ProgressSink(double interval_s, std::int64_t total_frames)
     : interval_ns_(static_cast<std::int64_t>(interval_s * 1e9)), total_frames_(total_frames) {}
 
 void ProgressSink::write(const messages::FrameResult& result) {
-  if (interval_ns_ <= 0 || result.source_outage) return;
+  if (interval_ns_ <= 0 || result.source_outage || result.end_of_stream) return;
   const std::int64_t now = result.times.sent_ns;
   if (interval_start_ns_ == 0) {
     interval_start_ns_ = now;
