@@ -1,6 +1,6 @@
 #pragma once
 // How a remaining time is written in progress lines ("ETA 2:05"): `rtmot run`'s periodic line
-// (runner/progress_sink.cpp) and `rtmot study`'s (study/run_progress.hpp).
+// (pipeline/progress_line.cpp) and `rtmot study`'s (study/run_progress.hpp).
 #include <string>
 
 namespace rtmot {

@@ -24,7 +24,7 @@ struct TrackOptions {
   /// Process frames 1, 1 + interval, ... only, keeping their numbers and times. 1..kMaxFrame.
   int interval{1};
   /// When not empty: process exactly these frames (ascending, in 1..length), e.g. those a
-  /// pipeline with a slow detector would process (pipeline/simulated_clock.hpp); `interval` is
+  /// pipeline with a slow detector would process (common/simulated_clock.hpp); `interval` is
   /// then not used.
   std::vector<int> frames;
   /// When set and true, the run stops before its next frame (TrackRun::stopped).

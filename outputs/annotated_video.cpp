@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "pipeline/pipeline_report.hpp"
+
 namespace rtmot::outputs {
 namespace {
 
@@ -66,9 +68,9 @@ void AnnotatedVideo::consume(const pipeline::SinkFrame& frame) {
   // The frames skipped before this one show the counts as they were; this one and later, with its
   // events.
   bool counted = false;
-  const auto& times = result.times;
+  const std::int64_t e2e_ns = pipeline::stage_span_ns(pipeline::Stage::end_to_end, result.times);
   stats_ =
-      OverlayStats{frame.recent_fps, static_cast<double>(times.sent_ns - times.captured_ns) / 1e6};
+      OverlayStats{frame.recent_fps, static_cast<double>(std::max<std::int64_t>(e2e_ns, 0)) / 1e6};
   while (SideFrame* side = frames_.front()) {
     if (side->info.frame_number > result.frame_number)
       break;  // not reached yet (cannot happen:

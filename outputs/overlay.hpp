@@ -35,7 +35,7 @@ std::string overlay_flag_names();
 
 /// The numbers the stats line shows.
 struct OverlayStats {
-  double fps{0.0};         // frames processed per second so far
+  double fps{0.0};         // the pipeline's recent rate (pipeline::SinkFrame::recent_fps)
   double latency_ms{0.0};  // capture -> sent of the latest processed frame
 };
 

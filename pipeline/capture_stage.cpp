@@ -8,7 +8,7 @@
 #include <thread>
 #include <utility>
 
-#include "pipeline/simulated_clock.hpp"
+#include "common/simulated_clock.hpp"
 #include "platform/clock.hpp"
 
 namespace rtmot::pipeline {
@@ -119,7 +119,7 @@ bool CaptureStage::publish(FrameSlotItem& item, const std::atomic<bool>& abort) 
 void CaptureStage::run_simulated(const std::atomic<bool>& stop, const std::atomic<bool>& abort) {
   // One frame of look-ahead: frame k is taken only if frame k+1 is not there yet when the
   // simulated detector looks.
-  SimulatedClock clock(static_cast<std::int64_t>(options_.simulated_latency_ms * 1e6));
+  SimulatedClock clock(simulated_latency_ns(options_.simulated_latency_ms));
   FrameSlotItem current;
   FrameSlotItem next;
   // (Only recordings play simulated, and they have no outages.)

@@ -16,7 +16,8 @@ namespace rtmot::pipeline {
 struct SinkFrame {
   const messages::FrameResult& result;  // sent_ns stamped
   cv::Mat& image;     // the picture, only when the pipeline keeps images; a consumer may draw on it
-  double recent_fps;  // the pipeline's rate over the last stats interval (at least 1 s)
+  double recent_fps;  // frames sent per second over the sink's last window of max(stats interval,
+                      // 1 s), whether or not the log line is on; 0 before the first window
 };
 
 class FrameConsumer {

@@ -75,9 +75,17 @@ struct Pipeline::Stages {
                                            detect_options);
     track = std::make_unique<TrackStage>(trackers, detect->output(), options.queue_capacity,
                                          keep_images);
+    // One source: the length the run will see, for the progress line's position and ETA (it ends
+    // at --max-frames when that comes first).
+    std::int64_t total_frames = 0;
+    if (captures.size() == 1) {
+      total_frames = captures.front()->source().info().frame_count;
+      if (options.max_frames > 0 && (total_frames <= 0 || options.max_frames < total_frames))
+        total_frames = options.max_frames;
+    }
     sink = std::make_unique<SinkStage>(
         stream_ids, track->output(), std::move(consumers), options.stats_interval_s,
-        [this](std::size_t input) { return captures[input]->frames_captured(); });
+        [this](std::size_t input) { return captures[input]->frames_captured(); }, total_frames);
     // A stage asleep in a hand-off must wake to see an abort.
     control.on_abort([this] {
       for (auto& capture : captures) capture->slot().wake_all();

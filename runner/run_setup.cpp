@@ -26,7 +26,6 @@
 #include "platform/host_port.hpp"
 #include "platform/video_uri.hpp"
 #include "runner/mot_results_output.hpp"
-#include "runner/progress_sink.hpp"
 #include "runner/sequence_clock_source.hpp"
 #include "runner/source_factory.hpp"
 #include "tracker/score_scale.hpp"
@@ -214,14 +213,6 @@ RunOutputs make_outputs(const RunConfig& config, std::vector<pipeline::PipelineI
   if (!output.report_file.empty()) {
     outputs.destinations.push_back(file_line("report", output.report_file));
   }
-  if (config.stats_interval_s > 0.0 && inputs.size() == 1) {
-    // The run ends at --max-frames when that comes first: the progress and its ETA say so.
-    std::int64_t total = first.frame_count;
-    if (config.max_frames > 0 && (total <= 0 || config.max_frames < total)) {
-      total = config.max_frames;
-    }
-    sinks.push_back(std::make_unique<ProgressSink>(config.stats_interval_s, total));
-  }
   outputs.deliveries = probes;  // for the final report
   if (output.metrics_port > 0) {
     std::vector<std::uint32_t> streams;
@@ -354,9 +345,7 @@ pipeline::PipelineOptions make_options(const RunConfig& config) {
   options.simulated_latency_ms = config.playback.latency_ms;
   options.stream_id = config.stream_id;
   options.max_frames = config.max_frames;
-  // One source: the progress line is ProgressSink's (make_outputs), with the total and ETA the
-  // engine's own line cannot know. Several: the engine's line, per source.
-  options.stats_interval_s = source_list(config).size() == 1 ? 0.0 : config.stats_interval_s;
+  options.stats_interval_s = config.stats_interval_s;  // the sink stage's periodic line
   // The annotated video takes its pictures through the source's tap (make_outputs), not through
   // the queues.
   options.keep_images = false;

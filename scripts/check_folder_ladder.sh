@@ -4,7 +4,7 @@
 # (directly or through others, as its CMakeLists.txt's target_link_libraries say). A header-only
 # include across the ladder links fine, so the build alone cannot catch it. And the research code
 # stays apart: no folder the product runs reaches mot/ (the scorer) or study/ (the frame-rate
-# study), and mot/ does not reach study/.
+# study), mot/ does not reach study/, and in apps/ only `rtmot eval` and `rtmot study` include them.
 # Prints each breach as FILE: includes FOLDER/ and exits 1; 0 when none.
 #   scripts/check_folder_ladder.sh [SOURCE_DIR]
 set -euo pipefail
@@ -83,4 +83,16 @@ for folder in "${folders[@]}"; do
     fi
   done < <(grep -oE '^#include "[a-z_]+/[a-z_./]+' "$folder"/*.cpp "$folder"/*.hpp 2>/dev/null || true)
 done
+
+# apps/ links everything; of its subcommands only the research ones, `rtmot eval` (the scorer) and
+# `rtmot study`, include the research code: `rtmot run`, `listen`, `track`, `count`, `soak` do not.
+while IFS=: read -r file included; do
+  case "$file" in
+    apps/cmd_eval.cpp | apps/cmd_study.cpp) ;;
+    *)
+      echo "$file: includes ${included#*\"} (research code outside the research subcommands)"
+      broken=1
+      ;;
+  esac
+done < <(grep -oE '^#include "(mot|study)/' apps/*.cpp apps/*.hpp 2>/dev/null || true)
 exit "$broken"

@@ -11,11 +11,11 @@
 
 #include "common/frame_rate.hpp"
 #include "common/output_file.hpp"
+#include "common/simulated_clock.hpp"
 #include "mot/prepared_sequence.hpp"
 #include "mot/scorer.hpp"
 #include "mot/sequence_counts.hpp"
 #include "motio/track_runner.hpp"
-#include "pipeline/simulated_clock.hpp"
 #include "study/portable_random.hpp"
 #include "study/svg_line_plot.hpp"
 #include "tracker/presets.hpp"
@@ -27,10 +27,6 @@ namespace fs = std::filesystem;
 
 // Per sequence: the jitter of sequence i draws from kJitterSeed + i.
 constexpr std::uint64_t kJitterSeed = 401;
-
-std::int64_t to_ns(double ms) {
-  return static_cast<std::int64_t>(std::llround(ms * 1e6));
-}
 
 const motio::FrameDetections& detections_of(const LoadedSequence& sequence, StudyInput input) {
   if (input.kind == StudyInput::Kind::detections) return sequence.detections;
@@ -129,14 +125,14 @@ std::vector<DetectorLatency> default_latencies() {
 
 std::vector<int> pipeline_frames(const motio::SequenceInfo& info, const DetectorLatency& latency,
                                  std::uint64_t seed) {
-  pipeline::SimulatedClock clock(to_ns(latency.latency_ms));
+  SimulatedClock clock(simulated_latency_ns(latency.latency_ms));
   Random random(seed);
   std::vector<int> frames;
   for (int frame = 1; frame <= info.length; ++frame) {
     if (latency.jitter > 0.0) {
       // One draw per frame whether taken or not: the draws do not depend on the decisions.
       const double factor = 1.0 + latency.jitter * (2.0 * random.uniform() - 1.0);
-      clock.set_latency_ns(to_ns(latency.latency_ms * factor));
+      clock.set_latency_ns(simulated_latency_ns(latency.latency_ms * factor));
     }
     const std::int64_t pts = frame_time_ns(frame - 1, info.frame_rate);
     const auto next =

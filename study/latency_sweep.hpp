@@ -1,6 +1,6 @@
 #pragma once
 // `rtmot study --latency`: the tracker behind a detector that is slower than the camera, with the
-// pipeline's own frame skipping (pipeline/simulated_clock.hpp: the detector, when free, takes the
+// pipeline's own frame skipping (common/simulated_clock.hpp: the detector, when free, takes the
 // newest frame; everything in between is skipped) on a simulated clock, so every run processes
 // the same frames on any machine. For each detector latency (fixed, or jittered per frame) the
 // presets track exactly the frames that pipeline would process, and are scored twice: on those

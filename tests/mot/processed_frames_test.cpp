@@ -97,6 +97,32 @@ TEST(ProcessedFrames, ScoringTheListedFramesEqualsScoringTheInterval) {
   EXPECT_EQ(evaluate_sequence(sequence, sequence / "gt/gt.txt", 1).results_every, 1);
 }
 
+TEST(ProcessedFrames, TrackingListedFramesEqualsTrackingTheInterval) {
+  // TrackOptions::frames (the latency sweep's: the frames a slow pipeline processes).
+  const fs::path sequence = test::shared_path("data/mot15-train/TUD-Campus");
+  RTMOT_REQUIRE_FILE(sequence / "det/det.txt");
+  motio::TrackOptions options;
+  options.config = *tracker::find_preset("rtmot");
+  options.interval = 5;
+  const motio::TrackRun by_interval = motio::track_sequence(sequence, options);
+  options.interval = 1;
+  options.frames = by_interval.processed_frames;
+  const motio::TrackRun listed = motio::track_sequence(sequence, options);
+  EXPECT_EQ(listed.processed_frames, by_interval.processed_frames);
+  ASSERT_EQ(listed.tracks.size(), by_interval.tracks.size());
+  for (std::size_t i = 0; i < listed.tracks.size(); ++i) {
+    EXPECT_EQ(listed.tracks[i].frame, by_interval.tracks[i].frame);
+    EXPECT_EQ(listed.tracks[i].id, by_interval.tracks[i].id);
+    EXPECT_EQ(listed.tracks[i].box.x, by_interval.tracks[i].box.x);
+  }
+  // A list that does not ascend, or leaves the sequence, is refused.
+  for (const std::vector<int>& bad :
+       {std::vector<int>{1, 3, 3}, std::vector<int>{0, 2}, std::vector<int>{1, 72}}) {
+    options.frames = bad;
+    EXPECT_THROW(motio::track_sequence(sequence, options), InputError);
+  }
+}
+
 TEST(ProcessedFrames, AnIrregularListScoresOnlyItsFrames) {
   // A pipeline that skipped irregularly: the same results scored on frames 1..10 and 20..30 only
   // count the ground truth of those 21 frames.

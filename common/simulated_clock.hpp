@@ -1,15 +1,23 @@
 #pragma once
-// Deterministic replay of a slow detector on a recording (playback `simulated`): virtual time is
+// Deterministic replay of a slow detector on a recording (the pipeline's playback `simulated`, and
+// `rtmot study --latency`): virtual time is
 // the stream's pts. A detector that becomes free at virtual time t takes the newest frame with pts
 // <= t (or, if none is newer than the last it took, the next frame when it arrives) and is busy
 // until t + latency. Everything in between is skipped. The decision depends on the timestamps only,
 // so two runs process exactly the same frames, whatever the machine.
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <optional>
 
-namespace rtmot::pipeline {
+namespace rtmot {
+
+/// A latency in milliseconds as the clock counts it (the pipeline's playback and the study's
+/// latency sweep convert alike, so both take the same frames).
+inline std::int64_t simulated_latency_ns(double latency_ms) {
+  return static_cast<std::int64_t>(std::llround(latency_ms * 1e6));
+}
 
 class SimulatedClock {
  public:
@@ -34,4 +42,4 @@ class SimulatedClock {
   std::int64_t free_at_ns_{std::numeric_limits<std::int64_t>::min()};
 };
 
-}  // namespace rtmot::pipeline
+}  // namespace rtmot
