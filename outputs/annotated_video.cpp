@@ -22,9 +22,10 @@ std::size_t side_channel_capacity(double fps, int width, int height) {
 
 }  // namespace
 
-AnnotatedVideo::AnnotatedVideo(const VideoTarget& target, const platform::SourceInfo& source,
-                               OverlayFlags flags, messages::ClassLabelFn labels)
-    : stream_(open_video_stream(target, source.fps)),
+AnnotatedVideo::AnnotatedVideo(const VideoTarget& target, const VideoEncoding& encoding,
+                               const platform::SourceInfo& source, OverlayFlags flags,
+                               messages::ClassLabelFn labels)
+    : stream_(open_video_stream(target, source.fps, encoding)),
       overlay_(flags, labels),
       frames_(side_channel_capacity(source.fps, source.width, source.height)) {
   for (auto* result : {&last_, &before_last_, &prediction_}) result->tracks.reserve(256);

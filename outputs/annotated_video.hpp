@@ -27,7 +27,8 @@ class AnnotatedVideo final : public pipeline::FrameConsumer {
  public:
   /// `source`: its nominal rate is the file's; its size bounds the frames held. The stream opens
   /// now (an RTSP server listens at once), the encoder at the first frame.
-  AnnotatedVideo(const VideoTarget& target, const platform::SourceInfo& source, OverlayFlags flags,
+  AnnotatedVideo(const VideoTarget& target, const VideoEncoding& encoding,
+                 const platform::SourceInfo& source, OverlayFlags flags,
                  messages::ClassLabelFn labels);
 
   /// Draws these lines and zones with their live counts on every frame (docs/events.md).

@@ -43,7 +43,8 @@ ExitCode code_of(const GError* error) {
 
 }  // namespace
 
-std::string describe_pipeline(const VideoTarget& target, int width, int height, double fps) {
+std::string describe_pipeline(const VideoTarget& target, const VideoEncoder& encoder,
+                              int bitrate_kbps, int width, int height, double fps) {
   const int keyframe_interval = std::max(1, static_cast<int>(std::lround(fps * 2.0)));
   // A file waits for the encoder (block=true, a few frames of room): every frame is written. A
   // stream never holds the sink stage: once half a second of frames waits for the encoder (its
@@ -57,24 +58,20 @@ std::string describe_pipeline(const VideoTarget& target, int width, int height, 
       file ? "false" : "true", file ? "true" : "false",
       file ? 4 : std::max(4, keyframe_interval / 4), file ? "" : "leaky-type=downstream",
       raw_caps(width, height, fps), encoder_padding(width, height));
-  // Browsers play H.264 High profile 4:2:0 in MP4 with the index first (faststart) and `avc1`
-  // sample entries (x264enc's default stream-format=avc).
-  const std::string file_encoder =
-      fmt::format("x264enc speed-preset=superfast key-int-max={} ! video/x-h264,profile=high ! ",
-                  keyframe_interval);
-  const std::string live_encoder = fmt::format(
-      "x264enc speed-preset=ultrafast tune=zerolatency key-int-max={} ! ", keyframe_interval);
+  // Browsers play H.264 in MP4 with the index first (faststart) and `avc1` sample entries (what
+  // h264parse gives mp4mux); H.265 goes in as `hvc1`.
+  const std::string encode =
+      source + encoder_launch(encoder, bitrate_kbps, keyframe_interval, !file);
   switch (target.kind) {
     case VideoTargetKind::mp4_file:
-      return source + file_encoder + "mp4mux faststart=true ! filesink name=sink";
+      return encode + "mp4mux faststart=true ! filesink name=sink";
     case VideoTargetKind::mkv_file:
-      return source + file_encoder + "matroskamux ! filesink name=sink";
+      return encode + "matroskamux ! filesink name=sink";
     case VideoTargetKind::rtp:
-      return source + live_encoder +
-             fmt::format(
-                 "rtph264pay config-interval=1 pt=96 ! udpsink host={} port={} sync=false "
-                 "async=false",
-                 target.host, target.port);
+      return encode + fmt::format(
+                          "{} config-interval=1 pt=96 ! udpsink host={} port={} sync=false "
+                          "async=false",
+                          rtp_payloader(encoder.codec), target.host, target.port);
     case VideoTargetKind::display:
       return fmt::format(
           "appsrc name=src format=time is-live=true block=false max-buffers=2 "
@@ -86,15 +83,18 @@ std::string describe_pipeline(const VideoTarget& target, int width, int height, 
   return "";
 }
 
-GstVideoOutput::GstVideoOutput(VideoTarget target, double fps)
-    : target_(std::move(target)), fps_(fps > 0.0 ? fps : 30.0) {
+GstVideoOutput::GstVideoOutput(VideoTarget target, double fps, const VideoEncoding& encoding)
+    : target_(std::move(target)),
+      fps_(fps > 0.0 ? fps : 30.0),
+      bitrate_kbps_(encoding.bitrate_kbps) {
   platform::gst::ensure_initialized();
+  if (target_.kind != VideoTargetKind::display) encoder_ = &open_encoder(target_.text, encoding);
   if (target_.kind == VideoTargetKind::rtp) {
     // RTP carries no description of itself: a player needs this (a file, or pasted into VLC).
     spdlog::info(
         "{}: the SDP a player needs (save as stream.sdp; ffplay -protocol_whitelist "
         "file,udp,rtp stream.sdp):\n{}",
-        target_.text, rtp_sdp(target_));
+        target_.text, rtp_sdp(target_, encoder_->codec));
   }
 }
 
@@ -112,7 +112,10 @@ void GstVideoOutput::fail(const std::string& problem, ExitCode code) {
 }
 
 void GstVideoOutput::start(int width, int height) {
-  const std::string description = describe_pipeline(target_, width, height, fps_);
+  // display:// encodes nothing: any encoder entry serves describe_pipeline's signature.
+  const VideoEncoder& encoder = encoder_ != nullptr ? *encoder_ : video_encoders().front();
+  const std::string description =
+      describe_pipeline(target_, encoder, bitrate_kbps_, width, height, fps_);
   GError* raw_error = nullptr;
   pipeline_.reset(gst_parse_launch(description.c_str(), &raw_error));
   const ErrorPtr error(raw_error);

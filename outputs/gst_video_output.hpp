@@ -1,6 +1,7 @@
 #pragma once
-// File, RTP and display outputs: appsrc -> videoconvert -> x264enc -> mp4mux/matroskamux/
-// rtph264pay -> filesink/udpsink (or a video sink), built at the first frame, when the size is
+// File, RTP and display outputs: appsrc -> videoconvert -> the encoder (outputs/video_encoding.hpp:
+// x264enc, a board's hardware encoder, H.264 or H.265) -> mp4mux/matroskamux/rtph26Xpay ->
+// filesink/udpsink (or a video sink), built at the first frame, when the size is
 // known (and padded to what the encoder takes: outputs/encoder_padding.hpp). The bus is checked
 // after every frame, so a write that fails mid-run (a full disk) is an error at once, not a video
 // silently lost. A file is written under a temporary name and renamed when finished: an unplayable
@@ -11,6 +12,7 @@
 #include <string>
 
 #include "common/exit_codes.hpp"
+#include "outputs/video_encoding.hpp"
 #include "outputs/video_stream.hpp"
 #include "platform/gst_ptr.hpp"
 
@@ -18,7 +20,9 @@ namespace rtmot::outputs {
 
 class GstVideoOutput final : public VideoStream {
  public:
-  GstVideoOutput(VideoTarget target, double fps);
+  /// Chooses the encoder now (logged; InputError if none fits: check_video_elements said so
+  /// before the run).
+  GstVideoOutput(VideoTarget target, double fps, const VideoEncoding& encoding = {});
   ~GstVideoOutput() override;
   GstVideoOutput(const GstVideoOutput&) = delete;
   GstVideoOutput& operator=(const GstVideoOutput&) = delete;
@@ -35,6 +39,8 @@ class GstVideoOutput final : public VideoStream {
 
   VideoTarget target_;
   double fps_;
+  int bitrate_kbps_;
+  const VideoEncoder* encoder_{nullptr};  // none for display://
   platform::gst::ObjectPtr<GstElement> pipeline_;
   platform::gst::ObjectPtr<GstElement> source_;
   platform::gst::ObjectPtr<GstBus> bus_;
@@ -44,7 +50,9 @@ class GstVideoOutput final : public VideoStream {
 };
 
 /// The GStreamer pipeline description for a target (what gst-launch-1.0 would take), with the
-/// caps of frames `width`x`height` at `fps`. The file's location is set as a property, not here.
-std::string describe_pipeline(const VideoTarget& target, int width, int height, double fps);
+/// caps of frames `width`x`height` at `fps`, encoded by `encoder` (unused for display://) at
+/// `bitrate_kbps`. The file's location is set as a property, not here.
+std::string describe_pipeline(const VideoTarget& target, const VideoEncoder& encoder,
+                              int bitrate_kbps, int width, int height, double fps);
 
 }  // namespace rtmot::outputs

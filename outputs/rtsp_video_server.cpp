@@ -14,9 +14,10 @@
 
 namespace rtmot::outputs {
 
-RtspVideoServer::RtspVideoServer(VideoTarget target, double fps)
+RtspVideoServer::RtspVideoServer(VideoTarget target, double fps, const VideoEncoding& encoding)
     : target_(std::move(target)), fps_(fps > 0.0 ? fps : 30.0) {
   platform::gst::ensure_initialized();
+  const VideoEncoder& encoder = open_encoder(target_.text, encoding);
   context_ = g_main_context_new();
   loop_ = g_main_loop_new(context_, FALSE);
   server_ = gst_rtsp_server_new();
@@ -26,15 +27,15 @@ RtspVideoServer::RtspVideoServer(VideoTarget target, double fps)
 
   GstRTSPMediaFactory* factory = gst_rtsp_media_factory_new();
   const int keyframe_interval = std::max(1, static_cast<int>(std::lround(fps_)));
-  // The caps (frame size) are set on the appsrc, and the padding to a size x264 takes on the
-  // videobox, at the first frame it gets; do-timestamp stamps each buffer with the pipeline's
+  // The caps (frame size) are set on the appsrc, and the padding to a size the encoder takes on
+  // the videobox, at the first frame it gets; do-timestamp stamps each buffer with the pipeline's
   // running time, as a live source does.
   const std::string launch = fmt::format(
       "( appsrc name=src format=time is-live=true do-timestamp=true block=false max-buffers=2 "
-      "leaky-type=downstream ! videoconvert ! video/x-raw,format=I420 ! {}x264enc "
-      "speed-preset=ultrafast tune=zerolatency key-int-max={} ! rtph264pay name=pay0 pt=96 "
+      "leaky-type=downstream ! videoconvert ! video/x-raw,format=I420 ! {}{}{} name=pay0 pt=96 "
       "config-interval=1 )",
-      kSizedLaterPadding, keyframe_interval);
+      kSizedLaterPadding, encoder_launch(encoder, encoding.bitrate_kbps, keyframe_interval, true),
+      rtp_payloader(encoder.codec));
   gst_rtsp_media_factory_set_launch(factory, launch.c_str());
   gst_rtsp_media_factory_set_shared(factory, TRUE);
   g_signal_connect(factory, "media-configure", G_CALLBACK(&RtspVideoServer::on_media_configure),

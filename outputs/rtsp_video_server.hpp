@@ -11,6 +11,7 @@
 #include <mutex>
 #include <thread>
 
+#include "outputs/video_encoding.hpp"
 #include "outputs/video_stream.hpp"
 
 typedef struct _GstRTSPServer GstRTSPServer;
@@ -22,7 +23,7 @@ namespace rtmot::outputs {
 class RtspVideoServer final : public VideoStream {
  public:
   /// Listens at once; throws InputError (ExitCode::network) if the port cannot be bound.
-  RtspVideoServer(VideoTarget target, double fps);
+  RtspVideoServer(VideoTarget target, double fps, const VideoEncoding& encoding = {});
   ~RtspVideoServer() override;
   RtspVideoServer(const RtspVideoServer&) = delete;
   RtspVideoServer& operator=(const RtspVideoServer&) = delete;

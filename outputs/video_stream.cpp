@@ -13,13 +13,14 @@
 namespace rtmot::outputs {
 namespace {
 
-// Which Debian package (all installed by scripts/install_deps.sh) holds each element we use.
+// Which Debian package (all installed by scripts/install_deps.sh) holds each element we use
+// besides the encoders (outputs/video_encoding.cpp says where each of those comes from).
 std::string_view package_of(std::string_view element) {
-  if (element == "x264enc") return "gstreamer1.0-plugins-ugly";
   if (element == "ximagesink") return "gstreamer1.0-x";
   if (element == "appsrc" || element == "videoconvert") return "gstreamer1.0-plugins-base";
   if (element == "filesink") return "libgstreamer1.0-0";
-  return "gstreamer1.0-plugins-good";  // mp4mux, matroskamux, rtph264pay, udpsink
+  if (element == "h264parse" || element == "h265parse") return "gstreamer1.0-plugins-bad";
+  return "gstreamer1.0-plugins-good";  // mp4mux, matroskamux, rtph26Xpay, udpsink
 }
 
 // A display:// window needs an X server (a desktop, or XWayland): its local socket is
@@ -38,28 +39,33 @@ std::string check_display(int display) {
 
 }  // namespace
 
-std::string check_video_elements(const VideoTarget& target) {
+std::string check_video_elements(const VideoTarget& target, const VideoEncoding& encoding) {
   platform::gst::ensure_initialized();
-  std::vector<const char*> needed = {"appsrc", "videoconvert"};
+  std::vector<std::string_view> needed = {"appsrc", "videoconvert"};
+  if (target.kind != VideoTargetKind::display) {
+    const EncoderChoice choice = choose_encoder(encoding, gstreamer_has);
+    if (choice.encoder == nullptr) return choice.problem;
+    needed.push_back("videobox");
+    for (const auto companion : encoder_companions(*choice.encoder)) needed.push_back(companion);
+  }
   switch (target.kind) {
     case VideoTargetKind::mp4_file:
-      needed.insert(needed.end(), {"x264enc", "mp4mux", "filesink"});
+      needed.insert(needed.end(), {"mp4mux", "filesink"});
       break;
     case VideoTargetKind::mkv_file:
-      needed.insert(needed.end(), {"x264enc", "matroskamux", "filesink"});
+      needed.insert(needed.end(), {"matroskamux", "filesink"});
       break;
     case VideoTargetKind::rtp:
     case VideoTargetKind::rtsp:
-      needed.insert(needed.end(), {"x264enc", "rtph264pay", "udpsink"});
+      needed.insert(needed.end(), {rtp_payloader(encoding.codec), "udpsink"});
       break;
     case VideoTargetKind::display:
       needed.push_back("ximagesink");
       break;
   }
   std::string missing;
-  for (const char* name : needed) {
-    const platform::gst::ObjectPtr<GstElementFactory> factory{gst_element_factory_find(name)};
-    if (!factory) {
+  for (const auto name : needed) {
+    if (!gstreamer_has(name)) {
       missing += (missing.empty() ? "" : ", ") + std::string(name) + " (in " +
                  std::string(package_of(name)) + ")";
     }
@@ -71,9 +77,12 @@ std::string check_video_elements(const VideoTarget& target) {
   return target.kind == VideoTargetKind::display ? check_display(target.display) : "";
 }
 
-std::unique_ptr<VideoStream> open_video_stream(const VideoTarget& target, double fps) {
-  if (target.kind == VideoTargetKind::rtsp) return std::make_unique<RtspVideoServer>(target, fps);
-  return std::make_unique<GstVideoOutput>(target, fps);
+std::unique_ptr<VideoStream> open_video_stream(const VideoTarget& target, double fps,
+                                               const VideoEncoding& encoding) {
+  if (target.kind == VideoTargetKind::rtsp) {
+    return std::make_unique<RtspVideoServer>(target, fps, encoding);
+  }
+  return std::make_unique<GstVideoOutput>(target, fps, encoding);
 }
 
 }  // namespace rtmot::outputs

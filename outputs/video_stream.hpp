@@ -1,6 +1,6 @@
 #pragma once
 // A destination for annotated frames (outputs/video_target.hpp says which): every frame pushed is
-// encoded as H.264 by GStreamer.
+// encoded by GStreamer (H.264 or H.265: outputs/video_encoding.hpp).
 #include <memory>
 #include <opencv2/core/mat.hpp>
 
@@ -19,12 +19,14 @@ class VideoStream {
   virtual void close() = 0;
 };
 
-/// Checks, before anything runs, that this GStreamer has the elements the target needs (x264enc,
-/// the muxer, gst-rtsp-server...). Returns "" or what is missing.
-std::string check_video_elements(const VideoTarget& target);
+/// Checks, before anything runs, that this GStreamer has the elements the target needs (an
+/// encoder that `encoding` allows, the muxer, gst-rtsp-server...). Returns "" or what is missing.
+std::string check_video_elements(const VideoTarget& target, const VideoEncoding& encoding = {});
 
 /// Opens the target for frames at `fps` (the file's and stream's nominal rate; the frame size is
-/// taken from the first frame). An RTSP server starts listening at once.
-std::unique_ptr<VideoStream> open_video_stream(const VideoTarget& target, double fps);
+/// taken from the first frame), encoded as `encoding` says. An RTSP server starts listening at
+/// once.
+std::unique_ptr<VideoStream> open_video_stream(const VideoTarget& target, double fps,
+                                               const VideoEncoding& encoding = {});
 
 }  // namespace rtmot::outputs

@@ -117,8 +117,9 @@ std::string prepare_video_file(const VideoTarget& target) {
   return "";
 }
 
-std::string rtp_sdp(const VideoTarget& target) {
-  // RFC 4566 session, RFC 6184 H.264 payload; the receiver listens on the port we send to.
+std::string rtp_sdp(const VideoTarget& target, VideoCodec codec) {
+  // RFC 4566 session, RFC 6184 (H.264) or RFC 7798 (H.265) payload; the receiver listens on the
+  // port we send to.
   const bool v6 = target.host.find(':') != std::string::npos;
   const char* family = v6 ? "IP6" : "IP4";
   return "v=0\n"
@@ -129,9 +130,9 @@ std::string rtp_sdp(const VideoTarget& target) {
          family + " " + target.host + "\n" +
          "t=0 0\n"
          "m=video " +
-         std::to_string(target.port) + " RTP/AVP 96\n" +
-         "a=rtpmap:96 H264/90000\n"
-         "a=fmtp:96 packetization-mode=1\n";
+         std::to_string(target.port) + " RTP/AVP 96\n" + "a=rtpmap:96 " +
+         std::string(rtp_encoding_name(codec)) + "/90000\n" +
+         (codec == VideoCodec::h264 ? "a=fmtp:96 packetization-mode=1\n" : "");
 }
 
 }  // namespace rtmot::outputs

@@ -11,6 +11,7 @@
 #include "events/events_yaml.hpp"
 #include "outputs/mqtt_uri.hpp"
 #include "outputs/overlay.hpp"
+#include "outputs/video_encoding.hpp"
 #include "outputs/video_target.hpp"
 #include "pipeline/pipeline.hpp"
 #include "pipeline/playback_mode.hpp"
@@ -67,6 +68,7 @@ struct OutputConfig {
   std::string jsonl_file;       // empty = off
   std::optional<outputs::MqttUri> mqtt;
   std::optional<outputs::VideoTarget> video;  // the annotated video (output.video_file)
+  outputs::VideoEncoding video_encoding;      // its codec, encoder and bitrate
   outputs::OverlayFlags overlay{~0U};         // what the video shows: every flag
   std::string report_file;                    // JSON report, empty = off
   int metrics_port{0};                        // Prometheus endpoint on this TCP port, 0 = off

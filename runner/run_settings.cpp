@@ -254,6 +254,20 @@ std::vector<RunSetting> output_settings() {
           "FILE.mp4/.mkv, rtsp://[ADDRESS]:PORT/NAME, rtp://HOST:PORT or display://N",
           off_or(outputs::parse_video_target),
           [](RunConfig& c) -> std::optional<outputs::VideoTarget>& { return c.output.video; }),
+      parsed<outputs::VideoCodec>(
+          "output.video_codec", "--video-codec",
+          "the video's codec (browsers play H.264; H.265 plays in VLC, ffplay, GStreamer)",
+          outputs::kVideoCodecNames.alternatives(),
+          [](const std::string& t, std::string&) { return outputs::kVideoCodecNames.parse(t); },
+          [](RunConfig& c) -> outputs::VideoCodec& { return c.output.video_encoding.codec; }),
+      parsed<std::string>(
+          "output.video_encoder", "--video-encoder",
+          "the video's encoder: auto = the board's hardware encoder if present, else software",
+          outputs::encoder_request_alternatives(), outputs::parse_encoder_request,
+          [](RunConfig& c) -> std::string& { return c.output.video_encoding.encoder; }),
+      integer<int>("output.video_bitrate", "--bitrate", "the video's bitrate in kbit/s",
+                   {outputs::kMinVideoBitrateKbps, outputs::kMaxVideoBitrateKbps},
+                   [](RunConfig& c) -> int& { return c.output.video_encoding.bitrate_kbps; }),
       parsed<outputs::OverlayFlags>(
           "output.overlay", "--overlay", "what the video shows (comma-separated)",
           outputs::overlay_flag_names() + " (comma-separated), or none",

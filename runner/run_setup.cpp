@@ -21,6 +21,7 @@
 #include "outputs/annotated_video.hpp"
 #include "outputs/mqtt_publisher.hpp"
 #include "outputs/overlay.hpp"
+#include "outputs/video_encoding.hpp"
 #include "outputs/video_stream.hpp"
 #include "outputs/video_target.hpp"
 #include "platform/host_port.hpp"
@@ -201,14 +202,18 @@ RunOutputs make_outputs(const RunConfig& config, std::vector<pipeline::PipelineI
   }
   std::unique_ptr<pipeline::FrameConsumer> video;
   if (output.video) {
-    auto annotated = std::make_unique<outputs::AnnotatedVideo>(*output.video, first, output.overlay,
-                                                               &detector::coco_label);
+    auto annotated = std::make_unique<outputs::AnnotatedVideo>(
+        *output.video, output.video_encoding, first, output.overlay, &detector::coco_label);
     // One source (validate() checked it): the video sees every one of its frames.
     if (!inputs.empty()) inputs.front().tap = annotated->tap();
     const auto& counted = inputs.empty() ? events::EventsConfig{} : inputs.front().events;
     if (!counted.lines.empty() || !counted.zones.empty()) annotated->show_events(counted);
     video = std::move(annotated);
-    outputs.destinations.push_back("video -> " + output.video->text + " (H.264)");
+    outputs.destinations.push_back(
+        "video -> " + output.video->text +
+        (output.video->kind == outputs::VideoTargetKind::display
+             ? std::string(" (a window)")
+             : " (" + std::string(outputs::codec_title(output.video_encoding.codec)) + ")"));
   }
   if (!output.report_file.empty()) {
     outputs.destinations.push_back(file_line("report", output.report_file));
@@ -317,7 +322,15 @@ void prepare_video_output(const RunConfig& config) {
   const auto fail = [&](const std::string& why) {
     throw InputError(target->text, 0, "output.video_file", why);
   };
-  std::string problem = outputs::check_video_elements(*target);
+  if (target->kind != outputs::VideoTargetKind::display) {
+    // The encoder's own field: a codec it does not encode, or one this GStreamer lacks.
+    const auto choice =
+        outputs::choose_encoder(config.output.video_encoding, outputs::gstreamer_has);
+    if (choice.encoder == nullptr) {
+      throw InputError(target->text, 0, "output.video_encoder", choice.problem);
+    }
+  }
+  std::string problem = outputs::check_video_elements(*target, config.output.video_encoding);
   if (!problem.empty()) fail(problem);
   if (target->kind == outputs::VideoTargetKind::mp4_file ||
       target->kind == outputs::VideoTargetKind::mkv_file) {

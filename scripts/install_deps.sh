@@ -11,6 +11,7 @@ packages=(
   libgstreamer1.0-dev libgstreamer-plugins-base1.0-dev
   gstreamer1.0-plugins-base gstreamer1.0-plugins-good gstreamer1.0-libav gstreamer1.0-tools
   gstreamer1.0-plugins-ugly                   # x264enc: the annotated video's H.264
+  gstreamer1.0-plugins-bad                    # h264parse/h265parse (every encoded video), x265enc, openh264enc
   gstreamer1.0-x                              # ximagesink: display:// (a window on the desktop)
   libgstrtspserver-1.0-dev gstreamer1.0-rtsp  # rtsp:// video output (gst-rtsp-server)
   libmosquitto-dev mosquitto                  # MQTT output; the tests start Debian's broker

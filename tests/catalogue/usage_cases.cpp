@@ -39,6 +39,24 @@ CatalogueCase key_case(std::string name, std::string what, const std::string& ya
 
 const std::string kSource = "source:\n  uri: test://ball?num-buffers=5\n";
 
+// An encoder of the other codec: refused before the model loads and before any output exists.
+CatalogueCase encoder_case() {
+  CatalogueCase c{"video_encoder_of_another_codec",
+                  "--video-codec h265 --video-encoder openh264enc (an H.264 encoder)",
+                  [](Workspace&, Vars&) {},
+                  {"run", "--source", "test://ball?num-buffers=5", "--video-codec", "h265",
+                   "--video-encoder", "openh264enc", "--video-out", "{dir}/out/v.mp4"},
+                  ExitCode::bad_input,
+                  {},
+                  [](const Workspace& ws) {
+                    EXPECT_FALSE(fs::exists(ws.path("out"))) << "an output was created";
+                  }};
+  c.message =
+      "{dir}/out/v.mp4: field 'output.video_encoder': openh264enc encodes H.264, not H.265 "
+      "(output.video_codec, --video-codec)";
+  return c;
+}
+
 }  // namespace
 
 std::vector<CatalogueCase> usage_cases() {
@@ -79,6 +97,18 @@ std::vector<CatalogueCase> usage_cases() {
                "tracker.max_ag (a typo, read by the tracker's table)",
                kSource + "tracker:\n  max_ag: 3\n",
                "{dir}/run.yaml:4: field 'tracker.max_ag': unknown key (did you mean max_age?)"),
+      // The video's encoding (issue 22): a jetson-inference user's --bitrate in bit/s is refused,
+      // not taken as 4 Gbit/s; an encoder name is checked with the nearest valid one.
+      usage_case("usage_bitrate_in_bits_per_second",
+                 "rtmot run --bitrate 4000000 (the flag is in kbit/s)",
+                 {"run", "--bitrate", "4000000"},
+                 "command line: field '--bitrate': '4000000': expected an integer in [64, 200000]"),
+      key_case("config_video_encoder_misspelt", "output.video_encoder: openh264enk (a typo)",
+               kSource + "output:\n  video_encoder: openh264enk\n",
+               "{dir}/run.yaml:4: field 'output.video_encoder': 'openh264enk': expected auto, "
+               "hardware, software or an encoder element (nvv4l2h264enc, v4l2h264enc, x264enc, "
+               "openh264enc, nvv4l2h265enc, v4l2h265enc, x265enc) (did you mean openh264enc?)"),
+      encoder_case(),
       key_case("config_key_far_from_any", "detector.zzzzzz (nothing close: no guess)",
                kSource + "detector:\n  zzzzzz: 1\n",
                "{dir}/run.yaml:4: field 'detector.zzzzzz': unknown key"),
