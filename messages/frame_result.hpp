@@ -30,6 +30,10 @@ struct FrameResult {
   /// No picture: the live source is down and being reopened. The tracker still advanced (tracks
   /// coast), so the ground station keeps hearing from us; `tracks` is then empty.
   bool source_outage{false};
+  /// The stream's last message: no picture and no tracks; it carries the events the end of the
+  /// stream decided (EventCounter::finish(): tracks still inside a zone leave it, marked lost).
+  /// frame_number and pts_ns are the last processed frame's.
+  bool end_of_stream{false};
   FrameTimes times;
   std::vector<tracker::TrackReport> tracks;  // reserved once; never grows in steady state
   /// Line crossings and zone visits decided in this frame (events/, docs/events.md); reserved once.

@@ -73,7 +73,8 @@ void append_json_line(const FrameResult& frame, std::uint32_t total_track_count,
   }
   fmt::format_to(to, "]");
   // Added fields (schema 2 still: nothing changed meaning): the sender's run id, as 16 hex digits
-  // because a u64 does not survive JavaScript's doubles, and the frame's events.
+  // because a u64 does not survive JavaScript's doubles, the frame's events and the end of the
+  // stream.
   if (frame.run_id != 0) fmt::format_to(to, R"(,"run":"{:016x}")", frame.run_id);
   if (!frame.events.empty()) {
     fmt::format_to(to, R"(,"events":[)");
@@ -92,6 +93,7 @@ void append_json_line(const FrameResult& frame, std::uint32_t total_track_count,
     }
     fmt::format_to(to, "]");
   }
+  if (frame.end_of_stream) fmt::format_to(to, R"(,"end_of_stream":true)");
   fmt::format_to(to, "}}\n");
 }
 

@@ -65,7 +65,7 @@ void AnnotatedVideo::write_predicted(SideFrame& frame) {
 
 void AnnotatedVideo::consume(const pipeline::SinkFrame& frame) {
   const messages::FrameResult& result = frame.result;
-  if (result.source_outage) return;
+  if (result.source_outage || result.end_of_stream) return;  // no picture
   // The frames skipped before this one show the counts as they were; this one and later, with its
   // events.
   bool counted = false;

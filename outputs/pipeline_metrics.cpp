@@ -49,7 +49,8 @@ void PipelineMetrics::observe(const messages::FrameResult& result) {
   const messages::FrameTimes& t = result.times;
   // A few sources at most: a linear search allocates nothing and takes no lock.
   const auto id = std::find(stream_ids_.begin(), stream_ids_.end(), result.stream_id);
-  if (id != stream_ids_.end()) {
+  // The end of a stream is no frame: only its events count (EventMetrics), and the outputs below.
+  if (id != stream_ids_.end() && !result.end_of_stream) {
     StreamCounters& stream = streams_[static_cast<std::size_t>(id - stream_ids_.begin())];
     if (stream.first_captured_ns.load(relaxed) == 0 && t.captured_ns > 0) {
       stream.first_captured_ns.store(t.captured_ns, relaxed);
@@ -67,7 +68,7 @@ void PipelineMetrics::observe(const messages::FrameResult& result) {
     }
     stream.in_outage = result.source_outage;
   }
-  if (!result.source_outage) {
+  if (!result.source_outage && !result.end_of_stream) {
     for (const auto& [stage, name] : pipeline::kStageNames.entries()) {
       stages_[static_cast<std::size_t>(stage)].record(pipeline::stage_span_ns(stage, t));
     }

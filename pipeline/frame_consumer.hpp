@@ -23,7 +23,8 @@ struct SinkFrame {
 class FrameConsumer {
  public:
   virtual ~FrameConsumer() = default;
-  /// Every message, outage ticks (result.source_outage, no picture) included.
+  /// Every message, outage ticks (result.source_outage, no picture) and the end of a stream with
+  /// events (result.end_of_stream, no picture, no tracks) included.
   virtual void consume(const SinkFrame& frame) = 0;
   /// Called once at the end, also after a failure: flush and close. May throw.
   virtual void finish() = 0;

@@ -37,7 +37,9 @@ void SinkStage::run(const std::atomic<bool>& abort) {
     messages::FrameResult& result = in->result;
     result.times.sent_ns = platform::steady_now_ns();
     std::int64_t elapsed_ns = 0;
-    if (!result.source_outage) {  // a tick is not a processed frame: no latency
+    // A tick or the end of a stream is not a processed frame: no latency.
+    const bool frame_processed = !result.source_outage && !result.end_of_stream;
+    if (frame_processed) {
       total_.latency.record(result.times);
       total_.last_sent_ns = result.times.sent_ns;
       SinkCounts& stream = streams_[in->input];
@@ -57,7 +59,7 @@ void SinkStage::run(const std::atomic<bool>& abort) {
     }
     const SinkFrame frame{result, in->image, recent_fps_};
     for (const auto& consumer : consumers_) consumer->consume(frame);
-    if (!result.source_outage && interval_ns_ > 0 && elapsed_ns >= interval_ns_) {
+    if (frame_processed && interval_ns_ > 0 && elapsed_ns >= interval_ns_) {
       log_interval(*in, elapsed_ns);
     }
     input_.pop();

@@ -57,6 +57,7 @@ void TrackStage::run(const std::atomic<bool>& abort) {
     result.run_id = messages::this_process_run_id();  // a restarted board: a new run id
     result.sequence = static_cast<std::uint64_t>(stream.messages++);
     result.source_outage = in->outage;
+    result.end_of_stream = false;
     result.frame_number = in->info.frame_number;
     result.pts_ns = in->info.pts_ns;
     // Every frame before this one that did not become a message was dropped somewhere.
@@ -66,8 +67,45 @@ void TrackStage::run(const std::atomic<bool>& abort) {
     result.times.tracked_ns = platform::steady_now_ns();
     out->input = in->input;
     if (keep_images_) std::swap(out->image, in->image);
-    if (!in->outage) ++stream.frames_processed;
+    if (!in->outage) {
+      ++stream.frames_processed;
+      stream.last_frame_number = result.frame_number;
+      stream.last_pts_ns = result.pts_ns;
+      stream.last_frames_dropped = result.frames_dropped;
+    }
     input_.pop();
+    output_.publish();
+  }
+  if (!abort.load(std::memory_order_acquire)) finish_streams(abort);
+}
+
+void TrackStage::finish_streams(const std::atomic<bool>& abort) {
+  // The input ended (end of file, or a stop asked for): each counted stream's counter settles
+  // what is still open, the tracks still inside a zone leave it marked lost (occupancy must not
+  // keep a stream that is gone, and their time inside is reported), and one last message carries
+  // it. Once per run, so it may allocate (a burst of events beyond the slot's reserve).
+  for (std::size_t i = 0; i < streams_.size(); ++i) {
+    Stream& stream = streams_[i];
+    if (!stream.counter || stream.frames_processed == 0) continue;
+    TrackedFrame* out = output_.claim(abort);
+    if (out == nullptr) return;
+    const auto& decided = stream.counter->finish(static_cast<double>(stream.last_pts_ns) * 1e-9);
+    messages::FrameResult& result = out->result;
+    result.tracks.clear();
+    result.events.assign(decided.begin(), decided.end());
+    result.stream_id = stream.stream_id;
+    result.run_id = messages::this_process_run_id();
+    result.sequence = static_cast<std::uint64_t>(stream.messages++);
+    result.source_outage = false;
+    result.end_of_stream = true;
+    result.frame_number = stream.last_frame_number;
+    result.pts_ns = stream.last_pts_ns;
+    result.frames_dropped = stream.last_frames_dropped;
+    result.times = messages::FrameTimes{};
+    result.times.captured_ns = platform::steady_now_ns();
+    result.times.tracked_ns = result.times.captured_ns;
+    out->input = i;
+    out->image = cv::Mat();
     output_.publish();
   }
 }

@@ -26,6 +26,8 @@ class TrackStage {
   TrackStage(const std::vector<TrackInput>& inputs, SpscQueue<DetectedFrame>& input,
              std::size_t queue_capacity, bool keep_images);
 
+  /// Until the input ends; then, unless aborted, one last message per stream with lines or zones
+  /// (end_of_stream) with the events its counter's finish() decides.
   void run(const std::atomic<bool>& abort);
   /// Always called after run(): no more results.
   void finish() { output_.close(); }
@@ -40,7 +42,13 @@ class TrackStage {
     std::uint32_t stream_id{0};
     std::int64_t messages{0};          // frames and outage ticks sent
     std::int64_t frames_processed{0};  // real frames
+    // The last real frame's, for the end of the stream's message.
+    std::int64_t last_frame_number{0};
+    std::int64_t last_pts_ns{0};
+    std::uint32_t last_frames_dropped{0};
   };
+
+  void finish_streams(const std::atomic<bool>& abort);
 
   SpscQueue<DetectedFrame>& input_;
   const bool keep_images_;

@@ -109,8 +109,9 @@ MotResultsOutput::MotResultsOutput(const fs::path& dir,
 
 void MotResultsOutput::consume(const pipeline::SinkFrame& frame) {
   const messages::FrameResult& result = frame.result;
-  // An outage tick carries no picture: nothing was processed.
-  if (result.source_outage || result.frame_number < 1 || result.frame_number > motio::kMaxFrame) {
+  // An outage tick carries no picture, the end of a stream no tracks: nothing was processed.
+  if (result.source_outage || result.end_of_stream || result.frame_number < 1 ||
+      result.frame_number > motio::kMaxFrame) {
     return;
   }
   const auto stream = std::find_if(streams_.begin(), streams_.end(), [&](const Stream& s) {

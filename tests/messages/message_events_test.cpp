@@ -146,6 +146,49 @@ TEST(MessageEvents, JsonLinesCarryTheRunAndTheEvents) {
   EXPECT_GT(with_events, 10U);
 }
 
+// The stream's last message: the counter's finish() events (tracks still inside the zone leave it,
+// marked lost) with no tracks, flagged end_of_stream, in binary (flag bit 3) and in JSON lines;
+// every other message says it is not the end.
+TEST(MessageEvents, TheEndOfAStreamCarriesTheFinishEventsInBinaryAndJson) {
+  auto frames = test::frames_from_detections("PETS09-S2L1", 60);
+  events::EventsConfig config;
+  config.zones.push_back({"left", {{0, 0}, {384, 0}, {384, 576}, {0, 576}}, 0.0});
+  events::EventCounter counter(config);
+  for (const auto& frame : frames)
+    (void)counter.update(frame.tracks, static_cast<double>(frame.pts_ns) * 1e-9);
+  FrameResult end = frames.back();
+  const auto& finished = counter.finish(static_cast<double>(end.pts_ns) * 1e-9);
+  ASSERT_FALSE(finished.empty());
+  end.tracks.clear();
+  end.events.assign(finished.begin(), finished.end());
+  end.sequence += 1;
+  end.end_of_stream = true;
+  std::vector<std::uint8_t> buffer(message::safe_udp_payload);
+  DecodedMessage decoded;
+  MessageEncoder encoder;
+  for (const FrameResult* sent : {&frames.back(), &end}) {
+    const std::size_t size = encoder.encode(*sent, buffer.data(), buffer.size());
+    ASSERT_EQ(decode_message(buffer.data(), size, decoded), DecodeError::none);
+    EXPECT_EQ(decoded.frame.end_of_stream, sent->end_of_stream);
+    EXPECT_EQ((buffer[5] & message::flag_end_of_stream) != 0, sent->end_of_stream);
+    expect_same_events(*sent, decoded.frame);
+    fmt::memory_buffer line;
+    append_json_line(*sent, static_cast<std::uint32_t>(sent->tracks.size()), false,
+                     JsonLineExtras{1, nullptr}, line);
+    std::string problem;
+    ASSERT_TRUE(decode_json_line(reinterpret_cast<const std::uint8_t*>(line.data()), line.size(),
+                                 decoded, problem))
+        << problem;
+    EXPECT_EQ(decoded.frame.end_of_stream, sent->end_of_stream);
+    expect_same_events(*sent, decoded.frame);
+  }
+  for (const auto& event : end.events) {
+    EXPECT_EQ(event.kind, events::EventKind::zone_exit);
+    EXPECT_TRUE(event.lost);
+  }
+  EXPECT_EQ(counter.zone_counts()[0].occupancy, 0);
+}
+
 TEST(SequenceAccounting, ABoardRestartedWithinTheWindowIsARestartByItsRunId) {
   SequenceAccounting accounting;
   for (std::uint64_t s = 0; s < 71; ++s)

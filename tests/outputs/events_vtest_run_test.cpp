@@ -3,7 +3,8 @@
 // --mqtt` subscribed to the run's MQTT JSON (through Debian's mosquitto, started here), `rtmot
 // listen
 // --read` on the run's binary file, and the run's Prometheus endpoint, scraped after the last
-// frame (output.metrics_linger_s keeps it up).
+// frame (output.metrics_linger_s keeps it up). The stream's last message ends it: the tracks still
+// inside the zone leave it, and the occupancy is 0.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
@@ -99,7 +100,7 @@ detector:
   ASSERT_TRUE(WIFEXITED(run_status) && WEXITSTATUS(run_status) == 0)
       << run_status << "\n"
       << test::read_text(folder_ / "run.err");
-  EXPECT_NE(test::read_text(folder_ / "run.err").find("output mqtt: delivered 300 of 300"),
+  EXPECT_NE(test::read_text(folder_ / "run.err").find("output mqtt: delivered 301 of 301"),
             std::string::npos)
       << test::read_text(folder_ / "run.err");
 
@@ -107,14 +108,18 @@ detector:
   const int listen_status = mqtt_listener.stop(SIGTERM, 20s);
   EXPECT_TRUE(WIFEXITED(listen_status) && WEXITSTATUS(listen_status) == 0) << listen_status;
   const std::string from_mqtt = test::read_text(folder_ / "mqtt.out");
-  test::ChildProcess reader({RTMOT_BINARY, "listen", "--read", binary.string(), "--quiet"},
+  test::ChildProcess reader({RTMOT_BINARY, "listen", "--read", binary.string()},
                             folder_ / "read.out", folder_ / "read.err");
   const int read_status = reader.wait(60s);
   EXPECT_TRUE(WIFEXITED(read_status) && WEXITSTATUS(read_status) == 0)
       << test::read_text(folder_ / "read.err");
   const std::string from_file = test::read_text(folder_ / "read.out");
-  EXPECT_NE(from_mqtt.find("stream 0: received 300, lost 0"), std::string::npos) << from_mqtt;
-  EXPECT_NE(from_file.find("stream 0: received 300, lost 0"), std::string::npos) << from_file;
+  // 300 frames and the end of the stream (its events: the tracks still inside leave the zone).
+  EXPECT_NE(from_mqtt.find("stream 0: received 301, lost 0"), std::string::npos) << from_mqtt;
+  EXPECT_NE(from_file.find("stream 0: received 301, lost 0"), std::string::npos) << from_file;
+  EXPECT_NE(from_file.find("seq 300 frame 300: 0 tracks"), std::string::npos);
+  EXPECT_NE(from_file.find("(end of stream)"), std::string::npos);
+  EXPECT_EQ(from_file.find("(end of stream)"), from_file.rfind("(end of stream)"));
 
   auto mqtt_events = listened_events(from_mqtt);
   auto file_events = listened_events(from_file);
@@ -137,6 +142,9 @@ detector:
   EXPECT_EQ(zone("dwell"), file_events["zone_dwell 0"]);
   EXPECT_EQ(test::value_of(metrics, R"(rtmot_zone_occupancy{stream="0",zone="left"})"),
             file_events["zone_enter 0"] - file_events["zone_exit 0"]);
+  EXPECT_EQ(file_events["zone_enter 0"], file_events["zone_exit 0"]);  // nobody left inside
+  // The end of the stream is no processed frame.
+  EXPECT_EQ(test::value_of(metrics, R"(rtmot_frames_processed_total{stream="0"})"), frames);
   // People walk across the middle line and through the zone in these 30 s of video.
   EXPECT_GT(file_events["line_in 0"] + file_events["line_out 0"], 0) << from_file;
   EXPECT_GT(file_events["zone_enter 0"], 0) << from_file;

@@ -2,7 +2,8 @@
 # System test: lines and a zone in a source's `events:` section (docs/events.md). PETS09-S2L1
 # (image-less, replay detector, every frame) through `rtmot run`: the events arrive in the binary
 # messages (`rtmot listen --read` counts them per kind and index) and in the JSON lines, with the
-# same counts, and both lines are crossed in both directions. A zero-length line is refused before
+# same counts, and both lines are crossed in both directions; the last message ends the stream with
+# the exits of the tracks still inside the zone. A zero-length line is refused before
 # anything runs: exit 3 naming file:line:field. The same section given inline with --events counts
 # the same.
 # Usage: events_in_stream.sh RTMOT SHARED_DIR
@@ -49,6 +50,16 @@ for kind in line_in line_out; do
 done
 grep -q "^  stream 0: events zone_dwell 0: [1-9]" "$work/listen.txt" ||
   { echo "FAIL: no dwell in the zone"; exit 1; }
+# The end of the stream: one last message, flagged, with no tracks, in which the tracks still inside
+# the zone leave it (lost): every enter has its exit.
+tail -n 1 "$work/m.jsonl" | grep -q '"tracks":\[\].*"end_of_stream":true' ||
+  { echo "FAIL: no end-of-stream message last"; tail -n 1 "$work/m.jsonl"; exit 1; }
+[[ $(grep -c '"end_of_stream"' "$work/m.jsonl") == 1 ]] || { echo "FAIL: end of stream twice"; exit 1; }
+tail -n 1 "$work/m.jsonl" | grep -q '"kind":"zone_exit","index":0,[^}]*"lost":true' ||
+  { echo "FAIL: no lost exit at the end"; exit 1; }
+enters=$(sed -n "s/^  stream 0: events zone_enter 0: //p" "$work/listen.txt")
+exits=$(sed -n "s/^  stream 0: events zone_exit 0: //p" "$work/listen.txt")
+[[ -n $enters && $enters == "$exits" ]] || { echo "FAIL: $enters enters, $exits exits"; exit 1; }
 
 # The same lines and zone given on the command line (--events, the section written inline) count
 # the same events as the file's section.
