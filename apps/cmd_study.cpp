@@ -18,6 +18,7 @@
 #include "common/input_error.hpp"
 #include "common/output_file.hpp"
 #include "motio/mot_files.hpp"
+#include "platform/cpu_share.hpp"
 #include "platform/signals.hpp"
 #include "study/latency_sweep.hpp"
 #include "study/run_progress.hpp"
@@ -105,6 +106,7 @@ int run_latency_sweep(const StudyCommandOptions& options, const platform::StopSi
 int run_study_command(const StudyCommandOptions& options) {
   using Clock = std::chrono::steady_clock;
   const auto start = Clock::now();
+  const platform::CpuSample cpu_start = platform::sample_cpu();
   const platform::StopSignals signals;
   if (options.latency) return run_latency_sweep(options, signals);
   // Ascending and unique: rows and plot axes follow the interval.
@@ -188,6 +190,11 @@ int run_study_command(const StudyCommandOptions& options) {
   }
   spdlog::info("study: wrote {} files under {} in {:.0f} s", files.size(), options.out_dir,
                std::chrono::duration<double>(Clock::now() - start).count());
+  // --jobs N is N threads that never wait for each other; whether they had N cores is the
+  // machine's doing (issue 22: "2 threads used about one core"), and this line says which.
+  spdlog::info("study: {}",
+               platform::describe_cpu_share(platform::cpu_share(cpu_start, platform::sample_cpu()),
+                                            options.jobs));
   return to_int(ExitCode::ok);
 }
 
