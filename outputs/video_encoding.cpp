@@ -81,8 +81,15 @@ std::optional<std::string> parse_encoder_request(const std::string& text, std::s
   for (const auto& name : names) {
     if (name == text) return text;
   }
-  problem =
-      "'" + text + "': expected " + encoder_request_alternatives() + did_you_mean(text, names);
+  std::string hint = did_you_mean(text, names);
+  // The short names of GStreamer's docs and of other tools (x264, nvv4l2h264): the element is
+  // NAME + "enc", too far for the edit distance on short names.
+  if (hint.empty()) {
+    for (const auto& encoder : video_encoders()) {
+      if (encoder.element == text + "enc") hint = " (did you mean " + text + "enc?)";
+    }
+  }
+  problem = "'" + text + "': expected " + encoder_request_alternatives() + hint;
   return std::nullopt;
 }
 

@@ -94,6 +94,10 @@ TEST(VideoEncoder, RequestsAreCheckedWithTheNearestName) {
   EXPECT_FALSE(parse_encoder_request("openh264enk", problem));
   EXPECT_NE(problem.find("(did you mean openh264enc?)"), std::string::npos) << problem;
   EXPECT_NE(problem.find("auto, hardware, software or an encoder element"), std::string::npos);
+  EXPECT_FALSE(parse_encoder_request("x264", problem));  // GStreamer's docs' short name
+  EXPECT_NE(problem.find("(did you mean x264enc?)"), std::string::npos) << problem;
+  EXPECT_FALSE(parse_encoder_request("x265", problem));
+  EXPECT_NE(problem.find("(did you mean x265enc?)"), std::string::npos) << problem;
 }
 
 // Each encoder is given the bitrate in its own unit: x264enc and x265enc take kbit/s, the others
