@@ -8,6 +8,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <csignal>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <thread>
@@ -110,6 +111,60 @@ TEST_F(ColdStart, AbsentCameraIsAnOutageUntilItAppears) {
   EXPECT_GT(tracked, 10);
   EXPECT_GT(with_people, 5);  // vtest.avi's pedestrians were tracked once it appeared
   EXPECT_FALSE(outage_after_tracking);
+}
+
+// Two cameras absent at start: each says so, and the operator also gets one line that no source
+// delivers pictures; when one appears, one line that a source is back (issue 22).
+TEST_F(ColdStart, EverySourceDownIsOneLineAndSoIsTheFirstBack) {
+  RTMOT_REQUIRE_FILE(model_);
+  const auto video = test::shared_path("data/video/vtest.avi");
+  RTMOT_REQUIRE_FILE(video);
+  const unsigned short port = test::free_tcp_port();
+  const std::string camera = "rtsp://127.0.0.1:" + std::to_string(port) + "/camera";
+  const std::string absent = "rtsp://127.0.0.1:" + std::to_string(test::free_tcp_port()) + "/never";
+  test::ChildProcess rtmot(
+      {RTMOT_BINARY, "run", "--source", camera, "--source", absent, "--model", model_.string(),
+       "--jsonl", (folder_ / "t.jsonl").string(), "--stats-interval", "0"},
+      folder_ / "out.txt", folder_ / "err.txt");
+  const auto wait_for = [&](const std::string& text) {
+    const auto deadline = std::chrono::steady_clock::now() + 60s;
+    while (test::read_text(folder_ / "err.txt").find(text) == std::string::npos &&
+           std::chrono::steady_clock::now() < deadline) {
+      std::this_thread::sleep_for(100ms);
+    }
+    return test::read_text(folder_ / "err.txt").find(text) != std::string::npos;
+  };
+  ASSERT_TRUE(wait_for("all 2 sources are down")) << test::read_text(folder_ / "err.txt");
+  RtspVideoServer server(
+      [&] {
+        VideoTarget target;
+        target.kind = VideoTargetKind::rtsp;
+        target.text = camera;
+        target.host = "127.0.0.1";
+        target.port = port;
+        target.mount = "/camera";
+        return target;
+      }(),
+      10.0);
+  std::atomic<bool> done{false};
+  std::thread camera_thread([&] {
+    auto source = platform::open_video_source(video.string());
+    cv::Mat frame;
+    platform::FrameInfo info;
+    while (!done && source->read(frame, info) == platform::ReadStatus::frame) {
+      server.push(frame);
+      std::this_thread::sleep_for(100ms);
+    }
+  });
+  const bool back = wait_for("a source is back after all 2 were down");
+  const int status = rtmot.stop(SIGINT, 30s);
+  done = true;
+  camera_thread.join();
+  const std::string err = test::read_text(folder_ / "err.txt");
+  EXPECT_TRUE(back) << err;
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << status << "\n" << err;
+  // Once per episode, whichever capture thread saw it.
+  EXPECT_EQ(err.find("all 2 sources are down"), err.rfind("all 2 sources are down")) << err;
 }
 
 TEST_F(ColdStart, MissingFileAndMalformedUriFailAtOnce) {
