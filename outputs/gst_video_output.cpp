@@ -83,12 +83,15 @@ std::string describe_pipeline(const VideoTarget& target, const VideoEncoder& enc
   return "";
 }
 
-GstVideoOutput::GstVideoOutput(VideoTarget target, double fps, const VideoEncoding& encoding)
-    : target_(std::move(target)),
-      fps_(fps > 0.0 ? fps : 30.0),
-      bitrate_kbps_(encoding.bitrate_kbps) {
+GstVideoOutput::GstVideoOutput(VideoTarget target, double fps, const VideoEncoding& encoding,
+                               const VideoEncoder* encoder)
+    : target_(std::move(target)), fps_(fps > 0.0 ? fps : 30.0), request_(encoding) {
   platform::gst::ensure_initialized();
-  if (target_.kind != VideoTargetKind::display) encoder_ = &open_encoder(target_.text, encoding);
+  if (encoder != nullptr) {
+    encoder_ = encoder;
+  } else if (target_.kind != VideoTargetKind::display) {
+    encoder_ = &open_encoder(target_.text, encoding);
+  }
   if (target_.kind == VideoTargetKind::rtp) {
     // RTP carries no description of itself: a player needs this (a file, or pasted into VLC).
     spdlog::info(
@@ -112,16 +115,38 @@ void GstVideoOutput::fail(const std::string& problem, ExitCode code) {
 }
 
 void GstVideoOutput::start(int width, int height) {
+  Started started = launch(width, height);
+  // A board whose hardware encoder is there but will not start (a container without the encoder's
+  // device, a driver in use): `auto` falls back to the software encoder, logged, rather than
+  // losing the video. Its devices are opened as the pipeline starts, so this is where it shows.
+  if (!started.problem.empty() && encoder_ != nullptr && encoder_->hardware &&
+      request_.encoder == "auto") {
+    VideoEncoding software = request_;
+    software.encoder = "software";
+    const EncoderChoice choice = choose_encoder(software, gstreamer_has);
+    if (choice.encoder != nullptr) {
+      spdlog::warn("video: the hardware encoder {} does not start ({}); {} (software) instead",
+                   encoder_->element, started.problem, choice.encoder->element);
+      encoder_ = choice.encoder;
+      started = launch(width, height);
+    }
+  }
+  if (!started.problem.empty()) fail(started.problem, started.code);
+  warn_if_padded(target_.text, width, height);
+}
+
+GstVideoOutput::Started GstVideoOutput::launch(int width, int height) {
   // display:// encodes nothing: any encoder entry serves describe_pipeline's signature.
   const VideoEncoder& encoder = encoder_ != nullptr ? *encoder_ : video_encoders().front();
   const std::string description =
-      describe_pipeline(target_, encoder, bitrate_kbps_, width, height, fps_);
+      describe_pipeline(target_, encoder, request_.bitrate_kbps, width, height, fps_);
   GError* raw_error = nullptr;
   pipeline_.reset(gst_parse_launch(description.c_str(), &raw_error));
   const ErrorPtr error(raw_error);
   if (!pipeline_ || error) {
-    fail(std::string("cannot build the video pipeline: ") + (error ? error->message : "?"),
-         ExitCode::encoder_failed);
+    pipeline_.reset();
+    return {std::string("cannot build the video pipeline: ") + (error ? error->message : "?"),
+            ExitCode::encoder_failed};
   }
   source_.reset(gst_bin_get_by_name(GST_BIN(pipeline_.get()), "src"));
   if (const ObjectPtr<GstElement> sink{gst_bin_get_by_name(GST_BIN(pipeline_.get()), "sink")}) {
@@ -133,12 +158,26 @@ void GstVideoOutput::start(int width, int height) {
     g_object_set(sink.get(), "location", special ? target_.path.c_str() : written_path_.c_str(),
                  nullptr);
   }
-  warn_if_padded(target_.text, width, height);
   bus_.reset(gst_element_get_bus(pipeline_.get()));
-  if (gst_element_set_state(pipeline_.get(), GST_STATE_PLAYING) == GST_STATE_CHANGE_FAILURE) {
-    throw_if_error();
-    fail("the video pipeline does not start", ExitCode::encoder_failed);
+  if (gst_element_set_state(pipeline_.get(), GST_STATE_PLAYING) != GST_STATE_CHANGE_FAILURE) {
+    return {};
   }
+  Started failed{"the video pipeline does not start", ExitCode::encoder_failed};
+  if (const MessagePtr message{gst_bus_pop_filtered(bus_.get(), GST_MESSAGE_ERROR)}) {
+    GError* raw = nullptr;
+    gst_message_parse_error(message.get(), &raw, nullptr);
+    const ErrorPtr reason(raw);
+    failed = {std::string("writing the video failed: ") + (reason ? reason->message : "?"),
+              code_of(reason.get())};
+  }
+  // Gone entirely, so that another encoder can start from nothing.
+  gst_element_set_state(pipeline_.get(), GST_STATE_NULL);
+  if (!written_path_.empty()) ::unlink(written_path_.c_str());
+  written_path_.clear();
+  bus_.reset();
+  source_.reset();
+  pipeline_.reset();
+  return failed;
 }
 
 void GstVideoOutput::throw_if_error() {

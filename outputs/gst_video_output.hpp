@@ -21,8 +21,10 @@ namespace rtmot::outputs {
 class GstVideoOutput final : public VideoStream {
  public:
   /// Chooses the encoder now (logged; InputError if none fits: check_video_elements said so
-  /// before the run).
-  GstVideoOutput(VideoTarget target, double fps, const VideoEncoding& encoding = {});
+  /// before the run), or takes `encoder` as if `encoding` had chosen it (tests: one that cannot
+  /// start). A hardware encoder chosen by `auto` that does not start falls back to software.
+  GstVideoOutput(VideoTarget target, double fps, const VideoEncoding& encoding = {},
+                 const VideoEncoder* encoder = nullptr);
   ~GstVideoOutput() override;
   GstVideoOutput(const GstVideoOutput&) = delete;
   GstVideoOutput& operator=(const GstVideoOutput&) = delete;
@@ -32,6 +34,12 @@ class GstVideoOutput final : public VideoStream {
 
  private:
   void start(int width, int height);
+  struct Started {
+    std::string problem;  // empty: playing
+    ExitCode code{ExitCode::ok};
+  };
+  /// Builds and starts the pipeline with encoder_; on failure nothing of it is left.
+  Started launch(int width, int height);
   /// Stops the pipeline, removes an unfinished file and throws: `code` io_error for a failed
   /// write (disk full), encoder_failed for what the encoder refused.
   [[noreturn]] void fail(const std::string& problem, ExitCode code);
@@ -39,7 +47,7 @@ class GstVideoOutput final : public VideoStream {
 
   VideoTarget target_;
   double fps_;
-  int bitrate_kbps_;
+  VideoEncoding request_;
   const VideoEncoder* encoder_{nullptr};  // none for display://
   platform::gst::ObjectPtr<GstElement> pipeline_;
   platform::gst::ObjectPtr<GstElement> source_;

@@ -13,6 +13,7 @@
 #include "child_process.hpp"
 #include "common/input_error.hpp"
 #include "gst_read_back.hpp"
+#include "outputs/gst_video_output.hpp"
 #include "outputs/overlay.hpp"
 #include "outputs/rtsp_video_server.hpp"
 #include "outputs/video_encoding.hpp"
@@ -446,6 +447,40 @@ TEST_F(VideoOutputs, BitrateSetsTheFilesSize) {
       EXPECT_GT(size, expected_bytes * 2.0 / 3.0) << encoder << " at " << kbps << " kbit/s";
       EXPECT_LT(size, expected_bytes * 4.0 / 3.0) << encoder << " at " << kbps << " kbit/s";
     }
+  }
+}
+
+// A hardware encoder that is there but does not start (a Jetson container without the encoder's
+// device): `auto` falls back to software and the video is whole; asked for by name or as
+// `hardware`, it is exit 8 and no file. Stood in for by an element this GStreamer lacks, which
+// fails where a device that cannot open fails: as the pipeline starts.
+TEST_F(VideoOutputs, HardwareEncoderThatDoesNotStartFallsBackUnderAuto) {
+  const VideoEncoder broken{"rtmotabsenth264enc", VideoCodec::h264, true, "nowhere"};
+  const auto path = folder_ / "fallback.mp4";
+  GstVideoOutput automatic(target_of(path.string()), 30.0, VideoEncoding{}, &broken);
+  EXPECT_EQ(push_test_frames(automatic, 0ms), frame_count);
+  automatic.close();
+  const ReadBack back = read_back(
+      "filesrc location=" + path.string() + " ! qtdemux ! video/x-h264 ! avdec_h264" + to_bgr_sink,
+      frame_count / 2, 10000, 60s);
+  EXPECT_EQ(back.frames, frame_count);
+  expect_overlay(back.saved, folder_ / "fallback.png");
+
+  VideoEncoding hardware;
+  hardware.encoder = "hardware";
+  const auto refused = folder_ / "refused.mp4";
+  GstVideoOutput asked(target_of(refused.string()), 30.0, hardware, &broken);
+  try {
+    push_test_frames(asked, 0ms);
+    FAIL() << "a hardware encoder that cannot start wrote a video";
+  } catch (const InputError& error) {
+    EXPECT_EQ(error.exit_code(), ExitCode::encoder_failed);
+    EXPECT_NE(std::string(error.what()).find("rtmotabsenth264enc"), std::string::npos)
+        << error.what();
+  }
+  EXPECT_FALSE(std::filesystem::exists(refused));
+  for (const auto& entry : std::filesystem::directory_iterator(folder_)) {
+    EXPECT_EQ(entry.path().string().find(".tmp-"), std::string::npos) << entry.path();
   }
 }
 
