@@ -41,6 +41,8 @@ std::unique_ptr<platform::VideoSource> open_configured(const SourceConfig& sourc
   options.width = source.width;
   options.height = source.height;
   options.fps = source.fps;
+  const std::string ignored = ignored_capture_request(source.uri, options);
+  if (!ignored.empty()) spdlog::warn("{}", ignored);
   std::unique_ptr<platform::VideoSource> opened;
   if (source.loop != 0) {  // a file (validate() refused a live source)
     opened = std::make_unique<platform::LoopingSource>(

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 
+#include "common/input_error.hpp"
 #include "platform/reconnecting_source.hpp"
 #include "platform/video_uri.hpp"
 #include "runner/sequence_clock_source.hpp"
@@ -51,6 +52,23 @@ std::unique_ptr<platform::VideoSource> open_source(const std::string& uri,
                  std::chrono::duration_cast<std::chrono::seconds>(policy.max_delay).count());
   }
   return source;
+}
+
+std::string ignored_capture_request(const std::string& uri,
+                                    const platform::SourceOptions& options) {
+  if (options.width <= 0 && options.height <= 0 && options.fps <= 0.0) return "";
+  if (!is_sequence_uri(uri)) {
+    try {
+      // A camera takes them; an RTSP stream (live) uses them until it first appears (cold start:
+      // the tracker's rate and size, docs/sources.md).
+      if (platform::is_live(platform::parse_video_uri(uri))) return "";
+    } catch (const InputError&) {
+      return "";  // reported when the source opens
+    }
+  }
+  return uri +
+         ": source.width/height/fps (--input-width/-height/-rate) choose a camera's capture "
+         "mode (v4l2://, csi://); a recording plays at its own size and rate";
 }
 
 }  // namespace rtmot::runner

@@ -10,6 +10,7 @@
 
 #include "common/input_error.hpp"
 #include "runner/run_setup.hpp"
+#include "runner/source_factory.hpp"
 #include "shared_data.hpp"
 
 namespace rtmot::pipeline {
@@ -265,3 +266,27 @@ TEST(RunConfig, PlaybackModesRoundTrip) {
 
 }  // namespace
 }  // namespace rtmot::pipeline
+
+namespace rtmot::runner {
+namespace {
+
+// --input-width on a file is a camera's capture mode asked of a file: said in one line, not
+// silently without effect; a camera takes it, and nothing asked says nothing (issue 22).
+TEST(CaptureRequest, OnlyCamerasTakeASizeAndRateOthersSaySo) {
+  platform::SourceOptions asked;
+  asked.width = 640;
+  EXPECT_EQ(ignored_capture_request("data/vtest.avi", asked),
+            "data/vtest.avi: source.width/height/fps (--input-width/-height/-rate) choose a "
+            "camera's capture mode (v4l2://, csi://); a recording plays at its own size and rate");
+  // A stream's cold start uses them until it appears.
+  EXPECT_EQ(ignored_capture_request("rtsp://cam/stream", asked), "");
+  EXPECT_EQ(ignored_capture_request("v4l2:///dev/video0", asked), "");
+  EXPECT_EQ(ignored_capture_request("csi://0", asked), "");
+  EXPECT_EQ(ignored_capture_request("data/vtest.avi", platform::SourceOptions{}), "");
+  platform::SourceOptions rate;
+  rate.fps = 15.0;
+  EXPECT_NE(ignored_capture_request("test://ball", rate), "");
+}
+
+}  // namespace
+}  // namespace rtmot::runner
