@@ -31,17 +31,21 @@ sysroot_packages=(
   gstreamer1.0-plugins-base gstreamer1.0-plugins-good gstreamer1.0-libav
   libspdlog-dev libfmt-dev libcli11-dev libyaml-cpp-dev nlohmann-json3-dev
   gstreamer1.0-plugins-ugly libgstrtspserver-1.0-dev libmosquitto-dev libcivetweb-dev
+  gstreamer1.0-plugins-bad  # h264parse/h265parse (every encoded video), openh264enc, x265enc, sdpdemux
   libgtest-dev libgmock-dev libbenchmark-dev
 )
 # The GStreamer plugins our pipelines use (platform/gst_pipelines.cpp): core elements, decodebin and
 # typefinding, AVI demuxing and the libav decoders (vtest.avi is MS-MPEG4v3), videoconvert, appsink,
 # the test source, V4L2 and JPEG for cameras, RTSP (rtspsrc and its RTP/UDP helpers); the video
-# outputs (outputs/gst_video_output.cpp): x264, MP4 and Matroska muxing and demuxing, PNG for the
-# tests' frame checks.
+# outputs (outputs/video_encoding.cpp, gst_video_output.cpp): the encoders (x264, OpenH264, x265), their
+# parsers, the padding to a size the encoder takes (videobox), MP4 and Matroska muxing and demuxing,
+# an RTP stream's SDP (sdpelem), PNG and multipart for the tests' frame checks. A plugin missing here
+# shows as "no H.264 encoder in this GStreamer" under qemu: keep it in step with the elements the
+# code names (`gst-inspect-1.0 ELEMENT` says the plugin).
 gst_plugins=(
   coreelements playback typefindfunctions app videoconvertscale videotestsrc
   avi libav jpeg video4linux2 videorate rtsp rtpmanager rtp udp
-  x264 isomp4 matroska png
+  x264 openh264 x265 videoparsersbad videobox isomp4 matroska png multipart sdpelem
 )
 host_packages=(crossbuild-essential-arm64 qemu-user mmdebstrap cmake ninja-build pkg-config file python3)
 
