@@ -82,7 +82,7 @@ double to_ms(double ns) {
 void print_message(const messages::DecodedMessage& message, messages::Arrival arrival) {
   const auto& frame = message.frame;
   fmt::print(
-      "stream {} seq {} frame {}: {} tracks{}, latency {:.1f} ms, dropped {}{}{}\n",
+      "stream {} seq {} frame {}: {} tracks{}, latency {:.1f} ms, skipped {}{}{}\n",
       frame.stream_id, frame.sequence, frame.frame_number, frame.tracks.size(),
       message.truncated() ? fmt::format(" of {} (truncated)", message.total_track_count) : "",
       to_ms(static_cast<double>(message.latency_ns())), frame.frames_dropped, describe(arrival),
@@ -134,7 +134,7 @@ void print_summary(const messages::ListenerStats& stats, const InvalidJson& inva
     const auto& seq = stream.sequences;
     fmt::print(
         "  stream {}: received {}, lost {}, reordered {}, duplicated {}, restarts {}, "
-        "truncated {}; latency min/mean/max {:.2f}/{:.2f}/{:.2f} ms; sender dropped {} frames\n",
+        "truncated {}; latency min/mean/max {:.2f}/{:.2f}/{:.2f} ms; sender skipped {} frames\n",
         id, seq.received(), seq.lost(), seq.reordered(), seq.duplicated(), seq.restarts(),
         stream.truncated, to_ms(static_cast<double>(stream.latency_min_ns)),
         to_ms(stream.latency_mean_ns()), to_ms(static_cast<double>(stream.latency_max_ns)),

@@ -86,7 +86,7 @@ void SinkStage::log_interval(const TrackedFrame& frame, std::int64_t elapsed_ns)
   for (std::size_t i = 0; i < streams_.size(); ++i) captured += captured_(i);
   spdlog::info(
       "{:.1f} fps | capture->sent p50 {:.1f} ms p95 {:.1f} ms | captured {} processed {} "
-      "dropped {}",
+      "skipped {}",
       frames_per_second(interval_frames_, elapsed_ns),
       static_cast<double>(interval_e2e_.quantile_ns(0.5)) / 1e6,
       static_cast<double>(interval_e2e_.quantile_ns(0.95)) / 1e6, captured, processed,
