@@ -117,7 +117,10 @@ video=$shared_dir/data/video/vtest.avi
 [[ -f $video ]] || fail "missing test input $video"
 sequence=$work/vtest-seq
 mkdir -p "$sequence/img1" "$sequence/gt"
-gst-launch-1.0 -q filesrc location="$video" ! decodebin ! identity eos-after=12 ! videoconvert \
+# This machine's gst-launch-1.0 with this machine's plugins: the cross stage points GStreamer's
+# variables at the arm64 sysroot's plugin set (scripts/cross_env.sh), which only rtmot under qemu reads.
+env -u GST_REGISTRY -u GST_REGISTRY_UPDATE -u GST_REGISTRY_FORK -u GST_PLUGIN_SYSTEM_PATH -u GST_PLUGIN_PATH \
+  gst-launch-1.0 -q filesrc location="$video" ! decodebin ! identity eos-after=12 ! videoconvert \
   ! jpegenc ! multifilesink location="$sequence/img1/%06d.jpg" index=1 >/dev/null 2>&1 ||
   fail "gst-launch-1.0 could not cut $video into images"
 [[ $(ls "$sequence/img1" | wc -l) == 12 ]] || fail "12 images expected: $(ls "$sequence/img1")"
