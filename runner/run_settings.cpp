@@ -25,36 +25,36 @@ constexpr int kMaxCpu = 1023;
 template <typename T>
 using Field = std::function<T&(RunConfig&)>;
 
-template <typename T>
-RunSetting real(std::string key, std::string flag, std::string doc, RealRange range,
-                Field<T> field) {
+// A number read by common/checked_number (finite, whole where a count is meant, in its range),
+// stored into the field as T.
+template <typename T, typename Range, typename Parse>
+RunSetting number(std::string key, std::string flag, std::string doc, Range range, Field<T> field,
+                  Parse parse) {
   std::string expected = range.expected();
   return {std::move(key),
           std::move(flag),
           std::move(doc),
           std::move(expected),
           false,
-          [range, field](RunConfig& c, std::string_view text, std::string&) {
-            const auto value = parse_real(text, range);
+          [range, field, parse](RunConfig& c, std::string_view text, std::string&) {
+            const auto value = parse(text, range);
             if (value) field(c) = static_cast<T>(*value);
             return value.has_value();
           }};
 }
 
 template <typename T>
+RunSetting real(std::string key, std::string flag, std::string doc, RealRange range,
+                Field<T> field) {
+  return number<T>(std::move(key), std::move(flag), std::move(doc), range, std::move(field),
+                   &parse_real);
+}
+
+template <typename T>
 RunSetting integer(std::string key, std::string flag, std::string doc, IntegerRange range,
                    Field<T> field) {
-  std::string expected = range.expected();
-  return {std::move(key),
-          std::move(flag),
-          std::move(doc),
-          std::move(expected),
-          false,
-          [range, field](RunConfig& c, std::string_view text, std::string&) {
-            const auto value = parse_integer(text, range);
-            if (value) field(c) = static_cast<T>(*value);
-            return value.has_value();
-          }};
+  return number<T>(std::move(key), std::move(flag), std::move(doc), range, std::move(field),
+                   &parse_integer);
 }
 
 // A broker and a topic to publish to (no wildcards: outputs/mqtt_uri.hpp).
