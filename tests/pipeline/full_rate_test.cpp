@@ -16,6 +16,7 @@
 #include <set>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "messages/message_file_reader.hpp"
@@ -23,6 +24,7 @@
 #include "motio/mot_files.hpp"
 #include "motio/processed_frames.hpp"
 #include "pipeline/pipeline.hpp"
+#include "pipeline_test_parts.hpp"
 #include "runner/run_config.hpp"
 #include "runner/run_setup.hpp"
 #include "shared_data.hpp"
@@ -169,6 +171,56 @@ TEST(FullRate, OneMessagePerCameraFramePredictedFlaggedProcessedUnchanged) {
   EXPECT_EQ(processed_rows, off.mot_rows);
   EXPECT_GT(on.mot_rows.size(), off.mot_rows.size() * 3);
   EXPECT_GT(row_frames.size(), processed.size() * 3);
+}
+
+// A live camera three times faster than the detector: the latest-frame slot overwrites most
+// frames before the detector takes one. Those frames still get their predicted message, from the
+// trail the next published frame carries, so the output has one message per camera frame, in
+// order. (A frame every millisecond: the trail's 128 frames leave a loaded machine 100 ms of
+// stall.)
+class PacedCamera : public test_parts::PatternSource {
+ public:
+  using PatternSource::PatternSource;
+  platform::ReadStatus read(cv::Mat& bgr, platform::FrameInfo& info) override {
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    return PatternSource::read(bgr, info);
+  }
+};
+
+class SlowDetector : public test_parts::FixedBoxDetector {
+ public:
+  void detect(const cv::Mat& image, std::int64_t frame_number,
+              std::vector<tracker::Detection>& out) override {
+    std::this_thread::sleep_for(std::chrono::milliseconds(3));
+    FixedBoxDetector::detect(image, frame_number, out);
+  }
+};
+
+TEST(FullRate, ALiveSourceGetsAMessageForEveryFrameTheSlotDropped) {
+  constexpr std::int64_t kFrames = 600;
+  test_parts::Collected collected;
+  PipelineOptions options = test_parts::quiet(PlaybackMode::realtime);
+  options.full_rate = true;
+  Pipeline pipeline(std::make_unique<PacedCamera>(kFrames), std::make_unique<SlowDetector>(),
+                    test_parts::sort_for(1000.0), test_parts::sinks_into(collected), options);
+  const std::atomic<bool> stop{false};
+  pipeline.run(stop);
+  const auto& results = collected.results;
+  ASSERT_EQ(results.size(), static_cast<std::size_t>(kFrames));
+  std::size_t predicted = 0;
+  std::size_t predicted_tracks = 0;
+  for (std::size_t i = 0; i < results.size(); ++i) {
+    EXPECT_EQ(results[i].frame_number, static_cast<std::int64_t>(i) + 1);
+    EXPECT_EQ(results[i].sequence, i);
+    if (results[i].predicted) {
+      ++predicted;
+      predicted_tracks += results[i].tracks.size();
+    }
+  }
+  // The slot dropped most frames, and the last one is always processed.
+  EXPECT_GT(predicted, results.size() / 2);
+  EXPECT_FALSE(results.back().predicted);
+  EXPECT_GT(predicted_tracks, predicted);  // the two people, once confirmed
 }
 
 }  // namespace
