@@ -29,6 +29,20 @@ class Tracker {
   const std::vector<TrackReport>& update(const std::vector<Detection>& detections,
                                          double time_seconds);
 
+  /// The tracks the last update() reported, each with its box predicted `steps` of the tracker's
+  /// own time steps after that update (a nominal frame with TimeStep::elapsed, a processed frame
+  /// with per_update), written into `out` (cleared first). Changes nothing: the next update() is
+  /// the same whether this was called or not (full-rate output: a frame the detector skipped
+  /// gets these boxes, flagged predicted). A track whose prediction is not finite is left out.
+  /// Allocates nothing when `out` has capacity for config().max_tracks.
+  void predict_reported(double steps, std::vector<TrackReport>& out) const;
+  /// The same at `time_seconds` (the clock of update()): with TimeStep::elapsed the nominal
+  /// frames since the last update; with per_update the fraction of the last interval between two
+  /// updates (one step per processed frame; before the second update, nominal frames).
+  void predict_reported_at(double time_seconds, std::vector<TrackReport>& out) const;
+  /// The steps predict_reported_at(time_seconds) predicts ahead (0 before the first update).
+  double steps_until(double time_seconds) const;
+
   /// Forgets every track and restarts ids at 1 (e.g. at a new sequence).
   void reset();
 
