@@ -74,6 +74,40 @@ std::uint32_t EventCounter::find_live(std::int32_t track_id, std::size_t positio
   return kNone;
 }
 
+// Inline into update(): it runs for every report, and most of the time it is a few loads, one
+// comparison and a few stores (the call's register saves were a sizable part of that).
+inline void EventCounter::follow(std::uint32_t index, const tracker::TrackReport& report,
+                                 double time) {
+  Slot& slot = slots_[index];
+  ++followed_;
+  const Point to = anchor_of(report.box);
+  const bool first = slot.last_update < 0;
+  if (measuring_noise_) measure_noise(slot, report.box, time);
+  const double band = std::max(config_.dead_band.min_px,
+                               config_.dead_band.noise_factor * box_noise_ * report.box.h);
+  slot.class_id = report.class_id;
+  const Point from = first ? to : slot.anchor;
+  // The clearance: when the shapes were last looked at, from `look`, no line and no zone border
+  // was nearer than `clearance` (0 when the track was within a band). While the track stays
+  // closer to `look` than the clearance minus today's band, its positions since, and the straight
+  // moves between them, lie in a disc that meets no shape, and it is beyond the band on the same
+  // side of each: looking would decide nothing, so it is skipped. Displacement, not path length:
+  // a person walking to and fro beside a line, or a box jittering in place, is never looked at.
+  // Most tracks are far from every shape most of the time: most updates cost this comparison.
+  const double dx = to.x - slot.look.x;
+  const double dy = to.y - slot.look.y;
+  const double room = slot.clearance - band;
+  if (first || !(room > 0.0 && dx * dx + dy * dy < room * room))
+    look(index, from, to, band, first, time);
+  slot.previous_size = first ? Size{report.box.w, report.box.h} : slot.size;
+  slot.size = {report.box.w, report.box.h};
+  slot.previous_update = slot.last_update;
+  slot.anchor = to;
+  slot.last_update = updates_;
+  slot.previous_seen = slot.last_seen;
+  slot.last_seen = time;
+}
+
 const std::vector<Event>& EventCounter::update(const std::vector<tracker::TrackReport>& reports,
                                                double time_seconds) {
   events_.clear();
@@ -215,35 +249,40 @@ void EventCounter::settle_noise() {
   if (noise_values_ > 0) box_noise_ = noise_window_.order_statistic(0.5);
 }
 
-void EventCounter::follow(std::uint32_t index, const tracker::TrackReport& report, double time) {
-  Slot& slot = slots_[index];
-  ++followed_;
-  const Point to = anchor_of(report.box);
-  const bool first = slot.last_update < 0;
-  if (measuring_noise_) measure_noise(slot, report.box, time);
-  const double band = std::max(config_.dead_band.min_px,
-                               config_.dead_band.noise_factor * box_noise_ * report.box.h);
-  slot.class_id = report.class_id;
-  const Point from = first ? to : slot.anchor;
-  // The clearance: when the shapes were last looked at, from `look`, no line and no zone border
-  // was nearer than `clearance` (0 when the track was within a band). While the track stays
-  // closer to `look` than the clearance minus today's band, its positions since, and the straight
-  // moves between them, lie in a disc that meets no shape, and it is beyond the band on the same
-  // side of each: looking would decide nothing, so it is skipped. Displacement, not path length:
-  // a person walking to and fro beside a line, or a box jittering in place, is never looked at.
-  // Most tracks are far from every shape most of the time: most updates cost this comparison.
-  const double dx = to.x - slot.look.x;
-  const double dy = to.y - slot.look.y;
-  const double room = slot.clearance - band;
-  if (first || !(room > 0.0 && dx * dx + dy * dy < room * room))
-    look(index, from, to, band, first, time);
-  slot.previous_size = first ? Size{report.box.w, report.box.h} : slot.size;
-  slot.size = {report.box.w, report.box.h};
-  slot.previous_update = slot.last_update;
-  slot.anchor = to;
-  slot.last_update = updates_;
-  slot.previous_seen = slot.last_seen;
-  slot.last_seen = time;
+inline double EventCounter::look_at_line(std::uint32_t index, std::size_t l, const Point& from,
+                                         const Point& to, double band, bool first, double time) {
+  const Slot& slot = slots_[index];
+  LineState& state = line_state(index, l);
+  const PreparedLine& line = lines_[l];
+  // signed_distance() and crossing_position() of geometry.hpp, with the line's constants
+  // prepared and the previous position's distance remembered: one cross product per line and
+  // update, the crossing point only when the move changes sides.
+  const auto distance_of = [&line](const Point& p) {
+    return (line.dx * (p.y - line.from.y) - line.dy * (p.x - line.from.x)) * line.inverse_length;
+  };
+  const double distance = distance_of(to);
+  if (!first) {
+    // The distance kept is `from`'s if this line was looked at in the track's last update.
+    const double previous =
+        state.looked_at == slot.last_update ? state.distance : distance_of(from);
+    const bool meets = (previous <= 0.0 && distance >= 0.0) || (previous >= 0.0 && distance <= 0.0);
+    if (meets && !(previous == 0.0 && distance == 0.0)) {
+      const double t = previous / (previous - distance);
+      const double mx = from.x + t * (to.x - from.x) - line.from.x;
+      const double my = from.y + t * (to.y - from.y) - line.from.y;
+      const double position = (mx * line.dx + my * line.dy) * line.inverse_squared_length;
+      if (position >= 0.0 && position <= 1.0) state.met_within_ends = true;
+    }
+  }
+  state.distance = distance;
+  state.looked_at = updates_;
+  const std::int8_t side = distance > band ? 1 : distance < -band ? -1 : 0;
+  if (side == 0) return 0.0;  // in the dead band: keeps the side it had
+  if (state.side != 0 && side != state.side && state.met_within_ends)
+    count_crossing(l, slot, side, to, time);
+  state.side = side;
+  state.met_within_ends = false;
+  return std::abs(distance);
 }
 
 void EventCounter::look(std::uint32_t index, const Point& from, const Point& to, double band,
@@ -303,42 +342,6 @@ void EventCounter::look(std::uint32_t index, const Point& from, const Point& to,
   slot.nearest = static_cast<std::uint32_t>(nearest_shape);
   slot.full_look = to;
   slot.look = to;
-}
-
-double EventCounter::look_at_line(std::uint32_t index, std::size_t l, const Point& from,
-                                  const Point& to, double band, bool first, double time) {
-  const Slot& slot = slots_[index];
-  LineState& state = line_state(index, l);
-  const PreparedLine& line = lines_[l];
-  // signed_distance() and crossing_position() of geometry.hpp, with the line's constants
-  // prepared and the previous position's distance remembered: one cross product per line and
-  // update, the crossing point only when the move changes sides.
-  const auto distance_of = [&line](const Point& p) {
-    return (line.dx * (p.y - line.from.y) - line.dy * (p.x - line.from.x)) * line.inverse_length;
-  };
-  const double distance = distance_of(to);
-  if (!first) {
-    // The distance kept is `from`'s if this line was looked at in the track's last update.
-    const double previous =
-        state.looked_at == slot.last_update ? state.distance : distance_of(from);
-    const bool meets = (previous <= 0.0 && distance >= 0.0) || (previous >= 0.0 && distance <= 0.0);
-    if (meets && !(previous == 0.0 && distance == 0.0)) {
-      const double t = previous / (previous - distance);
-      const double mx = from.x + t * (to.x - from.x) - line.from.x;
-      const double my = from.y + t * (to.y - from.y) - line.from.y;
-      const double position = (mx * line.dx + my * line.dy) * line.inverse_squared_length;
-      if (position >= 0.0 && position <= 1.0) state.met_within_ends = true;
-    }
-  }
-  state.distance = distance;
-  state.looked_at = updates_;
-  const std::int8_t side = distance > band ? 1 : distance < -band ? -1 : 0;
-  if (side == 0) return 0.0;  // in the dead band: keeps the side it had
-  if (state.side != 0 && side != state.side && state.met_within_ends)
-    count_crossing(l, slot, side, to, time);
-  state.side = side;
-  state.met_within_ends = false;
-  return std::abs(distance);
 }
 
 void EventCounter::count_crossing(std::size_t line, const Slot& slot, int side, const Point& where,
