@@ -136,6 +136,24 @@ std::unique_ptr<detector::Detector> make_detector(const RunConfig& config) {
   return std::make_unique<detector::SsdDetector>(ssd);
 }
 
+std::vector<std::unique_ptr<detector::Detector>> make_detectors(const RunConfig& config) {
+  std::vector<std::unique_ptr<detector::Detector>> lanes;
+  lanes.push_back(make_detector(config));
+  const auto* ssd = dynamic_cast<const detector::SsdDetector*>(lanes.front().get());
+  const bool cuda = ssd != nullptr && ssd->backend().backend == cv::dnn::DNN_BACKEND_CUDA;
+  // auto: two on CUDA, where the GPU runs one batch while the host prepares and decodes the
+  // other (docs/gpu.md); one on the CPU, where a second lane would only take cores from the
+  // first's OpenCV threads (measured, docs/gpu.md).
+  const int wanted = config.detector.in_flight > 0 ? config.detector.in_flight : (cuda ? 2 : 1);
+  // One after another: each loads, warms up and (CUDA) captures its graphs alone.
+  while (static_cast<int>(lanes.size()) < wanted) lanes.push_back(make_detector(config));
+  spdlog::info("detector: {} batch{} in flight{}", wanted, wanted == 1 ? "" : "es",
+               config.detector.in_flight > 0 ? ""
+               : cuda                        ? " (auto: CUDA)"
+                                             : " (auto: not CUDA)");
+  return lanes;
+}
+
 namespace {
 void check_run_files(const RunConfig& config);  // below, with prepare_video_output
 }  // namespace
