@@ -64,7 +64,7 @@ struct DetectorConfig {
   /// process-wide) in one place: runner::make_detector.
   int threads{0};
   /// Batches in flight in the detect stage (its lanes, each a detector of its own); 0 = auto:
-  /// 2 on CUDA, 1 otherwise. Decided in one place: runner::make_detectors.
+  /// 3 on CUDA, 1 otherwise. Decided in one place: runner::make_detectors.
   int in_flight{0};
   std::vector<int> classes{detector::default_classes()};  // COCO ids to keep; empty = all
   std::string det_file;                                   // replay: a MOTChallenge det.txt

@@ -244,7 +244,7 @@ std::vector<RunSetting> detector_settings() {
                    {0, kMaxThreads}, [](RunConfig& c) -> int& { return c.detector.threads; }),
       parsed<int>(
           "detector.in_flight", "--in-flight",
-          "batches in flight in the detect stage, each on a detector of its own; auto = 2 on CUDA, "
+          "batches in flight in the detect stage, each on a detector of its own; auto = 3 on CUDA, "
           "1 otherwise",
           "auto or an integer in [1, " + std::to_string(kMaxInFlight) + "]",
           [](const std::string& t, std::string&) -> std::optional<int> {

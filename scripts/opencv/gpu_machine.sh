@@ -300,7 +300,7 @@ PY
       done
     done
   done
-  column -t -s $'\t' "$summary"
+  cat "$summary"
 fi
 trap - ERR
 step "all stages passed: $stages"

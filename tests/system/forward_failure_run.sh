@@ -6,10 +6,12 @@
 # binary message file decodes with nothing corrupt or truncated, the MOTChallenge results and
 # frames files list the same frames the messages carry. Provoked with the test hook
 # RTMOT_FAULT_FORWARD_AFTER (detector/forward_fault.hpp) on the cpu backend, with detector.in_flight
-# 1 and 2 (lanes on their own threads), two image-folder sources of vtest.avi, every frame.
-# Usage: forward_failure_run.sh RTMOT SOURCE_DIR SHARED_DIR
+# 1 and 2 (lanes on their own threads), two image-folder sources of vtest.avi, every frame. On the
+# GPU machine the same run on cuda (BACKEND cuda) must also name the way out, `backend: cpu`; there
+# FRAMES names a folder of frames (no GStreamer codecs to cut vtest.avi with).
+# Usage: forward_failure_run.sh RTMOT SOURCE_DIR SHARED_DIR [BACKEND [FRAMES]]
 set -euo pipefail
-rtmot=$1 source_dir=$2 shared_dir=$3
+rtmot=$1 source_dir=$2 shared_dir=$3 backend=${4:-cpu} frames=${5:-}
 video=$shared_dir/data/video/vtest.avi
 model=$source_dir/models/ssdlite_mobilenet_v2_coco.onnx
 fail() { echo "FAIL: $*"; exit 1; }
@@ -20,18 +22,24 @@ trap 'rm -rf "$work"' EXIT
 
 # 12 frames per source, each source its own folder (results are named after it).
 mkdir -p "$work/cam-a" "$work/cam-b"
-gst-launch-1.0 -q filesrc location="$video" ! decodebin ! identity eos-after=16 ! videoconvert \
+if [[ -n $frames ]]; then
+  cp "$frames"/* "$work/cam-a/"
+else
+  gst-launch-1.0 -q filesrc location="$video" ! decodebin ! identity eos-after=16 ! videoconvert \
   ! jpegenc ! multifilesink location="$work/cam-a/%06d.jpg" index=1 >/dev/null 2>&1 ||
   fail "gst-launch-1.0 could not cut $video into images"
-find "$work/cam-a" -name '*.jpg' | LC_ALL=C sort | tail -n +13 | xargs -r rm --
-[[ $(ls "$work/cam-a" | wc -l) == 12 ]] || fail "12 images expected: $(ls "$work/cam-a")"
-cp "$work/cam-a"/*.jpg "$work/cam-b/"
+  find "$work/cam-a" -name '*.jpg' | LC_ALL=C sort | tail -n +13 | xargs -r rm --
+  [[ $(ls "$work/cam-a" | wc -l) == 12 ]] || fail "12 images expected: $(ls "$work/cam-a")"
+fi
+cp "$work/cam-a"/* "$work/cam-b/"
+images=$(ls "$work/cam-a" | wc -l)
 
 for in_flight in 1 2; do
   out=$work/out-$in_flight
   mkdir -p "$out"
   rc=0
-  RTMOT_FAULT_FORWARD_AFTER=3 timeout 300 "$rtmot" run --model "$model" --backend cpu \
+  RTMOT_FAULT_FORWARD_AFTER=3 timeout 300 "$rtmot" run --model "$model" --backend "${backend%-fp16}" \
+    --fp16 "$([[ $backend == *fp16 ]] && echo on || echo off)" \
     --detector-threads 1 --in-flight "$in_flight" --playback every-frame \
     --source "images://$work/cam-a?fps=10" --source "images://$work/cam-b?fps=10" \
     --jsonl "$out/tracks.jsonl" --binary "$out/tracks.bin" --mot-results "$out/mot" \
@@ -42,14 +50,16 @@ for in_flight in 1 2; do
     { cat "$out/run.log"; fail "in_flight $in_flight: the log does not say how many batches are in flight"; }
   line=$(grep '\[error\]' "$out/run.log" || true)
   [[ $(grep -c '\[error\]' "$out/run.log") == 1 ]] || { cat "$out/run.log"; fail "one error line expected"; }
-  [[ $line == *"the forward pass failed on cpu at run time"*"RTMOT_FAULT_FORWARD_AFTER=3"* ]] ||
+  [[ $line == *"the forward pass failed on $backend at run time"*"RTMOT_FAULT_FORWARD_AFTER=3"* ]] ||
     fail "in_flight $in_flight: the error does not name the backend and the failure: $line"
+  [[ $backend == cpu || $line == *"set 'backend: cpu'"* ]] ||
+    fail "in_flight $in_flight: the error on $backend does not name the way out (backend: cpu): $line"
 
   # JSON lines: something was written, each line one object, the file ends with a line break.
   jsonl=$out/tracks.jsonl
   messages=$(wc -l <"$jsonl")
   ((messages >= 2)) || fail "in_flight $in_flight: $messages JSON lines, the frames before the failure expected"
-  ((messages <= 24)) || fail "in_flight $in_flight: $messages JSON lines, more frames than the sources have"
+  ((messages <= 2 * images)) || fail "in_flight $in_flight: $messages JSON lines, more frames than the sources have"
   [[ $(tail -c 1 "$jsonl" | od -An -c | tr -d ' ') == '\n' ]] || fail "in_flight $in_flight: the JSON lines end mid-line"
   bad=$(grep -cv '^{.*}$' "$jsonl" || true)
   [[ $bad == 0 ]] || fail "in_flight $in_flight: $bad JSON lines are not one object"
