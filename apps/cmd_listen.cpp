@@ -82,11 +82,11 @@ double to_ms(double ns) {
 void print_message(const messages::DecodedMessage& message, messages::Arrival arrival) {
   const auto& frame = message.frame;
   fmt::print(
-      "stream {} seq {} frame {}: {} tracks{}, latency {:.1f} ms, skipped {}{}{}\n",
+      "stream {} seq {} frame {}: {} tracks{}{}, latency {:.1f} ms, skipped {}{}{}\n",
       frame.stream_id, frame.sequence, frame.frame_number, frame.tracks.size(),
       message.truncated() ? fmt::format(" of {} (truncated)", message.total_track_count) : "",
-      to_ms(static_cast<double>(message.latency_ns())), frame.frames_dropped, describe(arrival),
-      frame.end_of_stream ? " (end of stream)" : "");
+      frame.predicted ? " predicted" : "", to_ms(static_cast<double>(message.latency_ns())),
+      frame.frames_dropped, describe(arrival), frame.end_of_stream ? " (end of stream)" : "");
   for (const auto& event : frame.events) {  // docs/events.md
     fmt::print("  event {} {} track {}{}{}\n", events::kEventKindNames.name(event.kind),
                event.index, event.track_id,
@@ -139,6 +139,12 @@ void print_summary(const messages::ListenerStats& stats, const InvalidJson& inva
         stream.truncated, to_ms(static_cast<double>(stream.latency_min_ns)),
         to_ms(stream.latency_mean_ns()), to_ms(static_cast<double>(stream.latency_max_ns)),
         stream.last_frames_dropped);
+    if (stream.predicted > 0) {
+      fmt::print(
+          "  stream {}: predicted {} of them (full-rate output: frames the sender's detector "
+          "skipped, sent with the tracks' predicted boxes)\n",
+          id, stream.predicted);
+    }
     for (const auto& [kind_and_index, count] : stream.events) {
       fmt::print("  stream {}: events {} {}: {}\n", id,
                  events::kEventKindNames.name(static_cast<events::EventKind>(kind_and_index.first)),
