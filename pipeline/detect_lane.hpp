@@ -28,6 +28,7 @@
 #include <vector>
 
 #include "detector/detector.hpp"
+#include "pipeline/frame_trail.hpp"
 #include "pipeline/wake_signal.hpp"
 #include "platform/thread.hpp"
 #include "platform/video_source.hpp"
@@ -42,6 +43,7 @@ struct LaneFrame {
   platform::FrameInfo info;
   bool outage{false};
   std::int64_t taken_ns{0};  // when the stage took it from the slot
+  FrameTrail trail;          // the frames read before it (full-rate output): copied, 3 KB
   cv::Mat image;
 };
 

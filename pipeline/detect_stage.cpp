@@ -77,6 +77,7 @@ void DetectStage::take_batch() {
     frame.input = i;
     frame.info = item.info;
     frame.outage = item.outage;
+    frame.trail = item.trail;
     frame.taken_ns = steady_now_ns();
     // The picture moves into the lane; the slot keeps the buffer the lane held (same size in
     // steady state), for the capture thread to decode into again.
