@@ -35,7 +35,8 @@ struct FrameResult {
   /// frame_number and pts_ns are the last processed frame's.
   bool end_of_stream{false};
   /// Full-rate output (docs/full-rate.md): a frame the detector skipped; `tracks` are the tracks
-  /// the last processed frame reported, each at its box predicted for this frame's time. They
+  /// the last processed frame reported (matched at least twice in a row), each at its box
+  /// predicted for this frame's time. They
   /// never fed back into the tracker. No events (counted on processed frames only).
   bool predicted{false};
   FrameTimes times;

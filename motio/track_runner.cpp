@@ -90,7 +90,8 @@ TrackRun track_detections(const FrameDetections& detections, const SequenceInfo&
     }
     if (options.predict_skipped && !run.processed_frames.empty()) {
       for (std::int64_t skipped = run.processed_frames.back() + 1; skipped < frame; ++skipped) {
-        tracker.predict_reported_at(static_cast<double>(skipped - 1) / info.frame_rate, predicted);
+        tracker.predict_reported_at(static_cast<double>(skipped - 1) / info.frame_rate, predicted,
+                                    options.predict_min_hits);
         add_rows(skipped, predicted);
         ++run.frames_predicted;
       }

@@ -10,6 +10,7 @@
 
 #include "motio/frame_detections.hpp"
 #include "motio/mot_files.hpp"
+#include "tracker/tracker.hpp"
 #include "tracker/tracker_config.hpp"
 #include "tracker/tracker_extension.hpp"
 
@@ -31,6 +32,8 @@ struct TrackOptions {
   /// each track the last update reported at its box predicted for that frame's time
   /// (Tracker::predict_reported_at; the tracker's state is not changed by it).
   bool predict_skipped{false};
+  /// Which reported tracks get the predicted rows (tracker::kPredictedMinHits: the product's rule).
+  int predict_min_hits{tracker::kPredictedMinHits};
   /// When set and true, the run stops before its next frame (TrackRun::stopped).
   const std::atomic<bool>* stop{nullptr};
   /// The study's rules (study/study_knobs.hpp) for the Tracker; empty in the product.

@@ -25,7 +25,8 @@ class TrackStage {
  public:
   /// `full_rate`: before each processed frame, one result per frame its source skipped since its
   /// last processed one (DetectedFrame::trail), flagged predicted, with the tracks the tracker
-  /// reported last at their boxes predicted for that frame's pts (docs/full-rate.md).
+  /// reported last (tracker::kPredictedMinHits) at their boxes predicted for that frame's pts
+  /// (docs/full-rate.md).
   TrackStage(const std::vector<TrackInput>& inputs, SpscQueue<DetectedFrame>& input,
              std::size_t queue_capacity, bool keep_images, bool full_rate = false);
 

@@ -51,6 +51,9 @@ struct LatencyRow {
   /// Full-rate output (docs/full-rate.md): the processed frames' boxes plus, at every skipped
   /// frame, each reported track's prediction for its time; scored at every frame.
   mot::Metrics full_rate_output;
+  /// The same with every reported track predicted (min_hits 0), not only those matched twice in a
+  /// row (tracker::kPredictedMinHits): what that rule gains and costs.
+  mot::Metrics full_rate_output_every;
   std::int64_t frames_predicted{0};
 };
 

@@ -393,11 +393,11 @@ struct Tracker::State {
 
   // The tracks settle_and_report() reported are the live ones it left confirmed: a copy of each
   // one's motion model is advanced (peek), the track itself is not touched.
-  void predict_reported(double steps, std::vector<TrackReport>& out) const {
+  void predict_reported(double steps, std::vector<TrackReport>& out, int min_hits) const {
     out.clear();
     for (const int slot : order) {
       const Track& track = slots[slot];
-      if (track.life.stage() != TrackStage::confirmed) continue;
+      if (track.life.stage() != TrackStage::confirmed || track.hit_streak < min_hits) continue;
       TrackReport ahead = report(track);
       ahead.box = peek(track.predictor, steps);
       if (is_finite(ahead.box)) out.push_back(ahead);
@@ -467,12 +467,13 @@ const std::vector<TrackReport>& Tracker::track_table() {
   return state_->fill_table();
 }
 
-void Tracker::predict_reported(double steps, std::vector<TrackReport>& out) const {
-  state_->predict_reported(steps, out);
+void Tracker::predict_reported(double steps, std::vector<TrackReport>& out, int min_hits) const {
+  state_->predict_reported(steps, out, min_hits);
 }
 
-void Tracker::predict_reported_at(double time_seconds, std::vector<TrackReport>& out) const {
-  state_->predict_reported(state_->steps_until(time_seconds), out);
+void Tracker::predict_reported_at(double time_seconds, std::vector<TrackReport>& out,
+                                  int min_hits) const {
+  state_->predict_reported(state_->steps_until(time_seconds), out, min_hits);
 }
 
 double Tracker::steps_until(double time_seconds) const {

@@ -112,6 +112,39 @@ TEST(PredictReported, IsThePriorOfTheNextUpdate) {
   EXPECT_GT(moved, 0);
 }
 
+// The rule for which reported tracks are predicted: min_hits 0 gives every track the update
+// reported, the default only those matched at least kPredictedMinHits updates in a row.
+TEST(PredictReported, KeepsTheReportedTracksMatchedOftenEnough) {
+  const test::MotSequence sequence = sequence_or_skip();
+  if (sequence.frames.empty()) GTEST_SKIP() << "MOT15 ADL-Rundle-6 not in shared/";
+  Tracker tracker(for_sequence(*find_preset("rtmot"), sequence));
+  std::vector<TrackReport> every;
+  std::vector<TrackReport> kept;
+  std::size_t left_out = 0;
+  for (std::size_t f = 0; f < sequence.frames.size(); f += 5) {
+    const std::vector<TrackReport> reported =
+        tracker.update(sequence.frames[f], static_cast<double>(f) / sequence.frame_rate);
+    const double next = static_cast<double>(f + 2) / sequence.frame_rate;
+    tracker.predict_reported_at(next, every, 0);
+    tracker.predict_reported_at(next, kept);
+    ASSERT_EQ(every.size(), reported.size());
+    std::size_t k = 0;
+    for (std::size_t i = 0; i < reported.size(); ++i) {
+      EXPECT_EQ(every[i].id, reported[i].id);
+      if (reported[i].hits < kPredictedMinHits) {
+        ++left_out;
+        continue;
+      }
+      ASSERT_LT(k, kept.size());
+      EXPECT_EQ(kept[k].id, reported[i].id);
+      EXPECT_TRUE(same_bits(kept[k].box, every[i].box));
+      ++k;
+    }
+    EXPECT_EQ(k, kept.size());
+  }
+  EXPECT_GT(left_out, 0U);  // at 1/5 rate tracks are found again with one match
+}
+
 // SORT steps once per processed frame, whatever the time: a frame halfway through the last
 // interval between two updates is half a step ahead.
 TEST(PredictReported, PerUpdateStepsAreFractionsOfTheLastInterval) {
