@@ -34,6 +34,11 @@ struct FrameResult {
   /// stream decided (EventCounter::finish(): tracks still inside a zone leave it, marked lost).
   /// frame_number and pts_ns are the last processed frame's.
   bool end_of_stream{false};
+  /// Full-rate output (docs/full-rate.md): a frame the detector skipped; `tracks` are the tracks
+  /// the last processed frame reported (matched at least twice in a row), each at its box
+  /// predicted for this frame's time. They
+  /// never fed back into the tracker. No events (counted on processed frames only).
+  bool predicted{false};
   FrameTimes times;
   std::vector<tracker::TrackReport> tracks;  // reserved once; never grows in steady state
   /// Line crossings and zone visits decided in this frame (events/, docs/events.md); reserved once.

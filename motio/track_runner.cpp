@@ -51,6 +51,19 @@ TrackRun track_detections(const FrameDetections& detections, const SequenceInfo&
                                        ? options.extension()
                                        : std::unique_ptr<tracker::TrackerExtension>());
 
+  std::vector<tracker::TrackReport> predicted;
+  if (options.predict_skipped) predicted.reserve(static_cast<std::size_t>(config.max_tracks));
+  const auto add_rows = [&run](std::int64_t frame,
+                               const std::vector<tracker::TrackReport>& reports) {
+    for (const auto& report : reports) {
+      MotRow row;
+      row.frame = static_cast<int>(frame);
+      row.id = report.id;
+      row.box = report.box;
+      row.conf = report.score;
+      run.tracks.push_back(row);
+    }
+  };
   using Clock = std::chrono::steady_clock;
   Clock::duration in_update{};
   for (std::size_t i = 1; i < options.frames.size(); ++i) {
@@ -75,6 +88,14 @@ TrackRun track_detections(const FrameDetections& detections, const SequenceInfo&
       run.stopped = true;
       break;
     }
+    if (options.predict_skipped && !run.processed_frames.empty()) {
+      for (std::int64_t skipped = run.processed_frames.back() + 1; skipped < frame; ++skipped) {
+        tracker.predict_reported_at(static_cast<double>(skipped - 1) / info.frame_rate, predicted,
+                                    options.predict_min_hits);
+        add_rows(skipped, predicted);
+        ++run.frames_predicted;
+      }
+    }
     const double time = static_cast<double>(frame - 1) / info.frame_rate;
     const auto& in_frame = detections.at(frame);
     if (in_frame.size() > static_cast<std::size_t>(config.max_detections)) {
@@ -84,14 +105,7 @@ TrackRun track_detections(const FrameDetections& detections, const SequenceInfo&
     const auto start = Clock::now();
     const auto& reports = tracker.update(in_frame, time);
     in_update += Clock::now() - start;
-    for (const auto& report : reports) {
-      MotRow row;
-      row.frame = static_cast<int>(frame);
-      row.id = report.id;
-      row.box = report.box;
-      row.conf = report.score;
-      run.tracks.push_back(row);
-    }
+    add_rows(frame, reports);
     ++run.frames_processed;
     run.processed_frames.push_back(static_cast<int>(frame));
     if (progress) progress(static_cast<int>(frame), info.length);

@@ -10,6 +10,7 @@
 
 #include "motio/frame_detections.hpp"
 #include "motio/mot_files.hpp"
+#include "tracker/tracker.hpp"
 #include "tracker/tracker_config.hpp"
 #include "tracker/tracker_extension.hpp"
 
@@ -27,6 +28,12 @@ struct TrackOptions {
   /// pipeline with a slow detector would process (common/simulated_clock.hpp); `interval` is
   /// then not used.
   std::vector<int> frames;
+  /// Full-rate output (docs/full-rate.md): every frame between two processed ones also gets rows,
+  /// each track the last update reported at its box predicted for that frame's time
+  /// (Tracker::predict_reported_at; the tracker's state is not changed by it).
+  bool predict_skipped{false};
+  /// Which reported tracks get the predicted rows (tracker::kPredictedMinHits: the product's rule).
+  int predict_min_hits{tracker::kPredictedMinHits};
   /// When set and true, the run stops before its next frame (TrackRun::stopped).
   const std::atomic<bool>* stop{nullptr};
   /// The study's rules (study/study_knobs.hpp) for the Tracker; empty in the product.
@@ -38,6 +45,7 @@ struct TrackRun {
   std::vector<MotRow> tracks;  // one row per reported track and frame
   int frames_processed{0};
   std::vector<int> processed_frames;  // their numbers, ascending (motio/processed_frames.hpp)
+  int frames_predicted{0};            // frames given predicted rows (TrackOptions::predict_skipped)
   std::int64_t update_ns{0};          // time spent inside Tracker::update only
   bool stopped{false};                // by TrackOptions::stop, before the sequence's end
   /// Frames with more detections than the tracker's max_detections (it used the first ones of

@@ -78,6 +78,13 @@ void AnnotatedVideo::consume(const pipeline::SinkFrame& frame) {
               // the tap runs before publishing)
     if (side->info.frame_number < result.frame_number) {
       write_predicted(*side);
+    } else if (result.predicted) {
+      // Full-rate output: the tracker's own prediction for this skipped frame, drawn dashed.
+      overlay_.draw(side->image, result, true, stats_);
+      if (events_overlay_) events_overlay_->draw(side->image);
+      stream_->push(side->image);
+      ++written_;
+      ++predicted_;
     } else {
       overlay_.draw(side->image, result, false, stats_);
       if (events_overlay_) {
@@ -90,6 +97,7 @@ void AnnotatedVideo::consume(const pipeline::SinkFrame& frame) {
     }
     frames_.pop();
   }
+  if (result.predicted) return;  // no events; the extrapolation below keeps to processed frames
   if (events_overlay_ && !counted) events_overlay_->count(result);
   remember(result);
 }

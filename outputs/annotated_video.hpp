@@ -7,9 +7,10 @@
 // tracks' boxes predicted at their time (drawn dashed), then frame M with its tracks. The overlay
 // is outputs/overlay.hpp; the stream (file, RTSP, RTP, display) outputs/video_stream.hpp.
 //
-// The prediction is constant velocity from the last two processed frames (per track id), done here
-// rather than by querying the tracker: the tracker runs on another thread and has already moved on
-// to later frames, and its Kalman model is constant velocity too.
+// With full-rate output (output.full_rate, docs/full-rate.md) the pipeline sends a result for
+// every skipped frame with the tracker's own predictions, and those are drawn. Without it, the
+// prediction is constant velocity from the last two processed frames (per track id), done here:
+// the tracker runs on another thread and has already moved on to later frames.
 #include <cstdint>
 #include <memory>
 #include <vector>

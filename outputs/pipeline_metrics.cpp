@@ -50,7 +50,8 @@ void PipelineMetrics::observe(const messages::FrameResult& result) {
   // A few sources at most: a linear search allocates nothing and takes no lock.
   const auto id = std::find(stream_ids_.begin(), stream_ids_.end(), result.stream_id);
   // The end of a stream is no frame: only its events count (EventMetrics), and the outputs below.
-  if (id != stream_ids_.end() && !result.end_of_stream) {
+  // A skipped frame sent with predictions (full-rate output) is no processed frame either.
+  if (id != stream_ids_.end() && !result.end_of_stream && !result.predicted) {
     StreamCounters& stream = streams_[static_cast<std::size_t>(id - stream_ids_.begin())];
     if (stream.first_captured_ns.load(relaxed) == 0 && t.captured_ns > 0) {
       stream.first_captured_ns.store(t.captured_ns, relaxed);
@@ -68,7 +69,7 @@ void PipelineMetrics::observe(const messages::FrameResult& result) {
     }
     stream.in_outage = result.source_outage;
   }
-  if (!result.source_outage && !result.end_of_stream) {
+  if (!result.source_outage && !result.end_of_stream && !result.predicted) {
     for (const auto& [stage, name] : pipeline::kStageNames.entries()) {
       stages_[static_cast<std::size_t>(stage)].record(pipeline::stage_span_ns(stage, t));
     }

@@ -122,7 +122,14 @@ bool CaptureStage::publish(FrameSlotItem& item, const std::atomic<bool>& abort) 
   std::swap(back.image, item.image);
   back.info = item.info;
   back.outage = item.outage;
+  back.trail = trail_;
+  if (!item.outage) pass(item);
   return slot_.publish(abort);
+}
+
+// A real frame goes by: it enters the trail the next published items carry.
+void CaptureStage::pass(const FrameSlotItem& item) {
+  trail_.push(FrameStamp{item.info.frame_number, item.info.pts_ns, item.info.capture_ns});
 }
 
 void CaptureStage::run_simulated(const std::atomic<bool>& stop, const std::atomic<bool>& abort) {
@@ -136,7 +143,11 @@ void CaptureStage::run_simulated(const std::atomic<bool>& stop, const std::atomi
   while (have_current) {
     const bool have_next = read_frame(next, stop, abort) == Next::frame;
     const auto next_pts = have_next ? std::optional(next.info.pts_ns) : std::nullopt;
-    if (clock.takes(current.info.pts_ns, next_pts) && !publish(current, abort)) return;
+    if (!clock.takes(current.info.pts_ns, next_pts)) {
+      pass(current);
+    } else if (!publish(current, abort)) {
+      return;
+    }
     std::swap(current, next);
     have_current = have_next;
   }

@@ -61,6 +61,7 @@ class CaptureStage {
                   const std::atomic<bool>& abort);
   Next outage_tick(FrameSlotItem& item);
   bool publish(FrameSlotItem& item, const std::atomic<bool>& abort);
+  void pass(const FrameSlotItem& item);
   void run_simulated(const std::atomic<bool>& stop, const std::atomic<bool>& abort);
   static bool wait_for_pts(std::int64_t due_ns, const std::atomic<bool>& stop,
                            const std::atomic<bool>& abort);
@@ -83,6 +84,7 @@ class CaptureStage {
   std::int64_t last_pts_ns_{0};         // the last real frame's
   std::int64_t last_capture_ns_{0};     // the last real frame's
   std::int64_t first_capture_ns_{0};
+  FrameTrail trail_;  // the real frames read so far (the last FrameTrail::kCapacity)
   std::string source_error_;
   FrameTap* tap_{nullptr};
   OutageBoard* board_{nullptr};

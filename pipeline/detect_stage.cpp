@@ -111,6 +111,7 @@ bool DetectStage::detect_and_hand_on(const std::atomic<bool>& abort) {
     out->times.detect_start_ns = taken_ns_[input];
     out->times.detected_ns = detected_ns;
     out->info = frame.info;
+    out->trail = frame.trail;
     if (options_.keep_images) std::swap(out->image, frame.image);
     output_.publish();
   }

@@ -4,6 +4,7 @@
 // the source as long as the frame size is unchanged, so steady state allocates nothing.
 #include <opencv2/core/mat.hpp>
 
+#include "pipeline/frame_trail.hpp"
 #include "pipeline/latest_slot.hpp"
 #include "platform/video_source.hpp"
 
@@ -13,6 +14,7 @@ struct FrameSlotItem {
   cv::Mat image;
   platform::FrameInfo info;
   bool outage{false};  // no picture: a tick while the live source is reopened (see capture_stage)
+  FrameTrail trail;    // the real frames read before this one (pipeline/frame_trail.hpp)
 };
 
 using LatestFrameSlot = LatestSlot<FrameSlotItem>;

@@ -49,6 +49,9 @@ struct PipelineOptions {
   /// Hand each frame's picture through the queues to the consumers (an annotated video: one
   /// source only). Off, the pictures stay in the capture stage.
   bool keep_images{false};
+  /// Full-rate output (docs/full-rate.md): a message for every camera frame; those the detector
+  /// skipped carry the tracks' predicted boxes, flagged predicted.
+  bool full_rate{false};
   std::size_t queue_capacity{4};  // items in each of the two queues (at least one per source)
   /// Several sources: once one has a new frame, how long the detector waits for the others'
   /// before it runs the batch without them.

@@ -38,7 +38,9 @@ void SinkStage::run(const std::atomic<bool>& abort) {
     result.times.sent_ns = platform::steady_now_ns();
     std::int64_t elapsed_ns = 0;
     // A tick or the end of a stream is not a processed frame: no latency.
-    const bool frame_processed = !result.source_outage && !result.end_of_stream;
+    // Nor is a skipped frame sent with predictions (full-rate output).
+    const bool frame_processed =
+        !result.source_outage && !result.end_of_stream && !result.predicted;
     if (frame_processed) {
       total_.latency.record(result.times);
       total_.last_sent_ns = result.times.sent_ns;
@@ -57,7 +59,8 @@ void SinkStage::run(const std::atomic<bool>& abort) {
         fps_window_start_ns_ = result.times.sent_ns;
       }
     }
-    const SinkFrame frame{result, in->image, recent_fps_};
+    // A predicted frame's picture was never kept (the capture stage passed it over).
+    const SinkFrame frame{result, result.predicted ? no_image_ : in->image, recent_fps_};
     for (const auto& consumer : consumers_) consumer->consume(frame);
     if (frame_processed && interval_ns_ > 0 && elapsed_ns >= interval_ns_) {
       log_interval(*in, elapsed_ns);

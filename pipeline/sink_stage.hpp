@@ -63,6 +63,7 @@ class SinkStage {
   // mean) and is seconds long when it is on.
   std::int64_t fps_window_start_ns_{0};
   std::int64_t fps_window_frames_{0};
+  cv::Mat no_image_;  // what consumers get as a predicted frame's picture (stays empty)
 };
 
 }  // namespace rtmot::pipeline

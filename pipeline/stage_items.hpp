@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "messages/frame_result.hpp"
+#include "pipeline/frame_trail.hpp"
 #include "platform/video_source.hpp"
 #include "tracker/box.hpp"
 
@@ -17,6 +18,9 @@ struct DetectedFrame {
   platform::FrameInfo info;
   bool outage{false};
   messages::FrameTimes times;
+  /// The frames read before this one (pipeline/frame_trail.hpp): the track stage predicts for
+  /// those its tracker skipped (full-rate output).
+  FrameTrail trail;
   std::vector<tracker::Detection> detections;
   cv::Mat image;  // only when the annotated video is on
 };

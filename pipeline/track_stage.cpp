@@ -19,9 +19,10 @@ int most_tracks(const std::vector<TrackInput>& inputs) {
 }  // namespace
 
 TrackStage::TrackStage(const std::vector<TrackInput>& inputs, SpscQueue<DetectedFrame>& input,
-                       std::size_t queue_capacity, bool keep_images)
+                       std::size_t queue_capacity, bool keep_images, bool full_rate)
     : input_(input),
       keep_images_(keep_images),
+      full_rate_(full_rate),
       output_(std::max(queue_capacity, inputs.size()), [&](TrackedFrame& item) {
         item.result.tracks.reserve(static_cast<std::size_t>(most_tracks(inputs)));
         // Events are rare; a burst beyond this grows the slot once and it keeps the capacity.
@@ -40,9 +41,10 @@ TrackStage::TrackStage(const std::vector<TrackInput>& inputs, SpscQueue<Detected
 
 void TrackStage::run(const std::atomic<bool>& abort) {
   while (DetectedFrame* in = input_.front(abort)) {
+    Stream& stream = streams_[in->input];
+    if (full_rate_ && !in->outage && !send_predicted(*in, stream, abort)) return;
     TrackedFrame* out = output_.claim(abort);
     if (out == nullptr) return;
-    Stream& stream = streams_[in->input];
     const double seconds = static_cast<double>(in->info.pts_ns) * 1e-9;
     const auto& reports = stream.tracker->update(in->detections, seconds);
     messages::FrameResult& result = out->result;
@@ -58,6 +60,7 @@ void TrackStage::run(const std::atomic<bool>& abort) {
     result.sequence = static_cast<std::uint64_t>(stream.messages++);
     result.source_outage = in->outage;
     result.end_of_stream = false;
+    result.predicted = false;
     result.frame_number = in->info.frame_number;
     result.pts_ns = in->info.pts_ns;
     // Every frame before this one that did not become a message was dropped somewhere.
@@ -79,6 +82,45 @@ void TrackStage::run(const std::atomic<bool>& abort) {
   if (!abort.load(std::memory_order_acquire)) finish_streams(abort);
 }
 
+// The frames of `in`'s trail after the stream's last processed frame and before `in`, in frame
+// order: each a message with the tracker's predictions for its time, asked of the state the last
+// processed frame left (causal, and Tracker::predict_reported_at changes nothing). Not counted as
+// processed; no events.
+bool TrackStage::send_predicted(const DetectedFrame& in, Stream& stream,
+                                const std::atomic<bool>& abort) {
+  for (std::size_t i = 0; i < in.trail.size(); ++i) {
+    const FrameStamp& skipped = in.trail[i];
+    if (skipped.frame_number <= stream.last_frame_number ||
+        skipped.frame_number >= in.info.frame_number) {
+      continue;
+    }
+    TrackedFrame* out = output_.claim(abort);
+    if (out == nullptr) return false;
+    messages::FrameResult& result = out->result;
+    // Into the slot's reserved track storage: no allocation.
+    stream.tracker->predict_reported_at(static_cast<double>(skipped.pts_ns) * 1e-9, result.tracks);
+    result.events.clear();
+    result.stream_id = stream.stream_id;
+    result.run_id = messages::this_process_run_id();
+    result.sequence = static_cast<std::uint64_t>(stream.messages++);
+    result.source_outage = false;
+    result.end_of_stream = false;
+    result.predicted = true;
+    result.frame_number = skipped.frame_number;
+    result.pts_ns = skipped.pts_ns;
+    // As for a processed frame: the frames before it the detector did not process.
+    const std::int64_t dropped = skipped.frame_number - 1 - stream.frames_processed;
+    result.frames_dropped = static_cast<std::uint32_t>(std::max<std::int64_t>(0, dropped));
+    result.times = messages::FrameTimes{};
+    result.times.captured_ns = skipped.capture_ns;
+    result.times.tracked_ns = platform::steady_now_ns();
+    out->input = in.input;
+    output_.publish();
+    ++stream.frames_predicted;
+  }
+  return true;
+}
+
 void TrackStage::finish_streams(const std::atomic<bool>& abort) {
   // The input ended (end of file, or a stop asked for): each counted stream's counter settles
   // what is still open, the tracks still inside a zone leave it marked lost (occupancy must not
@@ -98,6 +140,7 @@ void TrackStage::finish_streams(const std::atomic<bool>& abort) {
     result.sequence = static_cast<std::uint64_t>(stream.messages++);
     result.source_outage = false;
     result.end_of_stream = true;
+    result.predicted = false;
     result.frame_number = stream.last_frame_number;
     result.pts_ns = stream.last_pts_ns;
     result.frames_dropped = stream.last_frames_dropped;

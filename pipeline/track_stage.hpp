@@ -23,8 +23,12 @@ struct TrackInput {
 
 class TrackStage {
  public:
+  /// `full_rate`: before each processed frame, one result per frame its source skipped since its
+  /// last processed one (DetectedFrame::trail), flagged predicted, with the tracks the tracker
+  /// reported last (tracker::kPredictedMinHits) at their boxes predicted for that frame's pts
+  /// (docs/full-rate.md).
   TrackStage(const std::vector<TrackInput>& inputs, SpscQueue<DetectedFrame>& input,
-             std::size_t queue_capacity, bool keep_images);
+             std::size_t queue_capacity, bool keep_images, bool full_rate = false);
 
   /// Until the input ends; then, unless aborted, one last message per stream with lines or zones
   /// (end_of_stream) with the events its counter's finish() decides.
@@ -42,6 +46,7 @@ class TrackStage {
     std::uint32_t stream_id{0};
     std::int64_t messages{0};          // frames and outage ticks sent
     std::int64_t frames_processed{0};  // real frames
+    std::int64_t frames_predicted{0};  // skipped frames sent with predictions (full_rate)
     // The last real frame's, for the end of the stream's message.
     std::int64_t last_frame_number{0};
     std::int64_t last_pts_ns{0};
@@ -49,9 +54,11 @@ class TrackStage {
   };
 
   void finish_streams(const std::atomic<bool>& abort);
+  bool send_predicted(const DetectedFrame& in, Stream& stream, const std::atomic<bool>& abort);
 
   SpscQueue<DetectedFrame>& input_;
   const bool keep_images_;
+  const bool full_rate_;
   std::vector<Stream> streams_;  // written by the track thread only
   SpscQueue<TrackedFrame> output_;
 };

@@ -103,7 +103,8 @@ MotResultsOutput::MotResultsOutput(const fs::path& dir,
     streams_.push_back(Stream{target.stream_id,
                               mot_frames_file(dir, target.name),
                               motio::ResultsWriter(mot_results_file(dir, target.name)),
-                              {}});
+                              {},
+                              0});
   }
 }
 
@@ -121,9 +122,10 @@ void MotResultsOutput::consume(const pipeline::SinkFrame& frame) {
   const int frame_number = static_cast<int>(result.frame_number);
   // A source's frame numbers ascend (platform/video_source.hpp): one that does not (a looped image
   // folder starting over) would make the results ambiguous, so it is left out.
-  if (!stream->frames.empty() && frame_number <= stream->frames.back()) return;
+  if (frame_number <= stream->last_written) return;
   stream->results.write(frame_number, result.tracks);
-  stream->frames.push_back(frame_number);
+  stream->last_written = frame_number;
+  if (!result.predicted) stream->frames.push_back(frame_number);
 }
 
 void MotResultsOutput::finish() {

@@ -3,7 +3,9 @@
 // DIR/NAME.txt, and the frames the pipeline processed, DIR/NAME.frames (motio/processed_frames),
 // so that `rtmot eval --processed-frames` scores a real-time run on the frames it saw and plain
 // `rtmot eval` at the full frame rate. The frames a slow detector made the pipeline skip have no
-// rows: they are what gets scored as skipped.
+// rows: they are what gets scored as skipped; with full-rate output (output.full_rate) they have
+// the predicted rows, and NAME.frames still lists the processed frames only, so eval scores the
+// run both ways (docs/full-rate.md).
 #include <cstdint>
 #include <filesystem>
 #include <string>
@@ -54,6 +56,7 @@ class MotResultsOutput : public pipeline::FrameConsumer {
     std::filesystem::path frames_file;
     motio::ResultsWriter results;
     std::vector<int> frames;  // processed, ascending
+    int last_written{0};      // the last frame given rows, processed or predicted
   };
   std::vector<Stream> streams_;
   bool finished_{false};

@@ -81,6 +81,8 @@ struct OutputConfig {
   double metrics_linger_s{0.0};               // the final metrics served this long after the run
   /// MOTChallenge results per source, in this folder (runner/mot_results_output.hpp); empty = off.
   std::string mot_results;
+  /// A message for every camera frame, predicted where the detector skipped (docs/full-rate.md).
+  bool full_rate{false};
 };
 
 struct RunConfig {

@@ -78,6 +78,20 @@ RunSetting frame_rate_or_zero(std::string key, std::string flag, std::string doc
           }};
 }
 
+// A switch: YAML's own booleans (true/false), on the command line too.
+RunSetting boolean(std::string key, std::string flag, std::string doc, Field<bool> field) {
+  return {std::move(key),
+          std::move(flag),
+          std::move(doc),
+          "true or false",
+          false,
+          [field](RunConfig& c, std::string_view text, std::string&) {
+            if (text != "true" && text != "false") return false;
+            field(c) = text == "true";
+            return true;
+          }};
+}
+
 // A path or URI taken as written (opened and checked when the run starts).
 RunSetting text(std::string key, std::string flag, std::string doc, Field<std::string> field) {
   return {std::move(key),
@@ -288,6 +302,10 @@ std::vector<RunSetting> output_settings() {
            "write MOTChallenge results per source into this folder: NAME.txt and NAME.frames "
            "(the frames processed), for rtmot eval",
            [](RunConfig& c) -> std::string& { return c.output.mot_results; }),
+      boolean("output.full_rate", "--full-rate",
+              "a message for every camera frame: those the detector skipped carry each track's "
+              "predicted box, flagged predicted (docs/full-rate.md)",
+              [](RunConfig& c) -> bool& { return c.output.full_rate; }),
       integer<int>("output.metrics_port", "--metrics-port",
                    "serve Prometheus metrics on this TCP port; 0 = off", {0, 65535},
                    [](RunConfig& c) -> int& { return c.output.metrics_port; }),

@@ -378,6 +378,7 @@ pipeline::PipelineOptions make_options(const RunConfig& config) {
   // The annotated video takes its pictures through the source's tap (make_outputs), not through
   // the queues.
   options.keep_images = false;
+  options.full_rate = config.output.full_rate;
   options.threads = config.threads;
   return options;
 }

@@ -5,7 +5,8 @@
 // the same frames on any machine. For each detector latency (fixed, or jittered per frame) the
 // presets track exactly the frames that pipeline would process, and are scored twice: on those
 // frames (how well it tracks what it sees) and at the full frame rate (what a user of the output
-// gets: every skipped frame's boxes missed). The seed's Figure 4.4 made with our scheduling.
+// gets: every skipped frame's boxes missed). The seed's Figure 4.4 made with our scheduling. And
+// a third time with the full-rate output (predicted boxes at the skipped frames), at every frame.
 #include <atomic>
 #include <cstdint>
 #include <filesystem>
@@ -24,12 +25,16 @@ struct DetectorLatency {
   /// uniformly in [(1 - jitter), (1 + jitter)] x latency_ms (mean latency_ms), seeded per
   /// sequence.
   double jitter{0.0};
+  /// When > 0: the latency is this many of each sequence's own frame periods instead of
+  /// latency_ms (5: every 5th frame processed, 4 of 5 skipped, at any frame rate).
+  double frames{0.0};
 };
 
-/// "125 ms" or "125 ms ±50%" (file- and table-safe: no commas).
+/// "125 ms", "125 ms ±50%" or "5 frames" (file- and table-safe: no commas).
 std::string latency_label(const DetectorLatency& latency);
 
-/// 0 (every frame), then 33, 66, 125, 250, 500 and 1000 ms fixed, then the same jittered ±50 %.
+/// 0 (every frame), then 33, 66, 125, 250, 500 and 1000 ms fixed, then the same jittered ±50 %,
+/// then 5 and 10 frame periods (4 of 5 and 9 of 10 frames skipped in every sequence).
 std::vector<DetectorLatency> default_latencies();
 
 /// The frames (ascending) a pipeline in `simulated` playback processes of a sequence with `info`'s
@@ -43,6 +48,13 @@ struct LatencyRow {
   std::int64_t frames{0};  // of every sequence
   mot::Metrics processed;  // scored on the processed frames
   mot::Metrics full_rate;  // scored at every frame
+  /// Full-rate output (docs/full-rate.md): the processed frames' boxes plus, at every skipped
+  /// frame, each reported track's prediction for its time; scored at every frame.
+  mot::Metrics full_rate_output;
+  /// The same with every reported track predicted (min_hits 0), not only those matched twice in a
+  /// row (tracker::kPredictedMinHits): what that rule gains and costs.
+  mot::Metrics full_rate_output_every;
+  std::int64_t frames_predicted{0};
 };
 
 struct LatencyTable {

@@ -55,6 +55,13 @@ class BoxKalman {
     Model::predict(dt, x_, p_);
     return Model::to_box(x_);
   }
+  /// The box predict(dt) would return, leaving this filter as it is (full-rate output: a
+  /// prediction for a frame the tracker never sees must not change the track). Works on a copy:
+  /// the same arithmetic as predict(), so the box is bit for bit the prior predict() would give.
+  Box peek(double dt) const {
+    BoxKalman ahead = *this;
+    return ahead.predict(dt);
+  }
   /// Corrects with an observed box.
   void update(const Box& box) { Model::update(box, x_, p_); }
   /// The current (posterior after update(), prior after predict()) box.

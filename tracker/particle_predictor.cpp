@@ -111,6 +111,15 @@ Box ParticlePredictor::predict(double dt) {
   return estimate_;
 }
 
+Box ParticlePredictor::peek(double dt) const {
+  if (!has_velocity_) return estimate_;
+  const auto step = static_cast<float>(dt);
+  Box ahead = estimate_;
+  ahead.x += velocity_x_ * step;
+  ahead.y += velocity_y_ * step;
+  return ahead;
+}
+
 void ParticlePredictor::update(const Box& box) {
   double total = 0.0;
   for (int i = 0; i < storage_.count; ++i) {

@@ -36,6 +36,10 @@ class ParticlePredictor {
   /// systematically.
   void update(const Box& box);
   Box box() const { return estimate_; }
+  /// The estimate drifted by the velocity estimate over `dt` nominal frames, without noise and
+  /// without touching the particles (their storage is shared with the live filter, and drawing
+  /// noise would advance the random stream): what predict(dt) moves the cloud's mean by.
+  Box peek(double dt) const;
 
  private:
   void scatter_around(const Box& box);

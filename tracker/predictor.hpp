@@ -24,6 +24,19 @@ inline Box advance(Predictor& predictor, double dt) {
       predictor);
 }
 
+/// The box advance(predictor, dt) would return, without changing the predictor.
+inline Box peek(const Predictor& predictor, double dt) {
+  return std::visit(
+      [dt](const auto& model) -> Box {
+        if constexpr (std::is_same_v<std::decay_t<decltype(model)>, std::monostate>) {
+          return Box{};
+        } else {
+          return model.peek(dt);
+        }
+      },
+      predictor);
+}
+
 inline void correct(Predictor& predictor, const Box& box) {
   std::visit(
       [&box](auto& model) {

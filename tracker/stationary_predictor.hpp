@@ -8,6 +8,7 @@ class StationaryPredictor {
  public:
   explicit StationaryPredictor(const Box& box) : box_(box) {}
   Box predict(double /*dt*/) const { return box_; }
+  Box peek(double /*dt*/) const { return box_; }
   void update(const Box& box) { box_ = box; }
   Box box() const { return box_; }
 

@@ -82,6 +82,8 @@ struct Tracker::State {
     frame_count = 0;
     elapsed_frames = 0.0;
     has_previous_time = false;
+    last_update_time = 0.0;
+    last_gap_seconds = 0.0;
     score_cut.reset();
     box_noise.reset();
     if (extension) extension->reset();
@@ -92,6 +94,8 @@ struct Tracker::State {
   const std::vector<TrackReport>& update(const std::vector<Detection>& detections,
                                          double time_seconds) {
     ++frame_count;
+    if (frame_count > 1) last_gap_seconds = time_seconds - last_update_time;
+    last_update_time = time_seconds;
     const double dt = step_length(time_seconds);
     step_frames = dt;
     if (frame_count > 1) elapsed_frames += dt;
@@ -379,6 +383,28 @@ struct Tracker::State {
     free_slots.push_back(slot);
   }
 
+  double steps_until(double time_seconds) const {
+    if (frame_count == 0) return 0.0;
+    const double seconds = time_seconds - last_update_time;
+    double steps = seconds * config.frame_rate;
+    if (config.time_step == TimeStep::per_update && frame_count > 1 && last_gap_seconds > 0.0)
+      steps = seconds / last_gap_seconds;
+    return std::isfinite(steps) ? std::max(steps, 0.0) : 0.0;
+  }
+
+  // The tracks settle_and_report() reported are the live ones it left confirmed: a copy of each
+  // one's motion model is advanced (peek), the track itself is not touched.
+  void predict_reported(double steps, std::vector<TrackReport>& out, int min_hits) const {
+    out.clear();
+    for (const int slot : order) {
+      const Track& track = slots[slot];
+      if (track.life.stage() != TrackStage::confirmed || track.hit_streak < min_hits) continue;
+      TrackReport ahead = report(track);
+      ahead.box = peek(track.predictor, steps);
+      if (is_finite(ahead.box)) out.push_back(ahead);
+    }
+  }
+
   const std::vector<TrackReport>& fill_table() {
     table.clear();
     for (const int slot : order) table.push_back(report(slots[slot]));
@@ -414,6 +440,8 @@ struct Tracker::State {
   double step_frames{1.0};     // nominal frames since the previous update
   double previous_time{0.0};
   bool has_previous_time{false};
+  double last_update_time{0.0};  // the time of the last update()
+  double last_gap_seconds{0.0};  // between the last two updates
 };
 
 Tracker::Tracker(const TrackerConfig& config) : Tracker(config, nullptr) {}
@@ -438,6 +466,19 @@ const TrackerConfig& Tracker::config() const {
 
 const std::vector<TrackReport>& Tracker::track_table() {
   return state_->fill_table();
+}
+
+void Tracker::predict_reported(double steps, std::vector<TrackReport>& out, int min_hits) const {
+  state_->predict_reported(steps, out, min_hits);
+}
+
+void Tracker::predict_reported_at(double time_seconds, std::vector<TrackReport>& out,
+                                  int min_hits) const {
+  state_->predict_reported(state_->steps_until(time_seconds), out, min_hits);
+}
+
+double Tracker::steps_until(double time_seconds) const {
+  return state_->steps_until(time_seconds);
 }
 
 int Tracker::live_tracks() const {

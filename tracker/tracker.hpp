@@ -11,6 +11,13 @@ namespace rtmot::tracker {
 
 class TrackerExtension;
 
+/// Full-rate output's rule for which reported tracks get a predicted box on the frames the
+/// detector skipped: those matched at least this many updates in a row (TrackReport::hits). A
+/// track one detection just confirmed or found again is, more often than one matched twice in a
+/// row, a false positive or about to be lost; repeated on every skipped frame it costs more false
+/// positives than it finds people (measured: docs/full-rate.md).
+inline constexpr int kPredictedMinHits = 2;
+
 class Tracker {
  public:
   explicit Tracker(const TrackerConfig& config);
@@ -28,6 +35,23 @@ class Tracker {
   /// call. Allocates nothing once the storage has grown to the scene's size.
   const std::vector<TrackReport>& update(const std::vector<Detection>& detections,
                                          double time_seconds);
+
+  /// The tracks the last update() reported with at least `min_hits` matches in a row, each with
+  /// its box predicted `steps` of the tracker's own time steps after that update (a nominal frame
+  /// with TimeStep::elapsed, a processed frame with per_update), written into `out` (cleared
+  /// first). Changes nothing: the next update() is the same whether this was called or not
+  /// (full-rate output: a frame the detector skipped gets these boxes, flagged predicted). A track
+  /// whose prediction is not finite is left out. Allocates nothing when `out` has capacity for
+  /// config().max_tracks.
+  void predict_reported(double steps, std::vector<TrackReport>& out,
+                        int min_hits = kPredictedMinHits) const;
+  /// The same at `time_seconds` (the clock of update()): with TimeStep::elapsed the nominal
+  /// frames since the last update; with per_update the fraction of the last interval between two
+  /// updates (one step per processed frame; before the second update, nominal frames).
+  void predict_reported_at(double time_seconds, std::vector<TrackReport>& out,
+                           int min_hits = kPredictedMinHits) const;
+  /// The steps predict_reported_at(time_seconds) predicts ahead (0 before the first update).
+  double steps_until(double time_seconds) const;
 
   /// Forgets every track and restarts ids at 1 (e.g. at a new sequence).
   void reset();

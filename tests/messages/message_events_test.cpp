@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <zlib.h>
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -187,6 +188,48 @@ TEST(MessageEvents, TheEndOfAStreamCarriesTheFinishEventsInBinaryAndJson) {
     EXPECT_TRUE(event.lost);
   }
   EXPECT_EQ(counter.zone_counts()[0].occupancy, 0);
+}
+
+// Full-rate output (docs/full-rate.md): a skipped frame's message with the predicted boxes is
+// flagged in binary (flag bit 4) and JSON lines ("predicted":true) and reads back as predicted;
+// a processed frame's says nothing of it (its bytes are those of a sender without the option).
+TEST(MessagePredicted, APredictedFrameIsFlaggedInBinaryAndJson) {
+  const auto frames = test::frames_from_detections("PETS09-S2L1", 20);
+  FrameResult processed = frames.back();
+  ASSERT_FALSE(processed.tracks.empty());
+  FrameResult predicted = processed;
+  predicted.predicted = true;
+  predicted.sequence += 1;
+  predicted.frame_number += 1;
+  std::vector<std::uint8_t> buffer(message::safe_udp_payload);
+  std::vector<std::uint8_t> unflagged(message::safe_udp_payload);
+  DecodedMessage decoded;
+  MessageEncoder encoder;
+  for (const FrameResult* sent : {&processed, &predicted}) {
+    const std::size_t size = encoder.encode(*sent, buffer.data(), buffer.size());
+    ASSERT_EQ(decode_message(buffer.data(), size, decoded), DecodeError::none);
+    EXPECT_EQ(decoded.frame.predicted, sent->predicted);
+    EXPECT_EQ(buffer[5], sent->predicted ? message::flag_predicted : 0);
+    EXPECT_EQ(decoded.frame.tracks.size(), sent->tracks.size());
+    // Apart from the flag (and so the CRC), the same bytes as the frame sent unflagged.
+    FrameResult plain = *sent;
+    plain.predicted = false;
+    ASSERT_EQ(encoder.encode(plain, unflagged.data(), unflagged.size()), size);
+    EXPECT_TRUE(std::equal(buffer.begin() + 6, buffer.begin() + static_cast<long>(size) - 4,
+                           unflagged.begin() + 6));
+    fmt::memory_buffer line;
+    append_json_line(*sent, static_cast<std::uint32_t>(sent->tracks.size()), false,
+                     JsonLineExtras{1, nullptr}, line);
+    const std::string text(line.data(), line.size());
+    EXPECT_EQ(text.find(R"("predicted":true)") != std::string::npos, sent->predicted);
+    EXPECT_EQ(text.find("predicted") != std::string::npos, sent->predicted);
+    std::string problem;
+    ASSERT_TRUE(decode_json_line(reinterpret_cast<const std::uint8_t*>(line.data()), line.size(),
+                                 decoded, problem))
+        << problem;
+    EXPECT_EQ(decoded.frame.predicted, sent->predicted);
+    EXPECT_EQ((decoded.flags & message::flag_predicted) != 0, sent->predicted);
+  }
 }
 
 TEST(SequenceAccounting, ABoardRestartedWithinTheWindowIsARestartByItsRunId) {

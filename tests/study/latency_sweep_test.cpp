@@ -68,6 +68,13 @@ TEST(LatencySweep, JitterIsSeededAndChangesTheFrames) {
   EXPECT_EQ(pipeline_frames(info, jittered, 7), pipeline_frames(info, jittered, 7));
   EXPECT_NE(pipeline_frames(info, jittered, 7), pipeline_frames(info, jittered, 8));
   EXPECT_NE(pipeline_frames(info, jittered, 7), pipeline_frames(info, {250.0, 0.0}, 7));
+  // In frame periods: 5 takes every 5th frame and 10 every 10th, at this sequence's 10 fps.
+  const std::vector<int> fifth = pipeline_frames(info, {0.0, 0.0, 5.0}, 1);
+  ASSERT_GT(fifth.size(), 3U);
+  for (std::size_t i = 1; i + 1 < fifth.size(); ++i) EXPECT_EQ(fifth[i] - fifth[i - 1], 5);
+  const std::vector<int> tenth = pipeline_frames(info, {0.0, 0.0, 10.0}, 1);
+  for (std::size_t i = 1; i + 1 < tenth.size(); ++i) EXPECT_EQ(tenth[i] - tenth[i - 1], 10);
+  EXPECT_EQ(latency_label({0.0, 0.0, 5.0}), "5 frames");
   // A detector faster than the camera takes every frame.
   EXPECT_EQ(pipeline_frames(info, {0.0, 0.0}, 1).size(), static_cast<std::size_t>(info.length));
   EXPECT_EQ(pipeline_frames(info, {99.0, 0.0}, 1).size(), static_cast<std::size_t>(info.length));
@@ -92,6 +99,9 @@ TEST(LatencySweep, TablesAreDeterministicAndMatchTheStudyWithoutSkipping) {
                                                      *tracker::find_preset(once[t].preset), 1, {});
     EXPECT_DOUBLE_EQ(rows[0].processed.mota, every_frame.mota);
     EXPECT_DOUBLE_EQ(rows[0].full_rate.mota, every_frame.mota);
+    // ... and nothing to predict.
+    EXPECT_EQ(rows[0].frames_predicted, 0);
+    EXPECT_DOUBLE_EQ(rows[0].full_rate_output.mota, every_frame.mota);
     EXPECT_EQ(rows[0].frames_processed, 71);
     // 200 ms at 25 fps: every 5th frame, as the study's interval 5.
     const mot::Metrics fifth = track_and_score(dataset, StudyInput::detections,
@@ -102,6 +112,9 @@ TEST(LatencySweep, TablesAreDeterministicAndMatchTheStudyWithoutSkipping) {
     // At the full rate the skipped frames' boxes are misses.
     EXPECT_LT(rows[1].full_rate.mota, rows[1].processed.mota - 20.0);
     EXPECT_GT(rows[1].full_rate.false_negatives, rows[1].processed.false_negatives);
+    // The full-rate output fills the 56 skipped frames with predictions: fewer misses.
+    EXPECT_EQ(rows[1].frames_predicted, 71 - 15);
+    EXPECT_LT(rows[1].full_rate_output.false_negatives, rows[1].full_rate.false_negatives);
   }
 }
 

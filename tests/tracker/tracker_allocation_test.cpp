@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <memory>
+#include <vector>
 
 #include "allocation_counter.hpp"
 #include "mot_detections.hpp"
@@ -72,6 +73,33 @@ TEST(SteadyStateDefault, AllocatesNothingAfterWarmUp) {
   EXPECT_EQ(during, 0);
   EXPECT_GT(reported, 0);
   EXPECT_GT(live, reported);  // the table holds the unreported tracks too
+}
+
+// Full-rate output: the predictions for the skipped frames between updates (every 5th frame
+// processed) write into the caller's reserved buffer and allocate nothing either.
+TEST(SteadyStatePredictions, AllocatesNothingAfterWarmUp) {
+  const auto dir = test::shared_path("data/mot15-train/ADL-Rundle-6");
+  RTMOT_REQUIRE_FILE(dir / "det" / "det.txt");
+  const test::MotSequence sequence = test::load_mot_sequence(dir);
+  TrackerConfig config = *find_preset(default_preset_name());
+  config.frame_rate = 30.0;
+  Tracker tracker(config);
+  std::vector<TrackReport> predicted;
+  predicted.reserve(static_cast<std::size_t>(config.max_tracks));
+  const std::size_t half = sequence.frames.size() / 2;
+  long boxes = 0;
+  long during = 0;
+  for (std::size_t f = 0; f < sequence.frames.size(); f += 5) {
+    const test::CountingScope counting;
+    tracker.update(sequence.frames[f], f / 30.0);
+    for (std::size_t skipped = f + 1; skipped < f + 5; ++skipped) {
+      tracker.predict_reported_at(skipped / 30.0, predicted);
+      boxes += static_cast<long>(predicted.size());
+    }
+    if (f >= half) during += counting.allocations();
+  }
+  EXPECT_EQ(during, 0);
+  EXPECT_GT(boxes, 0);
 }
 
 TEST(AllocationCounter, CountsAllocations) {
