@@ -139,6 +139,12 @@ void print_summary(const messages::ListenerStats& stats, const InvalidJson& inva
         stream.truncated, to_ms(static_cast<double>(stream.latency_min_ns)),
         to_ms(stream.latency_mean_ns()), to_ms(static_cast<double>(stream.latency_max_ns)),
         stream.last_frames_dropped);
+    if (stream.predicted > 0) {
+      fmt::print(
+          "  stream {}: predicted {} of them (full-rate output: frames the sender's detector "
+          "skipped, sent with the tracks' predicted boxes)\n",
+          id, stream.predicted);
+    }
     for (const auto& [kind_and_index, count] : stream.events) {
       fmt::print("  stream {}: events {} {}: {}\n", id,
                  events::kEventKindNames.name(static_cast<events::EventKind>(kind_and_index.first)),

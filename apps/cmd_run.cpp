@@ -73,9 +73,9 @@ int run(const RunCommand& command) {
         "no output configured: tracks go nowhere (--udp, --mqtt, --jsonl, --video-out, "
         "--mot-results)");
   }
-  auto detector = runner::make_detector(config);
-  spdlog::info("detector: {}", detector->describe());
-  pipeline::Pipeline pipeline(std::move(inputs), std::move(detector), std::move(outputs.consumers),
+  auto detectors = runner::make_detectors(config);
+  spdlog::info("detector: {}", detectors.front()->describe());
+  pipeline::Pipeline pipeline(std::move(inputs), std::move(detectors), std::move(outputs.consumers),
                               runner::make_options(config));
   const pipeline::PipelineReport report = pipeline.run(signals.stop_flag());
 

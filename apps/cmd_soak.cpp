@@ -58,7 +58,7 @@ double ms(std::int64_t ns) {
 }
 
 pipeline::PipelineReport run_once(const runner::RunConfig& config, const std::atomic<bool>& stop) {
-  pipeline::Pipeline pipe(runner::make_inputs(config), runner::make_detector(config),
+  pipeline::Pipeline pipe(runner::make_inputs(config), runner::make_detectors(config),
                           pipeline::as_consumers(runner::make_sinks(config)),
                           runner::make_options(config));
   return pipe.run(stop);

@@ -2,6 +2,7 @@
 // first; the timed loop is Tracker::update only. Counter "fps" is frames per second (Hz).
 #include <benchmark/benchmark.h>
 
+#include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <random>
@@ -122,6 +123,59 @@ void BM_DefaultPresetMot15(benchmark::State& state) {
   track_all(state, *rtmot::tracker::find_preset(rtmot::tracker::default_preset_name()));
 }
 BENCHMARK(BM_DefaultPresetMot15)->Unit(benchmark::kMillisecond);
+
+// Full-rate output behind a detector 5 frames slow (docs/full-rate.md): the default preset updated
+// on every 5th frame and asked for its predictions at the 4 frames between. Counter "fps" counts
+// every camera frame (an update or a prediction); "predict_ns" is one prediction's mean cost.
+void BM_DefaultPresetFullRateMot15(benchmark::State& state) {
+  const auto& sequences = mot15();
+  std::vector<Tracker> trackers;
+  long frames_per_pass = 0;
+  for (const Sequence& sequence : sequences) {
+    TrackerConfig config = *rtmot::tracker::find_preset(rtmot::tracker::default_preset_name());
+    config.image_width = static_cast<float>(sequence.info.width);
+    config.image_height = static_cast<float>(sequence.info.height);
+    config.frame_rate = sequence.info.frame_rate;
+    trackers.emplace_back(config);
+    frames_per_pass += static_cast<long>(sequence.frames.size());
+  }
+  std::vector<rtmot::tracker::TrackReport> predicted;
+  predicted.reserve(1024);
+  constexpr std::size_t kEvery = 5;
+  long boxes = 0;
+  long predictions = 0;
+  std::chrono::steady_clock::duration predicting{};
+  for (auto _ : state) {
+    for (std::size_t s = 0; s < sequences.size(); ++s) {
+      Tracker& tracker = trackers[s];
+      tracker.reset();
+      const auto& frames = sequences[s].frames;
+      const double period = 1.0 / sequences[s].info.frame_rate;
+      for (std::size_t f = 0; f < frames.size(); ++f) {
+        if (f % kEvery == 0) {
+          boxes += static_cast<long>(tracker.update(frames[f], f * period).size());
+          continue;
+        }
+        const auto start = std::chrono::steady_clock::now();
+        tracker.predict_reported_at(f * period, predicted);
+        predicting += std::chrono::steady_clock::now() - start;
+        boxes += static_cast<long>(predicted.size());
+        ++predictions;
+      }
+    }
+    benchmark::DoNotOptimize(boxes);
+  }
+  state.counters["fps"] = benchmark::Counter(
+      static_cast<double>(frames_per_pass) * static_cast<double>(state.iterations()),
+      benchmark::Counter::kIsRate);
+  state.counters["predict_ns"] =
+      predictions > 0
+          ? static_cast<double>(
+                std::chrono::duration_cast<std::chrono::nanoseconds>(predicting).count()) /
+                static_cast<double>(predictions)
+          : 0.0;
+}
+BENCHMARK(BM_DefaultPresetFullRateMot15)->Unit(benchmark::kMillisecond);
 
 // The assignment alone on a dense square matrix of the given size.
 void BM_LinearAssignment(benchmark::State& state) {

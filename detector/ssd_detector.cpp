@@ -100,6 +100,16 @@ BackendChoice checked_backend(const SsdConfig& config) {
 
 }  // namespace
 
+InputError forward_failure(const BackendChoice& backend, const std::string& what) {
+  const bool gpu = backend.backend == cv::dnn::DNN_BACKEND_CUDA;
+  return InputError("", 0, "",
+                    "detector: the forward pass failed on " + backend.name + " at run time (" +
+                        what + ")" +
+                        (gpu ? ": set 'backend: cpu' in the detector config to run without the GPU"
+                             : ": run scripts/fetch_model.sh again, or try another backend"),
+                    ExitCode::bad_model);
+}
+
 std::filesystem::path default_anchors_path(const std::filesystem::path& model_path) {
   std::filesystem::path path = model_path;
   return path.replace_extension(".anchors.csv");
@@ -117,8 +127,8 @@ SsdDetector::SsdDetector(SsdConfig config)
       normalized_(kInputSize, kInputSize, CV_32FC3),
       output_names_{"box_encodings", "class_logits"} {
   if (config_.threads > 0) cv::setNumThreads(config_.threads);
-  if (backend_.engine == Engine::xnnpack && start_xnnpack()) return;
-  start_opencv();
+  if (backend_.engine != Engine::xnnpack || !start_xnnpack()) start_opencv();
+  running_ = true;
   // The choice and its reason are logged by whoever builds the pipeline (describe()), once.
 }
 
@@ -189,6 +199,14 @@ void SsdDetector::start_opencv() {
   // context, cuDNN plans) out of the first frame.
   warm_up(1);
   if (batch > 1) warm_up(batch);
+  if (backend_.backend == cv::dnn::DNN_BACKEND_CUDA) {
+    // Our OpenCV captures a network's forward as a CUDA graph on its second run
+    // (scripts/opencv/cuda_graph.patch): do it here, so that it never happens on a frame, nor
+    // while another detector of this process (a lane of the detect stage: they are built one
+    // after another) runs its own.
+    warm_up(1);
+    if (batch > 1) warm_up(batch);
+  }
 }
 
 void SsdDetector::warm_up(int count) {
@@ -257,16 +275,18 @@ void SsdDetector::forward(int count) {
   // 64 KB) and returns headers on the network's own output blobs. No buffer the size of an image
   // or blob: those above are reused.
   try {
+    if (running_ && fault_.fails_now()) {
+      throw cv::Exception(cv::Error::GpuApiCallError, fault_.what(), "SsdDetector::forward",
+                          __FILE__, __LINE__);
+    }
     net.forward(outputs_, output_names_);
   } catch (const cv::Exception& e) {
-    if (backend_.backend != cv::dnn::DNN_BACKEND_CUDA) throw;
-    // A CUDA failure while running (a replayed graph, a stream, a lost device): name the backend
-    // and the way out; exit code bad_model ("does not run"), through the run's usual error path.
-    throw InputError("", 0, "",
-                     "detector: the forward pass failed on " + backend_.name + " at run time (" +
-                         e.msg +
-                         "): set 'backend: cpu' in the detector config to run without the GPU",
-                     ExitCode::bad_model);
+    // At start-up on the CPU, warm_up() says "the model does not run". Otherwise (a replayed
+    // graph, a stream, a lost device): name the backend and the way out; exit code bad_model
+    // ("does not run"), through the run's usual error path (every output flushed and closed).
+    if (!running_ && backend_.backend != cv::dnn::DNN_BACKEND_CUDA) throw;
+    // e.err, not e.msg: the failure itself, without OpenCV's file, line and a line break.
+    throw forward_failure(backend_, e.err);
   }
   boxes_ = outputs_[0].ptr<float>();
   logits_ = outputs_[1].ptr<float>();

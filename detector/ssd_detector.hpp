@@ -9,8 +9,10 @@
 #include <string>
 #include <vector>
 
+#include "common/input_error.hpp"
 #include "detector/detector.hpp"
 #include "detector/dnn_backend.hpp"
+#include "detector/forward_fault.hpp"
 #include "detector/ssd_defaults.hpp"
 #include "detector/ssd_postprocess.hpp"
 #include "detector/xnnpack_network.hpp"
@@ -43,6 +45,10 @@ constexpr int kMaxBatchLimit = 64;
 
 /// The anchors file that belongs to `model_path` when the config does not name one.
 std::filesystem::path default_anchors_path(const std::filesystem::path& model_path);
+
+/// The error of a forward pass that fails once the detector runs (a CUDA graph or stream failure,
+/// a lost GPU): names the backend and, on CUDA, the way out (`backend: cpu`); exit code bad_model.
+InputError forward_failure(const BackendChoice& backend, const std::string& what);
 
 /// One thread at a time: detect() and detect_batch() work in the detector's own buffers.
 class SsdDetector : public Detector {
@@ -115,6 +121,8 @@ class SsdDetector : public Detector {
   const float* boxes_{nullptr};
   const float* logits_{nullptr};
   std::int64_t last_forward_ns_{0};
+  bool running_{false};  // start-up (warm-up) is over
+  ForwardFault fault_;   // the test hook RTMOT_FAULT_FORWARD_AFTER (detector/forward_fault.hpp)
 };
 
 }  // namespace rtmot::detector

@@ -149,6 +149,7 @@ Arrival ListenerStats::record(const DecodedMessage& message) {
   stream.latency_sum_ns += static_cast<double>(latency);
   stream.tracks += frame.tracks.size();
   if (message.truncated()) ++stream.truncated;
+  if (frame.predicted) ++stream.predicted;
   stream.last_frames_dropped = std::max(stream.last_frames_dropped, frame.frames_dropped);
   return arrival;
 }

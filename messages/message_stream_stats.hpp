@@ -72,6 +72,7 @@ struct StreamStats {
   SequenceAccounting sequences;
   std::uint64_t messages{0};   // received without duplicates: what the figures below cover
   std::uint64_t truncated{0};  // messages that carried fewer tracks than their frame had
+  std::uint64_t predicted{0};  // full-rate output: skipped frames sent with predicted boxes
   std::uint64_t tracks{0};     // tracks received, over all messages
   std::int64_t latency_min_ns{0};
   std::int64_t latency_max_ns{0};

@@ -69,6 +69,10 @@ void PipelineMetrics::observe(const messages::FrameResult& result) {
     }
     stream.in_outage = result.source_outage;
   }
+  if (id != stream_ids_.end() && result.predicted) {
+    streams_[static_cast<std::size_t>(id - stream_ids_.begin())].predicted_messages.fetch_add(
+        1, relaxed);
+  }
   if (!result.source_outage && !result.end_of_stream && !result.predicted) {
     for (const auto& [stage, name] : pipeline::kStageNames.entries()) {
       stages_[static_cast<std::size_t>(stage)].record(pipeline::stage_span_ns(stage, t));
@@ -115,6 +119,9 @@ std::string PipelineMetrics::render() const {
              [](const StreamCounters& s) { return s.outages.load(relaxed); });
   per_stream("rtmot_outage_messages_total", "counter", "Messages sent while the source was down.",
              [](const StreamCounters& s) { return s.outage_frames.load(relaxed); });
+  per_stream("rtmot_predicted_messages_total", "counter",
+             "Messages of skipped frames with the tracks' predicted boxes (full-rate output).",
+             [](const StreamCounters& s) { return s.predicted_messages.load(relaxed); });
   per_stream("rtmot_tracks", "gauge", "Tracks reported in the source's last processed frame.",
              [](const StreamCounters& s) { return s.tracks_last_frame.load(relaxed); });
   per_stream("rtmot_tracks_reported_total", "counter",

@@ -31,6 +31,13 @@ std::vector<PipelineInput> one_input(std::unique_ptr<platform::VideoSource> sour
   return inputs;
 }
 
+std::vector<std::unique_ptr<detector::Detector>> one_lane(
+    std::unique_ptr<detector::Detector> detector) {
+  std::vector<std::unique_ptr<detector::Detector>> detectors;
+  detectors.push_back(std::move(detector));
+  return detectors;
+}
+
 }  // namespace
 
 struct Pipeline::Stages {
@@ -44,7 +51,8 @@ struct Pipeline::Stages {
   std::unique_ptr<SinkStage> sink;
   std::vector<std::uint32_t> stream_ids;  // per input
 
-  Stages(std::vector<PipelineInput> inputs, std::unique_ptr<detector::Detector> detector,
+  Stages(std::vector<PipelineInput> inputs,
+         std::vector<std::unique_ptr<detector::Detector>> detectors,
          std::vector<std::unique_ptr<FrameConsumer>> consumers, PipelineOptions options_in)
       : options(std::move(options_in)) {
     if (inputs.empty()) throw std::invalid_argument("a pipeline needs at least one source");
@@ -74,7 +82,8 @@ struct Pipeline::Stages {
     detect_options.queue_capacity = options.queue_capacity;
     detect_options.max_detections = max_detections;
     detect_options.batch_wait = options.batch_wait;
-    detect = std::make_unique<DetectStage>(std::move(detector), std::move(slots), frames_ready,
+    detect_options.lane_fifo_priority = options.threads.detect.fifo_priority;
+    detect = std::make_unique<DetectStage>(std::move(detectors), std::move(slots), frames_ready,
                                            detect_options);
     track = std::make_unique<TrackStage>(trackers, detect->output(), options.queue_capacity,
                                          keep_images, options.full_rate);
@@ -156,8 +165,14 @@ Pipeline::Pipeline(std::unique_ptr<platform::VideoSource> source,
 
 Pipeline::Pipeline(std::vector<PipelineInput> inputs, std::unique_ptr<detector::Detector> detector,
                    std::vector<std::unique_ptr<FrameConsumer>> consumers, PipelineOptions options)
-    : stages_(std::make_unique<Stages>(std::move(inputs), std::move(detector), std::move(consumers),
-                                       std::move(options))) {}
+    : Pipeline(std::move(inputs), one_lane(std::move(detector)), std::move(consumers),
+               std::move(options)) {}
+
+Pipeline::Pipeline(std::vector<PipelineInput> inputs,
+                   std::vector<std::unique_ptr<detector::Detector>> detectors,
+                   std::vector<std::unique_ptr<FrameConsumer>> consumers, PipelineOptions options)
+    : stages_(std::make_unique<Stages>(std::move(inputs), std::move(detectors),
+                                       std::move(consumers), std::move(options))) {}
 
 Pipeline::~Pipeline() = default;
 

@@ -80,6 +80,11 @@ class Pipeline {
   /// (options.keep_images) with more than one source.
   Pipeline(std::vector<PipelineInput> inputs, std::unique_ptr<detector::Detector> detector,
            std::vector<std::unique_ptr<FrameConsumer>> consumers, PipelineOptions options);
+  /// Same, with batches in flight: one detector per lane of the detect stage (detector.in_flight,
+  /// pipeline/detect_stage.hpp), all alike, at least one. Throws std::invalid_argument if empty.
+  Pipeline(std::vector<PipelineInput> inputs,
+           std::vector<std::unique_ptr<detector::Detector>> detectors,
+           std::vector<std::unique_ptr<FrameConsumer>> consumers, PipelineOptions options);
   ~Pipeline();
   Pipeline(const Pipeline&) = delete;
   Pipeline& operator=(const Pipeline&) = delete;

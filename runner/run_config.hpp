@@ -63,6 +63,9 @@ struct DetectorConfig {
   /// The detector's CPU worker threads; 0 = every CPU this process may use. Decided (and set,
   /// process-wide) in one place: runner::make_detector.
   int threads{0};
+  /// Batches in flight in the detect stage (its lanes, each a detector of its own); 0 = auto:
+  /// 3 on CUDA, 1 otherwise. Decided in one place: runner::make_detectors.
+  int in_flight{0};
   std::vector<int> classes{detector::default_classes()};  // COCO ids to keep; empty = all
   std::string det_file;                                   // replay: a MOTChallenge det.txt
 };

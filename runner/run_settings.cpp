@@ -1,6 +1,8 @@
 #include "runner/run_settings.hpp"
 
 #include <cstdint>
+#include <optional>
+#include <string>
 #include <utility>
 
 #include "common/checked_number.hpp"
@@ -17,6 +19,9 @@ namespace {
 constexpr int kMaxImageSide = 16384;
 constexpr int kMaxThreads = 256;
 constexpr int kMaxLoops = 1'000'000;
+// Each lane holds a detector of its own (on CUDA two networks and their buffers); past 2-3 lanes
+// nothing is left to overlap (docs/gpu.md).
+constexpr int kMaxInFlight = 4;
 constexpr std::int64_t kMaxFrames = 1'000'000'000'000;
 // CPU_SETSIZE: the most CPUs pthread_setaffinity_np can name. A CPU this machine lacks is not a
 // configuration error (the same file runs on several boards): the thread runs unpinned, logged.
@@ -251,6 +256,18 @@ std::vector<RunSetting> detector_settings() {
       integer<int>("detector.threads", "--detector-threads",
                    "the detector's CPU threads; 0 = every CPU this process may use",
                    {0, kMaxThreads}, [](RunConfig& c) -> int& { return c.detector.threads; }),
+      parsed<int>(
+          "detector.in_flight", "--in-flight",
+          "batches in flight in the detect stage, each on a detector of its own; auto = 3 on CUDA, "
+          "1 otherwise",
+          "auto or an integer in [1, " + std::to_string(kMaxInFlight) + "]",
+          [](const std::string& t, std::string&) -> std::optional<int> {
+            if (t == "auto") return 0;
+            const auto value = parse_integer(t, {1, kMaxInFlight});
+            if (!value) return std::nullopt;
+            return static_cast<int>(*value);
+          },
+          [](RunConfig& c) -> int& { return c.detector.in_flight; }),
       std::move(classes),
       text("detector.det_file", "--det-file",
            "replay: a MOTChallenge det.txt (the flag also sets kind replay)",

@@ -136,6 +136,27 @@ std::unique_ptr<detector::Detector> make_detector(const RunConfig& config) {
   return std::make_unique<detector::SsdDetector>(ssd);
 }
 
+std::vector<std::unique_ptr<detector::Detector>> make_detectors(const RunConfig& config) {
+  std::vector<std::unique_ptr<detector::Detector>> lanes;
+  lanes.push_back(make_detector(config));
+  const auto* ssd = dynamic_cast<const detector::SsdDetector*>(lanes.front().get());
+  const bool cuda = ssd != nullptr && ssd->backend().backend == cv::dnn::DNN_BACKEND_CUDA;
+  // auto: three on CUDA, where the GPU runs one batch while the host prepares and decodes the
+  // others. Measured on the H100 (docs/gpu.md §3, 8 sources): 1 -> 2 -> 3 -> 4 lanes gave
+  // 782-921 -> 1250-1369 -> 1652-1772 -> 2024-2123 FPS on cuda, 598-625 -> 810-900 -> 1001-1040
+  // -> 1117-1168 on cuda-fp16, whose p99 grew past 3; each lane holds its own networks and host
+  // thread, so 3 is the knee. One on the CPU, where a second lane only takes cores from the
+  // first's OpenCV threads (docs/gpu.md).
+  const int wanted = config.detector.in_flight > 0 ? config.detector.in_flight : (cuda ? 3 : 1);
+  // One after another: each loads, warms up and (CUDA) captures its graphs alone.
+  while (static_cast<int>(lanes.size()) < wanted) lanes.push_back(make_detector(config));
+  spdlog::info("detector: {} batch{} in flight{}", wanted, wanted == 1 ? "" : "es",
+               config.detector.in_flight > 0 ? ""
+               : cuda                        ? " (auto: CUDA)"
+                                             : " (auto: not CUDA)");
+  return lanes;
+}
+
 namespace {
 void check_run_files(const RunConfig& config);  // below, with prepare_video_output
 }  // namespace

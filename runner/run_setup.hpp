@@ -22,6 +22,9 @@ std::unique_ptr<platform::VideoSource> make_source(const RunConfig& config);
 /// configuration completed from that source and its stream id.
 std::vector<pipeline::PipelineInput> make_inputs(const RunConfig& config);
 std::unique_ptr<detector::Detector> make_detector(const RunConfig& config);
+/// One detector per batch in flight (detector.in_flight; auto: 3 on CUDA, 1 otherwise), built one
+/// after another, for the detect stage's lanes.
+std::vector<std::unique_ptr<detector::Detector>> make_detectors(const RunConfig& config);
 /// What a run sends its tracks to, built from the output section.
 struct RunOutputs {
   /// For the sink stage, in order: UDP, binary file, MQTT, JSON lines as configured, the progress

@@ -21,7 +21,12 @@
 # RTMOT_OPENCV_DIR (where the OpenCV install is or goes, /tmp/rtmot-opencv; its install/ folder),
 # RTMOT_PIPELINE_BACKENDS ("cpu cuda cuda-fp16"), RTMOT_PIPELINE_SOURCES ("1 2 4 8"),
 # RTMOT_PIPELINE_FORMAT (png, or bmp: the same pixels without a PNG decode per frame in the capture
-# thread), RTMOT_PIPELINE_TAG (added to the pipeline logs' names, e.g. pass2).
+# thread), RTMOT_PIPELINE_TAG (added to the pipeline logs' names, e.g. pass2),
+# RTMOT_PIPELINE_IN_FLIGHT ("1 2": detector.in_flight values, each run per backend and source count;
+# "-" leaves the setting out, for trees older than it), RTMOT_PIPELINE_LOOP (25: plays of the 16
+# frames per source). Each pipeline run writes pipeline-TAG-FORMAT-BACKEND-N-ifK.{log,json,smi} and
+# one row of pipeline-summary-TAG-FORMAT.tsv (FPS, detector FPS, ms per image, p50/p99
+# capture->sent, GPU busy over the run proper and over the whole process).
 set -euo pipefail
 out="${1:?usage: gpu_machine.sh OUT_DIR [stages]}"
 stages="${2:-opencv rtmot tests bench profile pipeline}"
@@ -234,6 +239,8 @@ PY
     die "RTMOT_PIPELINE_FORMAT: png or bmp, not '$format'"
   fi
   suffix="$format${RTMOT_PIPELINE_TAG:+-$RTMOT_PIPELINE_TAG}"
+  summary="$out/pipeline-summary-$tag-$suffix.tsv"
+  printf 'backend\tsources\tin_flight\tfps\tdetector_fps\tms_per_image\tp50_ms\tp99_ms\tgpu_busy_run_pct\tgpu_busy_all_pct\tbatches\n' >"$summary"
   for backend in ${RTMOT_PIPELINE_BACKENDS:-cpu cuda cuda-fp16}; do
     config="/tmp/rtmot-$tag-$backend.yaml"
     sed -e "s|^  model: .*|  model: $source_dir/models/ssdlite_mobilenet_v2_coco.onnx|" \
@@ -241,20 +248,59 @@ PY
       -e "s|^  udp: .*|  udp: 127.0.0.1:5600|" -e "s|^  jsonl_file: .*|  jsonl_file: /tmp/tracks-$backend.jsonl|" \
       "$source_dir/configs/desktop.yaml" >"$config"
     for n in ${RTMOT_PIPELINE_SOURCES:-1 2 4 8}; do
-      step "pipeline ($tag, $suffix) every-frame on $backend, $n sources"
-      args=()
-      for ((i = 0; i < n; ++i)); do args+=(--source "images://$pipeline_frames?fps=10&loop=25"); done
-      nvidia-smi --query-gpu=utilization.gpu --format=csv,noheader,nounits -lms 100 >"/tmp/smi-$n.txt" &
-      smi=$!
-      "${run_env[@]}" "$build/apps/rtmot" run --config "$config" "${args[@]}" --playback every-frame \
-        --report "$out/pipeline-$tag-$suffix-$backend-$n.json" >"$out/pipeline-$tag-$suffix-$backend-$n.log" 2>&1 ||
-        { kill "$smi"; tail -n 20 "$out/pipeline-$tag-$suffix-$backend-$n.log"; die "rtmot run failed ($backend, $n sources)"; }
-      kill "$smi" && wait "$smi" 2>/dev/null || true
-      busy="$(awk '{s += $1; n++} END {if (n) printf "%.0f", s / n; else print 0}' "/tmp/smi-$n.txt")"
-      echo "gpu busy (mean of 100 ms nvidia-smi samples over the whole run, start-up included): $busy %" | tee -a "$out/pipeline-$tag-$suffix-$backend-$n.log"
-      grep -E "\] frames captured" "$out/pipeline-$tag-$suffix-$backend-$n.log" | grep -v "stream " | cut -c 40-
+      # detector.in_flight (batches in flight in the detect stage); "-" = the tree's default (a
+      # tree older than the setting)
+      for k in ${RTMOT_PIPELINE_IN_FLIGHT:-1 2}; do
+        name="pipeline-$tag-$suffix-$backend-$n-if$k"
+        step "pipeline ($tag, $suffix) every-frame on $backend, $n sources, in flight $k"
+        args=()
+        for ((i = 0; i < n; ++i)); do args+=(--source "images://$pipeline_frames?fps=10&loop=${RTMOT_PIPELINE_LOOP:-25}"); done
+        [[ $k == - ]] || args+=(--in-flight "$k")
+        nvidia-smi --query-gpu=timestamp,utilization.gpu --format=csv,noheader,nounits -lms 100 >"/tmp/smi-$n.txt" &
+        smi=$!
+        "${run_env[@]}" "$build/apps/rtmot" run --config "$config" "${args[@]}" --playback every-frame \
+          --report "$out/$name.json" >"$out/$name.log" 2>&1 ||
+          { kill "$smi"; tail -n 20 "$out/$name.log"; die "rtmot run failed ($backend, $n sources, in flight $k)"; }
+        kill "$smi" && wait "$smi" 2>/dev/null || true
+        cp "/tmp/smi-$n.txt" "$out/$name.smi"
+        # GPU busy: the mean of the 100 ms samples over the whole process (start-up included) and
+        # over the run proper (from the log's "detector: ..." line, once every detector is built,
+        # to the final report line)
+        python3 - "$out/$name.log" "/tmp/smi-$n.txt" "$out/$name.json" "$backend" "$n" "$k" >>"$summary" <<'PY' || die "pipeline summary failed ($name)"
+import json, re, sys
+from datetime import datetime
+log, smi, report, backend, n, k = sys.argv[1:]
+def at(text, fmt):
+    return datetime.strptime(text, fmt).timestamp()
+start = end = None
+for line in open(log):
+    m = re.match(r'\[(\S+ \S+)\]', line)
+    if not m:
+        continue
+    t = at(m.group(1), '%Y-%m-%d %H:%M:%S.%f')
+    if '] detector: SSDLite' in line:
+        start = t
+    if '] frames captured' in line:
+        end = t
+samples = []
+for line in open(smi):
+    parts = [p.strip() for p in line.split(',')]
+    if len(parts) == 2 and parts[1].isdigit():
+        samples.append((at(parts[0], '%Y/%m/%d %H:%M:%S.%f'), int(parts[1])))
+def mean(values):
+    return sum(values) / len(values) if values else float('nan')
+run = [u for t, u in samples if start is not None and end is not None and start <= t <= end]
+r = json.load(open(report))
+e2e = r['latency']['end_to_end']
+print('\t'.join([backend, n, k, f"{r['fps']:.1f}", f"{r['detector_fps']:.1f}", f"{1000 / r['fps']:.3f}",
+                 f"{e2e['p50_ms']:.1f}", f"{e2e['p99_ms']:.1f}", f"{mean(run):.0f} ({len(run)} samples)",
+                 f"{mean([u for _, u in samples]):.0f}", str(r['detector_batches'])]))
+PY
+        tail -n 1 "$summary"
+      done
     done
   done
+  cat "$summary"
 fi
 trap - ERR
 step "all stages passed: $stages"

@@ -3,8 +3,10 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cstdlib>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include "common/input_error.hpp"
 #include "detector/ssd_detector.hpp"
@@ -211,6 +213,69 @@ TEST(DnnBackend, ParsesConfigWords) {
   EXPECT_EQ(parse_fp16_request("auto"), Fp16Request::automatic);
   EXPECT_EQ(parse_fp16_request("false"), Fp16Request::off);
   EXPECT_EQ(parse_fp16_request("maybe"), std::nullopt);
+}
+
+// A forward pass that fails once the detector runs (provoked by the test hook
+// RTMOT_FAULT_FORWARD_AFTER, detector/forward_fault.hpp): the first N frames are detected, then an
+// InputError with exit code bad_model names the backend; on CUDA (the GPU machine runs this on
+// cuda) it names the way out, `backend: cpu`.
+TEST_F(SsdModelErrors, AForwardThatFailsAtRunTimeNamesTheBackendAndTheWayOut) {
+  const auto caps = probe_backend_capabilities();
+  const bool cuda = caps.opencv_has_cuda && caps.cuda_devices > 0;
+  auto config = config_for(real_model_);
+  config.backend = cuda ? BackendRequest::cuda : BackendRequest::cpu;
+  ::setenv("RTMOT_FAULT_FORWARD_AFTER", "2", 1);
+  SsdDetector detector(config);  // its start-up passes do not count
+  ::unsetenv("RTMOT_FAULT_FORWARD_AFTER");
+  const cv::Mat image(240, 320, CV_8UC3, cv::Scalar(90, 120, 150));
+  std::vector<tracker::Detection> boxes;
+  detector.detect(image, 1, boxes);
+  detector.detect(image, 2, boxes);
+  try {
+    detector.detect(image, 3, boxes);
+    FAIL() << "the third forward pass did not fail";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.exit_code(), ExitCode::bad_model);
+    const std::string what = e.what();
+    EXPECT_NE(what.find("the forward pass failed on " + detector.backend().name + " at run time"),
+              std::string::npos)
+        << what;
+    EXPECT_NE(what.find("RTMOT_FAULT_FORWARD_AFTER=2"), std::string::npos) << what;
+    EXPECT_EQ(what.find('\n'), std::string::npos) << "one line: " << what;
+    if (cuda) {
+      EXPECT_NE(what.find("backend: cpu"), std::string::npos) << what;
+    }
+  }
+}
+
+TEST(DnnBackend, ARunTimeFailureOnCudaSaysBackendCpu) {
+  for (const char* name : {"cuda", "cuda-fp16"}) {
+    const BackendChoice cuda{Engine::opencv, cv::dnn::DNN_BACKEND_CUDA, cv::dnn::DNN_TARGET_CUDA,
+                             name, "cuda requested"};
+    const InputError error = forward_failure(cuda, "cudaErrorLaunchFailure: unspecified");
+    EXPECT_EQ(error.exit_code(), ExitCode::bad_model);
+    EXPECT_EQ(std::string(error.what()),
+              std::string("detector: the forward pass failed on ") + name +
+                  " at run time (cudaErrorLaunchFailure: unspecified): set 'backend: cpu' in the "
+                  "detector config to run without the GPU");
+  }
+  const BackendChoice cpu{Engine::opencv, cv::dnn::DNN_BACKEND_OPENCV, cv::dnn::DNN_TARGET_CPU,
+                          "cpu", "cpu requested"};
+  EXPECT_EQ(std::string(forward_failure(cpu, "x").what()).find("backend: cpu"), std::string::npos);
+}
+
+// The hook refuses what is not a count rather than never firing.
+TEST_F(SsdModelErrors, AFaultHookThatIsNotACountIsAUsageError) {
+  ::setenv("RTMOT_FAULT_FORWARD_AFTER", "soon", 1);
+  try {
+    SsdDetector detector(config_for(real_model_));
+    ::unsetenv("RTMOT_FAULT_FORWARD_AFTER");
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    ::unsetenv("RTMOT_FAULT_FORWARD_AFTER");
+    EXPECT_EQ(e.exit_code(), ExitCode::usage);
+    EXPECT_NE(std::string(e.what()).find("RTMOT_FAULT_FORWARD_AFTER"), std::string::npos);
+  }
 }
 
 }  // namespace

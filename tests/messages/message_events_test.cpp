@@ -230,6 +230,18 @@ TEST(MessagePredicted, APredictedFrameIsFlaggedInBinaryAndJson) {
     EXPECT_EQ(decoded.frame.predicted, sent->predicted);
     EXPECT_EQ((decoded.flags & message::flag_predicted) != 0, sent->predicted);
   }
+  // rtmot listen counts them apart, and as ordinary messages of the stream (no loss, no clash).
+  ListenerStats stats;
+  for (const FrameResult* sent : {&processed, &predicted}) {
+    const std::size_t size = encoder.encode(*sent, buffer.data(), buffer.size());
+    ASSERT_EQ(decode_message(buffer.data(), size, decoded), DecodeError::none);
+    stats.record(decoded);
+  }
+  const StreamStats& stream = stats.streams().at(processed.stream_id);
+  EXPECT_EQ(stream.messages, 2U);
+  EXPECT_EQ(stream.predicted, 1U);
+  EXPECT_EQ(stream.sequences.lost(), 0U);
+  EXPECT_EQ(stream.sequences.clashes(), 0U);
 }
 
 TEST(SequenceAccounting, ABoardRestartedWithinTheWindowIsARestartByItsRunId) {

@@ -84,6 +84,24 @@ TEST(Metrics, EndpointServesPrometheusText) {
   EXPECT_NE(http_get(port, "/other").find("404"), std::string::npos);
 }
 
+// Full-rate output (docs/full-rate.md): a skipped frame's predicted message is counted apart, not
+// as a processed frame, and has no place in the latency histograms.
+TEST(Metrics, PredictedMessagesAreCountedApart) {
+  auto frames = test::frames_from_detections("TUD-Stadtmitte", 40);
+  PipelineMetrics metrics({}, {frames.front().stream_id});
+  const unsigned short port = test::free_tcp_port();
+  MetricsServer server(metrics, "127.0.0.1", port);
+  MetricsSink sink(metrics);
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    frames[i].predicted = i % 4 != 0;  // a detector 4 frames slow
+    sink.write(frames[i]);
+  }
+  const std::string response = http_get(port, "/metrics");
+  EXPECT_EQ(value_of(response, R"(rtmot_frames_processed_total{stream="7"})"), 10.0);
+  EXPECT_EQ(value_of(response, R"(rtmot_predicted_messages_total{stream="7"})"), 30.0);
+  EXPECT_EQ(value_of(response, R"(rtmot_stage_latency_seconds_count{stage="end_to_end"})"), 10.0);
+}
+
 // Issue 23, class 4: one connection that sends nothing, and 50 that send half a request and then
 // nothing, held open while Prometheus scrapes: every scrape is answered within its 10 s timeout.
 // With civetweb's defaults (one worker, 30 s request timeout) the first scrape got nothing.

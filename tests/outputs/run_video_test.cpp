@@ -76,6 +76,40 @@ TEST_F(RunVideo, DemoWritesEverySourceFrameAsBrowserPlayableH264) {
   EXPECT_LT(band[0] + band[1] + band[2], 3 * 90) << "no stats band: " << band;
 }
 
+// Full-rate output (docs/full-rate.md) with the video: one JSON line per source frame, the skipped
+// ones predicted, and the video still every source frame (the skipped ones drawn from the
+// predicted results).
+TEST_F(RunVideo, FullRateOutputSendsEveryFrameAndTheVideoHasThemAll) {
+  RTMOT_REQUIRE_FILE(model_);
+  RTMOT_REQUIRE_FILE(video_);
+  constexpr int kFrames = 60;
+  const auto mp4 = folder_ / "full-rate.mp4";
+  const auto jsonl = folder_ / "tracks.jsonl";
+  test::ChildProcess rtmot(
+      {RTMOT_BINARY, "run", "--source", video_.string(), "--model", model_.string(), "--playback",
+       "simulated", "--latency-ms", "250", "--max-frames", std::to_string(kFrames), "--jsonl",
+       jsonl.string(), "--video-out", mp4.string(), "--full-rate", "true"},
+      folder_ / "out.txt", folder_ / "err.txt");
+  const int status = rtmot.wait(300s);
+  const std::string err = test::read_text(folder_ / "err.txt");
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << status << "\n" << err;
+  std::ifstream lines(jsonl);
+  int messages = 0;
+  int predicted = 0;
+  for (std::string line; std::getline(lines, line);) {
+    const auto json = nlohmann::json::parse(line);
+    EXPECT_EQ(json.at("frame").get<int>(), ++messages);
+    if (json.value("predicted", false)) ++predicted;
+  }
+  EXPECT_EQ(messages, kFrames);
+  EXPECT_GT(predicted, kFrames / 2);  // 250 ms on a 10 fps file: 6 of 10 frames skipped
+  const test::ReadBack back =
+      test::read_back("filesrc location=" + mp4.string() +
+                          " ! qtdemux ! video/x-h264 ! avdec_h264" + test::to_bgr_sink,
+                      30, 100000, 120s);
+  EXPECT_EQ(back.frames, kFrames);
+}
+
 TEST_F(RunVideo, UnwritableTargetIsOneErrorLineBeforeTheModelLoads) {
   std::filesystem::create_directories(folder_ / "dir.mp4");
   test::ChildProcess rtmot(
