@@ -122,8 +122,8 @@ bool DetectStage::hand_on(DetectLane& lane, const std::atomic<bool>& abort) {
     out->times.detect_start_ns = frame.taken_ns;
     out->times.detected_ns = batch.end_ns;
     out->info = frame.info;
-    out->trail =
-        frame.trail;  // full-rate output: the frames read before this one (frame_trail.hpp)
+    // Full-rate output: the frames read before this one (frame_trail.hpp).
+    out->trail = frame.trail;
     if (options_.keep_images) std::swap(out->image, frame.image);
     output_.publish();
   }
