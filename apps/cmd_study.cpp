@@ -20,6 +20,7 @@
 #include "motio/mot_files.hpp"
 #include "platform/cpu_share.hpp"
 #include "platform/signals.hpp"
+#include "study/detector_cut.hpp"
 #include "study/latency_sweep.hpp"
 #include "study/run_progress.hpp"
 #include "study/study_cv.hpp"
@@ -43,6 +44,7 @@ struct StudyCommandOptions {
   std::string only;
   std::string link_prefix;
   bool latency{false};
+  bool detector_cut{false};
 };
 
 // A study's tables, plots and folds are only meaningful complete: a stop (SIGINT, SIGTERM) ends
@@ -103,12 +105,32 @@ int run_latency_sweep(const StudyCommandOptions& options, const platform::StopSi
   return to_int(ExitCode::ok);
 }
 
+// --detector-cut: the presets on the SSD's score model with its low detections dropped at each
+// cut before the tracker (study/detector_cut.hpp): where the pipeline's SSD should cut.
+int run_detector_cut(const StudyCommandOptions& options) {
+  const auto dataset = study::load_study_dataset(options.dataset);
+  const std::vector<std::string> presets = {std::string(tracker::default_preset_name()),
+                                            "bytetrack", "sort"};
+  std::vector<int> intervals = options.intervals;
+  std::sort(intervals.begin(), intervals.end());
+  intervals.erase(std::unique(intervals.begin(), intervals.end()), intervals.end());
+  const auto tables = study::run_detector_cut_sweep(dataset, presets, "synth-ssd",
+                                                    study::default_detector_cuts(), intervals);
+  const auto path = std::filesystem::path(options.out_dir) / "detector-cut.md";
+  std::error_code error;
+  std::filesystem::create_directories(options.out_dir, error);  // write_whole_file names it
+  write_whole_file(path, study::format_detector_cut_markdown(tables, intervals));
+  spdlog::info("study: wrote {}", path.string());
+  return to_int(ExitCode::ok);
+}
+
 int run_study_command(const StudyCommandOptions& options) {
   using Clock = std::chrono::steady_clock;
   const auto start = Clock::now();
   const platform::CpuSample cpu_start = platform::sample_cpu();
   const platform::StopSignals signals;
   if (options.latency) return run_latency_sweep(options, signals);
+  if (options.detector_cut) return run_detector_cut(options);
   // Ascending and unique: rows and plot axes follow the interval.
   std::vector<int> intervals = options.intervals;
   std::sort(intervals.begin(), intervals.end());
@@ -231,6 +253,11 @@ Subcommand add_study_command(CLI::App& parent) {
                 "only the latency sweep: the default and the sort preset behind a simulated "
                 "detector of 33..1000 ms (fixed and jittered), skipping frames as the pipeline "
                 "does; scored on the processed frames and at the full frame rate (OUT/latency/)");
+  cli->add_flag(
+      "--detector-cut", options->detector_cut,
+      "only the detector's own cut: the default, bytetrack and sort presets on the "
+      "synthetic SSD (synth-ssd) with its detections below 0.5 .. 0.15 dropped before the "
+      "tracker, at --intervals (OUT/detector-cut.md)");
   cli->add_option("--link-prefix", options->link_prefix,
                   "prefix of the plot links in summary.md (e.g. study/ when it is included from "
                   "docs/study.md)");

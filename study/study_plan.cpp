@@ -109,7 +109,7 @@ std::vector<StudyConfiguration> ablation_configurations() {
       ablation("-duration", [](TrackerConfig& c) { c.confirm_by_duration = false; }),
       ablation("-coast", [](TrackerConfig& c) { c.min_coast_updates = 0; }),
       ablation("-gate", [](TrackerConfig& c) { c.time_widened_gate = false; }),
-      ablation("-gate-clock", [](TrackerConfig& c) { c.gate_clock = GateClock::since_match; }),
+      ablation("+frame-gap-clock", [](TrackerConfig& c) { c.gate_clock = GateClock::frame_gap; }),
       ablation("-sr-iou", [](TrackerConfig& c) { c.second_round_threshold = 0.0; }),
       ablation("-sr-recent", [](TrackerConfig& c) { c.second_round_recent_only = false; }),
       ablation("-keep", [](TrackerConfig& c) { c.keep_confirmation = false; }),
@@ -129,6 +129,7 @@ std::vector<StudyConfiguration> ablation_configurations() {
                  knobs_with([](StudyKnobs& k) { k.weak_births_by_count = true; })),
       ablation("-strong-birth", [](TrackerConfig& c) { c.strong_birth_range_cut = 0.0; }),
       ablation("-noise-gate", [](TrackerConfig& c) { c.noise_gate_factor = 0.0; }),
+      ablation("-cap", [](TrackerConfig& c) { c.score_range_cap = 0.0; }),
   };
 }
 
@@ -154,6 +155,14 @@ std::vector<StudyConfiguration> study_configurations(bool quick) {
   for (const auto& preset : tracker::tracker_presets()) {
     configurations.push_back({"preset-" + std::string(preset.name), "presets", preset.make()});
   }
+  // The default before issue 21 (its split's range uncapped, the gate clock the frame gap, the
+  // noise gate's factor 3): what the new one is compared with on every detector, the held-back
+  // ones included.
+  configurations.push_back(
+      {"preset-rtmot-issue20", "presets",
+       tracker::with_options(
+           *tracker::find_preset("rtmot"),
+           {{"score_range_cap", "0"}, {"gate_clock", "frame_gap"}, {"noise_gate_factor", "3"}})});
   // ByteTrack with its own Kalman filter too: the preset keeps SORT's, which scores higher here,
   // so that the bar the default is held to is the stronger ByteTrack (docs/study/reading.md).
   configurations.push_back(
@@ -174,6 +183,13 @@ std::vector<StudyConfiguration> cv_candidates(bool quick) {
     return Choice{std::move(name) + "-split",
                   {{option, value}, {"second_round", "true"}, {"low_score", "-1e30"}}};
   };
+  // The same split with its range capped at the median of the recent scores (issue 21: on
+  // floor-heavy, long-tailed scores a fraction of the range lies far up the tail).
+  const auto capped = [&split](const std::string& name, std::string_view value) {
+    Choice choice = split(name + "-cap-0.5", "score_range_cut", value);
+    choice.options.emplace_back("score_range_cap", "0.5");
+    return choice;
+  };
   // The quantile cut is a study rule: the split's other settings with it as a knob.
   const auto quantile_split = [](std::string name, double quantile) {
     Choice choice{std::move(name) + "-split", {{"second_round", "true"}, {"low_score", "-1e30"}}};
@@ -185,7 +201,10 @@ std::vector<StudyConfiguration> cv_candidates(bool quick) {
             : std::vector<Choice>{{"none", {}},
                                   split("range-0.3", "score_range_cut", "0.3"),
                                   split("range-0.4", "score_range_cut", "0.4"),
-                                  split("range-0.5", "score_range_cut", "0.5")};
+                                  split("range-0.5", "score_range_cut", "0.5"),
+                                  capped("range-0.3", "0.3"),
+                                  capped("range-0.4", "0.4"),
+                                  capped("range-0.5", "0.5")};
   const auto values = [quick](std::string name, std::string_view option,
                               std::vector<std::string_view> all) {
     std::vector<Choice> choices;

@@ -26,6 +26,14 @@ float scaled(ScoreScale scale, double z) {
       return static_cast<float>(100.0 * sigmoid(z));
     case ScoreScale::logit:
       return static_cast<float>(2.0 * z);
+    case ScoreScale::exp:
+      return static_cast<float>(std::exp(1.5 * z));
+    case ScoreScale::exp_steep:
+      return static_cast<float>(std::exp(3.0 * z));
+    case ScoreScale::square:
+      return static_cast<float>(std::max(0.0, z + 1.0) * std::max(0.0, z + 1.0));
+    case ScoreScale::sinh:
+      return static_cast<float>(std::sinh(1.5 * z));
   }
   return static_cast<float>(z);
 }
@@ -77,6 +85,19 @@ const std::vector<SyntheticDetectorSpec>& synthetic_detectors() {
       {"holdout-h", 0.35, 4.0, 0.8, 3, 0.6, 0.03, 2.0, -1.0, ScoreScale::dpm, 303, true},
       {"holdout-i", 0.50, 12.0, 1.0, 1, 0.3, 0.06, 1.8, -1.0, ScoreScale::frcnn, 304, true},
       {"holdout-j", 0.20, 3.0, 2.5, 8, 0.3, 0.09, 1.1, -1.0, ScoreScale::logit, 305, true},
+      // Issue 21: two more the cross-validation chooses on, with floor-heavy, long-tailed scores
+      // (the calibrated ones are synth-ssd's and synth-clean's)...
+      {"synth-svm", 0.30, 5.0, 4.0, 4, 0.4, 0.07, 1.4, -1.0, ScoreScale::square, 106},
+      {"synth-raw", 0.20, 3.0, 2.0, 3, 0.3, 0.05, 1.7, -1.0, ScoreScale::exp, 107},
+      // ...and a third held-back set, written down and committed before any run on it: four
+      // long-tailed shapes, two of them (sinh, exp_steep) no choice has seen, and a calibrated
+      // probability with many false positives piled near its floor.
+      {"holdout-k", 0.25, 4.0, 3.0, 4, 0.3, 0.06, 1.5, -1.0, ScoreScale::sinh, 401, true},
+      {"holdout-l", 0.15, 2.0, 1.0, 2, 0.4, 0.04, 2.0, -1.0, ScoreScale::exp_steep, 402, true},
+      {"holdout-m", 0.40, 8.0, 6.0, 5, 0.5, 0.09, 1.3, -1.0, ScoreScale::exp, 403, true},
+      {"holdout-n", 0.10, 2.0, 8.0, 6, 0.3, 0.05, 1.8, -1.0, ScoreScale::square, 404, true},
+      {"holdout-o", 0.30, 5.0, 5.0, 4, 0.4, 0.07, 1.5, -1.0, ScoreScale::sigmoid, 405, true},
+      {"holdout-p", 0.35, 10.0, 1.5, 3, 0.5, 0.11, 1.1, -1.0, ScoreScale::sinh, 406, true},
   };
   return specs;
 }

@@ -23,12 +23,21 @@ enum class ScoreScale {
   dpm,      // 1.2 z + 0.5: about -2..5, as a DPM's SVM margins
   percent,  // 100 sigmoid(z): 0..100
   logit,    // 2 z: unbounded, centred on 0
+  // Floor-heavy, long-tailed shapes: most detections (the false ones) pile up just above the
+  // detector's own threshold and the true ones spread over a long upper tail, as unbounded margins
+  // and un-squashed network outputs do. A fraction of such a range lies far up the tail.
+  exp,        // exp(1.5 z): about 0.2..500, an un-squashed (exponentiated) network output
+  exp_steep,  // exp(3 z): about 0.05..2e5, the same with a steeper tail
+  square,     // (z + 1)^2: 0..about 35, a margin above the detector's threshold, squared
+  sinh,       // sinh(1.5 z): about -2..300, a margin with heavy tails
 };
 
 inline constexpr auto kScoreScaleNames = tracker::make_enum_names<ScoreScale>(
     std::pair{ScoreScale::frcnn, "frcnn"}, std::pair{ScoreScale::sigmoid, "sigmoid"},
     std::pair{ScoreScale::dpm, "dpm"}, std::pair{ScoreScale::percent, "percent"},
-    std::pair{ScoreScale::logit, "logit"});
+    std::pair{ScoreScale::logit, "logit"}, std::pair{ScoreScale::exp, "exp"},
+    std::pair{ScoreScale::exp_steep, "exp_steep"}, std::pair{ScoreScale::square, "square"},
+    std::pair{ScoreScale::sinh, "sinh"});
 
 struct SyntheticDetectorSpec {
   std::string name;             // "synth-dpm": the study's input name
@@ -47,8 +56,8 @@ struct SyntheticDetectorSpec {
   bool held_back{false};
 };
 
-/// The study's synthetic detectors: the five the cross-validation chooses on (fixed before any
-/// result was seen), then five held back (fixed before any run on them; docs/study.md lists all).
+/// The study's synthetic detectors: those the cross-validation chooses on (`synth-`) and those held
+/// back (`holdout-`), each written down before any run on it (docs/study.md lists all and when).
 const std::vector<SyntheticDetectorSpec>& synthetic_detectors();
 
 /// The detections `spec` makes of one sequence, by frame (index frame - 1). `gt_rows` as read from

@@ -8,32 +8,37 @@ namespace rtmot::tracker {
 namespace {
 
 constexpr float kNoCut = std::numeric_limits<float>::lowest();
+constexpr float kNoCap = std::numeric_limits<float>::max();
 // The range cut's ends: percentiles rather than min and max, so one stray score cannot move it.
 constexpr double kRangeLow = 0.01;
 constexpr double kRangeHigh = 0.99;
 
 }  // namespace
 
-ScoreCut::ScoreCut(double quantile, double range_fraction, int window, bool track_range)
+ScoreCut::ScoreCut(double quantile, double range_fraction, int window, bool track_range,
+                   double range_cap_quantile)
     : quantile_(quantile),
       range_fraction_(range_fraction),
+      range_cap_quantile_(range_cap_quantile),
       window_(quantile > 0.0 || range_fraction > 0.0 || track_range
                   ? static_cast<std::size_t>(std::max(window, 1))
                   : 0U),
       cut_(kNoCut),
       low_(kNoCut),
-      high_(kNoCut) {}
+      high_(kNoCut),
+      cap_(kNoCap) {}
 
 void ScoreCut::reset() {
   window_.reset();
   cut_ = kNoCut;
   low_ = kNoCut;
   high_ = kNoCut;
+  cap_ = kNoCap;
 }
 
 float ScoreCut::range_point(double fraction) const {
   if (window_.seen() == 0) return kNoCut;
-  return low_ + static_cast<float>(fraction) * (high_ - low_);
+  return std::min(low_ + static_cast<float>(fraction) * (high_ - low_), cap_);
 }
 
 float ScoreCut::observe(const std::vector<Detection>& detections) {
@@ -53,6 +58,7 @@ void ScoreCut::recompute() {
   if (quantile_ > 0.0) cut_ = window_.order_statistic(quantile_);
   low_ = window_.order_statistic(kRangeLow);
   high_ = window_.order_statistic(kRangeHigh);
+  cap_ = range_cap_quantile_ > 0.0 ? window_.order_statistic(range_cap_quantile_) : kNoCap;
   if (range_fraction_ > 0.0) cut_ = std::max(cut_, range_point(range_fraction_));
 }
 

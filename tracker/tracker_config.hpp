@@ -55,6 +55,10 @@ struct TrackerConfig {
   /// range are low too (tracker/score_cut.hpp): a cut that holds on any affine score scale. 0 =
   /// off.
   double score_range_cut{0.0};
+  /// Every point of that range (the split, strong births) is at most this quantile of the recent
+  /// scores: on floor-heavy, long-tailed scores (margins, un-squashed network outputs) a fraction
+  /// of the range lies far up the tail and would mark most true detections low. 0 = no cap.
+  double score_range_cap{0.0};
   /// A track is deleted after more than `max_age` nominal frames without a match.
   int max_age{1};
   /// A track is reported once it has `min_hits` consecutive matches.

@@ -129,6 +129,10 @@ std::vector<TrackerOption> make_table() {
            "relative score cut: detections below this fraction of the recent 1st..99th percentile "
            "score range are low",
            &C::score_range_cut, 0.0, limits::kMaxScoreQuantile),
+      real("score_range_cap",
+           "no point of that range (the split, strong births) lies above this quantile of the "
+           "recent scores, whatever their shape (0: no cap)",
+           &C::score_range_cap, 0.0, limits::kMaxScoreQuantile),
       integer("max_age", "nominal frames a track survives without a match", &C::max_age, 0,
               kMaxFrames),
       integer("min_hits", "consecutive matches before a track is reported", &C::min_hits, 0,

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -78,6 +79,51 @@ TEST(ScoreCut, RangeCutKeepsTheSameDetectionsOnAnyAffineScale) {
   EXPECT_LE(differ, 5);
   EXPECT_LT(count_kept(a), 300 * 8);
   EXPECT_GT(count_kept(a), 300 * 8 / 3);
+}
+
+// Share of the true (first 6 of each frame) and of the false detections marked low.
+struct LowShares {
+  double truth;
+  double clutter;
+};
+
+LowShares low_shares(const std::vector<std::vector<bool>>& kept) {
+  int true_low = 0, false_low = 0;
+  for (const auto& row : kept) {
+    for (std::size_t i = 0; i < row.size(); ++i) (i < 6 ? true_low : false_low) += row[i] ? 0 : 1;
+  }
+  const double frames = static_cast<double>(kept.size());
+  return {true_low / (6.0 * frames), false_low / (2.0 * frames)};
+}
+
+// A floor-heavy, long-tailed scale (exp(1.5 z), most scores just above the detector's threshold):
+// 0.3 of the range lies far up the tail and marks most true detections low; the cap at a quantile
+// bounds that whatever the shape, and where the range point lies below it (a linear scale here)
+// it changes nothing.
+TEST(ScoreCut, TheCapHoldsTheRangeCutOnALongTailedScale) {
+  auto latent = latent_frames(300);
+  for (auto& frame : latent) {
+    for (float& z : frame) z = std::max(z, -1.F);  // the detector's own threshold
+  }
+  const auto exp_scale = [](float z) { return std::exp(1.5F * z); };
+  const auto linear_scale = [](float z) { return 2.F * z; };
+  const LowShares plain = low_shares(kept_by(ScoreCut(0.0, 0.3, 1024), latent, exp_scale));
+  const LowShares capped =
+      low_shares(kept_by(ScoreCut(0.0, 0.3, 1024, false, 0.5), latent, exp_scale));
+  EXPECT_GT(plain.truth, 0.5);  // most true detections are low without the cap
+  EXPECT_LT(capped.truth, 0.45);
+  EXPECT_GT(capped.clutter, 0.5);  // still most false ones
+  // On the linear scale the range point lies below the median: the cap changes nothing.
+  EXPECT_EQ(kept_by(ScoreCut(0.0, 0.3, 1024), latent, linear_scale),
+            kept_by(ScoreCut(0.0, 0.3, 1024, false, 0.5), latent, linear_scale));
+  // range_point() (strong births) is capped alike.
+  ScoreCut cut(0.0, 0.3, 1024, false, 0.5);
+  for (const auto& frame : latent) {
+    std::vector<Detection> detections;
+    for (const float z : frame) detections.push_back(Detection{Box{0, 0, 10, 10}, exp_scale(z), 1});
+    cut.observe(detections);
+  }
+  EXPECT_EQ(cut.range_point(0.9), cut.range_point(0.5));
 }
 
 TEST(ScoreCut, DisabledOrConstantScoresCutNothing) {
