@@ -98,12 +98,15 @@ void warn_on_score_scale(const DetectorConfig& detector, const tracker::TrackerC
 
 }  // namespace
 
-std::unique_ptr<detector::Detector> make_detector(const RunConfig& config) {
+namespace {
+
+// `first`: the first of a run's detectors logs and warns; the lanes after it are alike.
+std::unique_ptr<detector::Detector> build_detector(const RunConfig& config, bool first) {
   const DetectorConfig& wanted = config.detector;
   if (wanted.kind == DetectorKind::replay) {
     auto replay =
         std::make_unique<detector::ReplayDetector>(wanted.det_file, wanted.score_threshold);
-    warn_on_score_scale(wanted, config.tracker);
+    if (first) warn_on_score_scale(wanted, config.tracker);
     return replay;
   }
   detector::SsdConfig ssd;
@@ -127,8 +130,10 @@ std::unique_ptr<detector::Detector> make_detector(const RunConfig& config) {
   const int threads = wanted.threads > 0 ? wanted.threads : std::max(1, cv::getNumberOfCPUs());
   cv::setNumThreads(threads);
   ssd.threads = 0;
-  spdlog::info("detector threads: {}{}", threads,
-               wanted.threads > 0 ? "" : " (the CPUs this process may use)");
+  if (first) {
+    spdlog::info("detector threads: {}{}", threads,
+                 wanted.threads > 0 ? "" : " (the CPUs this process may use)");
+  }
   // One forward pass takes one frame of every source (the detect stage batches them): without
   // this the SSD would split each batch into single images again.
   ssd.max_batch = static_cast<int>(
@@ -136,9 +141,15 @@ std::unique_ptr<detector::Detector> make_detector(const RunConfig& config) {
   return std::make_unique<detector::SsdDetector>(ssd);
 }
 
+}  // namespace
+
+std::unique_ptr<detector::Detector> make_detector(const RunConfig& config) {
+  return build_detector(config, true);
+}
+
 std::vector<std::unique_ptr<detector::Detector>> make_detectors(const RunConfig& config) {
   std::vector<std::unique_ptr<detector::Detector>> lanes;
-  lanes.push_back(make_detector(config));
+  lanes.push_back(build_detector(config, true));
   const auto* ssd = dynamic_cast<const detector::SsdDetector*>(lanes.front().get());
   const bool cuda = ssd != nullptr && ssd->backend().backend == cv::dnn::DNN_BACKEND_CUDA;
   // auto: three on CUDA, where the GPU runs one batch while the host prepares and decodes the
@@ -149,7 +160,7 @@ std::vector<std::unique_ptr<detector::Detector>> make_detectors(const RunConfig&
   // first's OpenCV threads (docs/gpu.md).
   const int wanted = config.detector.in_flight > 0 ? config.detector.in_flight : (cuda ? 3 : 1);
   // One after another: each loads, warms up and (CUDA) captures its graphs alone.
-  while (static_cast<int>(lanes.size()) < wanted) lanes.push_back(make_detector(config));
+  while (static_cast<int>(lanes.size()) < wanted) lanes.push_back(build_detector(config, false));
   spdlog::info("detector: {} batch{} in flight{}", wanted, wanted == 1 ? "" : "es",
                config.detector.in_flight > 0 ? ""
                : cuda                        ? " (auto: CUDA)"
