@@ -1,8 +1,11 @@
 // What counting costs next to the tracker stage: 50 people walking across a 1920x1080 frame with
 // jittery detections, the rtmot preset tracking them (BM_TrackerStage), and the EventCounter on
 // the tracker's reports of the same frames with 5 lines + 5 zones and 10 + 10 (BM_EventCounter).
-// Both report time per frame; compare the two (docs/events.md, "Cost").
+// Both report time per frame, and BM_EventCounter its share of the tracker's (pct_of_tracker: both
+// as this thread's CPU time, so a loaded machine inflates neither; docs/events.md, "Cost"). With
+// 0 shapes it shows the per-track work alone.
 #include <benchmark/benchmark.h>
+#include <time.h>
 
 #include <random>
 #include <string>
@@ -60,6 +63,16 @@ rtmot::tracker::TrackerConfig tracker_config() {
   return config;
 }
 
+// This thread's CPU time in microseconds.
+double thread_cpu_us() {
+  timespec now{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
+  return static_cast<double>(now.tv_sec) * 1e6 + static_cast<double>(now.tv_nsec) * 1e-3;
+}
+
+// BM_TrackerStage's CPU time per frame, for BM_EventCounter's share (0: not run in this process).
+double tracker_cpu_us_per_frame = 0.0;
+
 const std::vector<std::vector<Detection>>& frames() {
   static const auto detections = scene();
   return detections;
@@ -81,12 +94,14 @@ void BM_TrackerStage(benchmark::State& state) {
   rtmot::tracker::Tracker tracker(tracker_config());
   std::size_t f = 0;
   double reported = 0;
+  const double start = thread_cpu_us();
   for (auto _ : state) {
     const auto& out = tracker.update(frames()[f % kFrames], static_cast<double>(f) / kFps);
     reported += static_cast<double>(out.size());
     benchmark::DoNotOptimize(out.data());
     ++f;
   }
+  tracker_cpu_us_per_frame = (thread_cpu_us() - start) / static_cast<double>(f);
   state.counters["tracks_per_frame"] = reported / static_cast<double>(f);
 }
 BENCHMARK(BM_TrackerStage)->Unit(benchmark::kMicrosecond);
@@ -114,17 +129,21 @@ void BM_EventCounter(benchmark::State& state) {
   const auto& recorded = reports();
   std::size_t f = 0;
   double events = 0;
+  const double start = thread_cpu_us();
   for (auto _ : state) {
     // Timestamps keep rising across passes over the recording, so no track looks re-found.
     const auto& out = counter.update(recorded[f % kFrames], static_cast<double>(f) / kFps);
     events += static_cast<double>(out.size());
     ++f;
   }
+  const double counter_cpu_us_per_frame = (thread_cpu_us() - start) / static_cast<double>(f);
+  if (tracker_cpu_us_per_frame > 0.0)
+    state.counters["pct_of_tracker"] = 100.0 * counter_cpu_us_per_frame / tracker_cpu_us_per_frame;
   state.counters["events_per_frame"] = events / static_cast<double>(f);
   state.counters["lines"] = shapes;
   state.counters["zones"] = shapes;
 }
-BENCHMARK(BM_EventCounter)->Arg(5)->Arg(10)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_EventCounter)->Arg(0)->Arg(5)->Arg(10)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 

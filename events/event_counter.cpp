@@ -8,10 +8,10 @@ namespace rtmot::events {
 namespace {
 
 // Enough anchor offsets for a stable median, few enough to follow a change of scene in seconds.
-constexpr std::size_t kNoiseWindow = 512;
-// The median of the window redone at most every this many values: with 50 tracks, every 40
-// frames (1.6 s at 25 fps). A median of 512 values moves slowly, and an nth_element over them
-// every 5 frames (the tracker's 256) was a quarter of the counter's time.
+constexpr std::size_t kNoiseWindow = 256;
+// The median of the window redone every this many reports once the window is full: with 50
+// tracks, every 41 frames (1.6 s at 25 fps). A median of 512 values moves slowly, and an
+// nth_element over them every 5 frames (the tracker's 256) was a quarter of the counter's time.
 constexpr std::int64_t kNoiseSnapshotGap = 2048;
 // Reports this many frame periods apart or less are neighbouring frames (timestamps wobble).
 constexpr double kNeighbourGap = 1.5;
@@ -23,6 +23,7 @@ EventCounter::EventCounter(EventsConfig config)
   const auto tracks = static_cast<std::size_t>(std::max(config_.max_tracks, 1));
   slots_.resize(tracks);
   line_states_.resize(tracks * config_.lines.size());
+  clearances_.resize(tracks * (config_.lines.size() + config_.zones.size()));
   zone_states_.resize(tracks * config_.zones.size());
   // An update decides at most one crossing per track and line, and per track and zone an enter
   // and an exit (a move through it) plus one dwell: the list never grows past this.
@@ -43,6 +44,7 @@ EventCounter::EventCounter(EventsConfig config)
       bounds.max_y = std::max(bounds.max_y, p.y);
     }
     zone_bounds_.push_back(bounds);
+    zone_edges_.push_back(prepare_edges(zone.polygon));
   }
   zone_counts_.resize(config_.zones.size());
   earliest_pending_.assign(config_.zones.size(), INFINITY);
@@ -72,10 +74,50 @@ std::uint32_t EventCounter::find_live(std::int32_t track_id, std::size_t positio
   return kNone;
 }
 
+// Inline into update(): it runs for every report, and most of the time it is a few loads, one
+// comparison and a few stores (the call's register saves were a sizable part of that).
+inline void EventCounter::follow(std::uint32_t index, const tracker::TrackReport& report,
+                                 double time) {
+  Slot& slot = slots_[index];
+  ++followed_;
+  const Point to = anchor_of(report.box);
+  const bool first = slot.last_update < 0;
+  if (measuring_noise_) measure_noise(slot, report.box, time);
+  const double band = std::max(config_.dead_band.min_px,
+                               config_.dead_band.noise_factor * box_noise_ * report.box.h);
+  slot.class_id = report.class_id;
+  const Point from = first ? to : slot.anchor;
+  // The clearance: when the shapes were last looked at, from `look`, no line and no zone border
+  // was nearer than `clearance` (0 when the track was within a band). While the track stays
+  // closer to `look` than the clearance minus today's band, its positions since, and the straight
+  // moves between them, lie in a disc that meets no shape, and it is beyond the band on the same
+  // side of each: looking would decide nothing, so it is skipped. Displacement, not path length:
+  // a person walking to and fro beside a line, or a box jittering in place, is never looked at.
+  // Most tracks are far from every shape most of the time: most updates cost this comparison.
+  const double dx = to.x - slot.look.x;
+  const double dy = to.y - slot.look.y;
+  const double room = slot.clearance - band;
+  if (first || !(room > 0.0 && dx * dx + dy * dy < room * room))
+    look(index, from, to, band, first, time);
+  slot.previous_size = first ? Size{report.box.w, report.box.h} : slot.size;
+  slot.size = {report.box.w, report.box.h};
+  slot.previous_update = slot.last_update;
+  slot.anchor = to;
+  slot.last_update = updates_;
+  slot.previous_seen = slot.last_seen;
+  slot.last_seen = time;
+}
+
 const std::vector<Event>& EventCounter::update(const std::vector<tracker::TrackReport>& reports,
                                                double time_seconds) {
   events_.clear();
   births_.clear();
+  // The box noise is measured only in the updates whose values can be in the window when its
+  // median is next redone: the window holds kNoiseWindow values and the median is redone every
+  // kNoiseSnapshotGap reports; in between the reports are only counted (measuring every track
+  // of every update was a third of the counter's time).
+  measuring_noise_ = noise_window_.keeps_next();
+  const std::int64_t followed_before = followed_;
   // Known tracks first, so that a track born now can only take over one that was not reported.
   for (std::size_t r = 0; r < reports.size(); ++r) {
     const tracker::TrackReport& report = reports[r];
@@ -112,16 +154,29 @@ const std::vector<Event>& EventCounter::update(const std::vector<tracker::TrackR
       slots_[index] = Slot{};
       slots_[index].track_id = report.id;
       slots_[index].live = true;
+      oldest_seen_ = std::min(oldest_seen_, time_seconds);
       for (std::size_t l = 0; l < config_.lines.size(); ++l) line_state(index, l) = LineState{};
       for (std::size_t z = 0; z < config_.zones.size(); ++z) zone_state(index, z) = ZoneState{};
     }
     if (r < hints_.size()) hints_[r] = index;
     follow(index, report, time_seconds);
   }
-  for (std::size_t i = live_.size(); i > 0; --i) {
-    const std::uint32_t index = live_[i - 1];
-    if (time_seconds - slots_[index].last_seen > config_.lost_after_seconds)
-      forget(index, time_seconds);
+  // Tracks unseen too long are gone. A scan of every live track per update would cost as much as
+  // following them; the oldest sighting is a bound that says when one can be due.
+  if (time_seconds - oldest_seen_ > config_.lost_after_seconds) {
+    oldest_seen_ = INFINITY;
+    for (std::size_t i = live_.size(); i > 0; --i) {
+      const std::uint32_t index = live_[i - 1];
+      if (time_seconds - slots_[index].last_seen > config_.lost_after_seconds) {
+        forget(index, time_seconds);
+      } else {
+        oldest_seen_ = std::min(oldest_seen_, slots_[index].last_seen);
+      }
+    }
+  }
+  if (!measuring_noise_) {
+    noise_window_.pass(followed_ - followed_before);
+    settle_noise();
   }
   dwell(time_seconds);
   ++updates_;
@@ -165,104 +220,128 @@ void EventCounter::measure_noise(const Slot& slot, const tracker::Box& box, doub
   // jitter, the same that moves the anchor. Three sizes from consecutive updates only, and with
   // a known frame period only from neighbouring frames: over frames far apart the size truly
   // changes, and the measure would grow with the gap while the jitter does not.
-  if (slot.last_update != updates_ - 1 || slot.previous_update != updates_ - 2) return;
   const double period = config_.frame_period_seconds;
-  if (period > 0.0 && (time - slot.last_seen > kNeighbourGap * period ||
-                       slot.last_seen - slot.previous_seen > kNeighbourGap * period))
-    return;
-  if (!(box.w > 0.F) || !(box.h > 0.F)) return;
-  // (|ddw| / w + |ddh| / h) / 2 with one division: it runs for every track and update.
   const double w = box.w;
   const double h = box.h;
-  const double residual = (std::abs(w - 2.0 * slot.size.w + slot.previous_size.w) * h +
-                           std::abs(h - 2.0 * slot.size.h + slot.previous_size.h) * w) /
-                          (2.0 * w * h);
-  if (!std::isfinite(residual)) return;
-  noise_window_.push(static_cast<float>(residual));
-  if (noise_window_.due()) {
-    noise_window_.snapshot();
-    box_noise_ = noise_window_.order_statistic(0.5);
+  const bool measurable =
+      slot.last_update == updates_ - 1 && slot.previous_update == updates_ - 2 &&
+      !(period > 0.0 && (time - slot.last_seen > kNeighbourGap * period ||
+                         slot.last_seen - slot.previous_seen > kNeighbourGap * period)) &&
+      w > 0.0 && h > 0.0;
+  // (|ddw| / w + |ddh| / h) / 2 with one division.
+  const double residual = measurable
+                              ? (std::abs(w - 2.0 * slot.size.w + slot.previous_size.w) * h +
+                                 std::abs(h - 2.0 * slot.size.h + slot.previous_size.h) * w) /
+                                    (2.0 * w * h)
+                              : NAN;
+  if (std::isfinite(residual)) {  // sizes out of a file may be anything
+    noise_window_.push(static_cast<float>(residual));
+    ++noise_values_;
+  } else {
+    noise_window_.pass();  // every report followed counts in the schedule
   }
+  settle_noise();
 }
 
-void EventCounter::follow(std::uint32_t index, const tracker::TrackReport& report, double time) {
-  Slot& slot = slots_[index];
-  const Point to = anchor_of(report.box);
-  const bool first = slot.last_update < 0;
-  measure_noise(slot, report.box, time);
-  const double band = std::max(config_.dead_band.min_px,
-                               config_.dead_band.noise_factor * box_noise_ * report.box.h);
-  slot.class_id = report.class_id;
-  const Point from = first ? to : slot.anchor;
-  // The odometer: the track's path so far, never shorter than it (|dx| + |dy| per move). A line
-  // or zone border last looked at with the track decided beyond the band, at distance d, cannot
-  // have been met since, and the track is still beyond today's band, while the odometer has run
-  // less than d minus the band since: looking again would decide nothing (each shape's horizon,
-  // the odometer then plus d). Most tracks are far from every shape most of the time, so most
-  // updates cost one comparison (the slot's horizon: the nearest of its shapes').
-  if (!first) slot.odometer += std::abs(to.x - from.x) + std::abs(to.y - from.y);
-  if (first || !(slot.odometer + band < slot.horizon)) {
-    const double lines = cross_lines(index, from, to, band, first, time);
-    slot.horizon = std::min(lines, visit_zones(index, from, to, band, first, time));
-  }
-  slot.previous_size = first ? Size{report.box.w, report.box.h} : slot.size;
-  slot.size = {report.box.w, report.box.h};
-  slot.previous_update = slot.last_update;
-  slot.anchor = to;
-  slot.last_update = updates_;
-  slot.previous_seen = slot.last_seen;
-  slot.last_seen = time;
+void EventCounter::settle_noise() {
+  if (!noise_window_.due()) return;
+  noise_window_.snapshot();
+  if (noise_values_ > 0) box_noise_ = noise_window_.order_statistic(0.5);
 }
 
-double EventCounter::cross_lines(std::uint32_t index, const Point& from, const Point& to,
-                                 double band, bool first, double time) {
+inline double EventCounter::look_at_line(std::uint32_t index, std::size_t l, const Point& from,
+                                         const Point& to, double band, bool first, double time) {
   const Slot& slot = slots_[index];
-  const double reach = slot.odometer + band;
-  double horizon = INFINITY;
-  for (std::size_t l = 0; l < lines_.size(); ++l) {
-    LineState& state = line_state(index, l);
-    if (!first && reach < state.horizon) {
-      horizon = std::min(horizon, state.horizon);
-      continue;
+  LineState& state = line_state(index, l);
+  const PreparedLine& line = lines_[l];
+  // signed_distance() and crossing_position() of geometry.hpp, with the line's constants
+  // prepared and the previous position's distance remembered: one cross product per line and
+  // update, the crossing point only when the move changes sides.
+  const auto distance_of = [&line](const Point& p) {
+    return (line.dx * (p.y - line.from.y) - line.dy * (p.x - line.from.x)) * line.inverse_length;
+  };
+  const double distance = distance_of(to);
+  if (!first) {
+    // The distance kept is `from`'s if this line was looked at in the track's last update.
+    const double previous =
+        state.looked_at == slot.last_update ? state.distance : distance_of(from);
+    const bool meets = (previous <= 0.0 && distance >= 0.0) || (previous >= 0.0 && distance <= 0.0);
+    if (meets && !(previous == 0.0 && distance == 0.0)) {
+      const double t = previous / (previous - distance);
+      const double mx = from.x + t * (to.x - from.x) - line.from.x;
+      const double my = from.y + t * (to.y - from.y) - line.from.y;
+      const double position = (mx * line.dx + my * line.dy) * line.inverse_squared_length;
+      if (position >= 0.0 && position <= 1.0) state.met_within_ends = true;
     }
-    const PreparedLine& line = lines_[l];
-    // signed_distance() and crossing_position() of geometry.hpp, with the line's constants
-    // prepared and the previous position's distance remembered: one cross product per line and
-    // update, the crossing point only when the move changes sides.
-    const auto distance_of = [&line](const Point& p) {
-      return (line.dx * (p.y - line.from.y) - line.dy * (p.x - line.from.x)) * line.inverse_length;
-    };
-    const double distance = distance_of(to);
-    if (!first) {
-      // The distance kept is `from`'s if this line was looked at in the track's last update.
-      const double previous =
-          state.looked_at == slot.last_update ? state.distance : distance_of(from);
-      const bool meets =
-          (previous <= 0.0 && distance >= 0.0) || (previous >= 0.0 && distance <= 0.0);
-      if (meets && !(previous == 0.0 && distance == 0.0)) {
-        const double t = previous / (previous - distance);
-        const double mx = from.x + t * (to.x - from.x) - line.from.x;
-        const double my = from.y + t * (to.y - from.y) - line.from.y;
-        const double position = (mx * line.dx + my * line.dy) * line.inverse_squared_length;
-        if (position >= 0.0 && position <= 1.0) state.met_within_ends = true;
-      }
-    }
-    state.distance = distance;
-    state.looked_at = updates_;
-    const std::int8_t side = distance > band ? 1 : distance < -band ? -1 : 0;
-    if (side == 0) {  // in the dead band: keeps the side it had
-      state.horizon = 0.0;
-      horizon = 0.0;
-      continue;
-    }
-    if (state.side != 0 && side != state.side && state.met_within_ends)
-      count_crossing(l, slots_[index], side, to, time);
-    state.side = side;
-    state.met_within_ends = false;
-    state.horizon = slot.odometer + std::abs(distance);
-    horizon = std::min(horizon, state.horizon);
   }
-  return horizon;
+  state.distance = distance;
+  state.looked_at = updates_;
+  const std::int8_t side = distance > band ? 1 : distance < -band ? -1 : 0;
+  if (side == 0) return 0.0;  // in the dead band: keeps the side it had
+  if (state.side != 0 && side != state.side && state.met_within_ends)
+    count_crossing(l, slot, side, to, time);
+  state.side = side;
+  state.met_within_ends = false;
+  return std::abs(distance);
+}
+
+void EventCounter::look(std::uint32_t index, const Point& from, const Point& to, double band,
+                        bool first, double time) {
+  Slot& slot = slots_[index];
+  const std::size_t lines = lines_.size();
+  const std::size_t shapes = lines + config_.zones.size();
+  if (shapes == 0) {
+    slot.clearance = INFINITY;
+    return;
+  }
+  double* const clearance = &clearances_[index * shapes];
+  const auto look_at = [&](std::size_t k) {
+    return k < lines ? look_at_line(index, k, from, to, band, first, time)
+                     : look_at_zone(index, k - lines, from, to, band, first, time);
+  };
+  // The shapes other than the nearest were last looked at from `full_look`, where none was
+  // nearer than `second`. While the track is closer to full_look than that, less the band (its
+  // positions since are: see follow()), only the nearest shape can decide anything: a track near
+  // one line looks at that line alone.
+  const double fx = to.x - slot.full_look.x;
+  const double fy = to.y - slot.full_look.y;
+  const double far_room = slot.second - band;
+  if (!first && far_room > 0.0 && fx * fx + fy * fy < far_room * far_room) {
+    const std::size_t k = slot.nearest;
+    clearance[k] = look_at(k);
+    slot.clearance = std::min(clearance[k], slot.second - std::sqrt(fx * fx + fy * fy));
+    slot.look = to;
+    return;
+  }
+  // Each shape's clearance, less the move since it was looked at, is still a clearance from `to`
+  // (and the move from `from` lies within the old disc): only the shapes it brings within the
+  // band are looked at.
+  const double moved_far = first ? INFINITY : std::sqrt(fx * fx + fy * fy);
+  const double near = clearance[slot.nearest];
+  for (std::size_t k = 0; k < shapes; ++k) clearance[k] -= moved_far;
+  if (!first) {
+    const double nx = to.x - slot.look.x;
+    const double ny = to.y - slot.look.y;
+    clearance[slot.nearest] = near - std::sqrt(nx * nx + ny * ny);
+  }
+  double nearest = INFINITY;
+  double second = INFINITY;
+  std::size_t nearest_shape = 0;
+  for (std::size_t k = 0; k < shapes; ++k) {
+    if (!(clearance[k] > band)) clearance[k] = look_at(k);
+    if (clearance[k] < nearest) {
+      second = nearest;
+      nearest = clearance[k];
+      nearest_shape = k;
+    } else {
+      second = std::min(second, clearance[k]);
+    }
+  }
+  slot.clearance = nearest;
+  slot.second = second;
+  slot.nearest = static_cast<std::uint32_t>(nearest_shape);
+  slot.full_look = to;
+  slot.look = to;
 }
 
 void EventCounter::count_crossing(std::size_t line, const Slot& slot, int side, const Point& where,
@@ -273,54 +352,39 @@ void EventCounter::count_crossing(std::size_t line, const Slot& slot, int side, 
   ++(in ? counts.in : counts.out);
 }
 
-double EventCounter::visit_zones(std::uint32_t index, const Point& from, const Point& to,
-                                 double band, bool first, double time) {
-  const double odometer = slots_[index].odometer;
-  double horizon = INFINITY;
-  for (std::size_t z = 0; z < config_.zones.size(); ++z) {
-    ZoneState& state = zone_state(index, z);
-    if (!first && odometer + band < state.horizon) {  // see follow()
-      horizon = std::min(horizon, state.horizon);
-      continue;
-    }
-    const ZoneSpec& zone = config_.zones[z];
-    const Bounds& bounds = zone_bounds_[z];
-    // Most tracks are far from most zones: a move whose box, grown by the band, misses the zone's
-    // box is outside by more than the band at both ends and cannot pass through.
-    if (std::max(from.x, to.x) + band < bounds.min_x ||
-        std::min(from.x, to.x) - band > bounds.max_x ||
-        std::max(from.y, to.y) + band < bounds.min_y ||
-        std::min(from.y, to.y) - band > bounds.max_y) {
-      if (state.inside) leave(index, z, to, time, /*lost=*/false);
-      // How far outside the zone's box: no further than from the zone itself.
-      state.horizon = odometer + std::max({bounds.min_x - to.x, to.x - bounds.max_x,
-                                           bounds.min_y - to.y, to.y - bounds.max_y});
-      horizon = std::min(horizon, state.horizon);
-      continue;
-    }
-    const double distance = distance_to_boundary(zone.polygon, to);
-    if (distance <= band) {  // the dead band: decides nothing
-      state.horizon = 0.0;
-      horizon = 0.0;
-      continue;
-    }
-    const bool inside = inside_polygon(zone.polygon, to);
-    if (inside != state.inside) {
-      if (inside) {
-        enter(index, z, to, time);
-      } else {
-        leave(index, z, to, time, /*lost=*/false);
-      }
-    } else if (!inside && !first && move_meets_boundary(zone.polygon, from, to) &&
-               distance_to_boundary(zone.polygon, from) > band) {
-      // Through the zone between two processed frames: it was inside, for an unknown while.
+double EventCounter::look_at_zone(std::uint32_t index, std::size_t z, const Point& from,
+                                  const Point& to, double band, bool first, double time) {
+  ZoneState& state = zone_state(index, z);
+  const ZoneSpec& zone = config_.zones[z];
+  const Bounds& bounds = zone_bounds_[z];
+  // Most tracks are far from most zones: a move whose box, grown by the band, misses the zone's
+  // box is outside by more than the band at both ends and cannot pass through.
+  if (std::max(from.x, to.x) + band < bounds.min_x ||
+      std::min(from.x, to.x) - band > bounds.max_x ||
+      std::max(from.y, to.y) + band < bounds.min_y ||
+      std::min(from.y, to.y) - band > bounds.max_y) {
+    if (state.inside) leave(index, z, to, time, /*lost=*/false);
+    // How far outside the zone's box: no further than from the zone itself.
+    const double outside_x = std::max({bounds.min_x - to.x, to.x - bounds.max_x, 0.0});
+    const double outside_y = std::max({bounds.min_y - to.y, to.y - bounds.max_y, 0.0});
+    return std::sqrt(outside_x * outside_x + outside_y * outside_y);
+  }
+  const double distance = distance_to_boundary(zone_edges_[z], to);
+  if (distance <= band) return 0.0;  // the dead band: decides nothing
+  const bool inside = inside_polygon(zone.polygon, to);
+  if (inside != state.inside) {
+    if (inside) {
       enter(index, z, to, time);
+    } else {
       leave(index, z, to, time, /*lost=*/false);
     }
-    state.horizon = odometer + distance;
-    horizon = std::min(horizon, state.horizon);
+  } else if (!inside && !first && move_meets_boundary(zone.polygon, from, to) &&
+             distance_to_boundary(zone_edges_[z], from) > band) {
+    // Through the zone between two processed frames: it was inside, for an unknown while.
+    enter(index, z, to, time);
+    leave(index, z, to, time, /*lost=*/false);
   }
-  return horizon;
+  return distance;
 }
 
 void EventCounter::enter(std::uint32_t index, std::size_t zone, const Point& where, double time) {

@@ -6,6 +6,7 @@
 // Allocation-free after construction: the track table, the per-line and per-zone state and the
 // event list are sized once for config.max_tracks tracks.
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -58,13 +59,11 @@ class EventCounter {
     std::int8_t side{0};          // -1 left, +1 right, 0 not yet known
     bool met_within_ends{false};  // the path since the last decided side met the segment
     std::int64_t looked_at{-1};   // the update that computed `distance`
-    double horizon{0.0};          // not looked at again before the odometer passes this (follow())
   };
   struct ZoneState {
     bool inside{false};
     bool dwell_sent{false};
     double entered_at{0.0};
-    double horizon{0.0};  // as LineState's
   };
   struct Size {
     double w{0.0};
@@ -81,9 +80,14 @@ class EventCounter {
     Point anchor;
     Size size;
     Size previous_size;
-    // The path so far (|dx| + |dy| summed) and the nearest of its shapes' horizons (follow()).
-    double odometer{0.0};
-    double horizon{0.0};
+    // Where the shapes were last looked at, and the smallest of their clearances (follow()).
+    Point look;
+    double clearance{0.0};
+    // Where every shape was last looked at, the nearest one then, and the smallest clearance of
+    // the others from there (look()).
+    Point full_look;
+    double second{0.0};
+    std::uint32_t nearest{0};
   };
 
   static constexpr std::uint32_t kNone = ~std::uint32_t{0};
@@ -96,14 +100,19 @@ class EventCounter {
   std::uint32_t find_broken_off(const tracker::TrackReport& report, double time) const;
   Point anchor_of(const tracker::Box& box) const;
   void measure_noise(const Slot& slot, const tracker::Box& box, double time);
+  void settle_noise();
   void count_crossing(std::size_t line, const Slot& slot, int side, const Point& where,
                       double time);
   void follow(std::uint32_t index, const tracker::TrackReport& report, double time);
-  // Each returns the nearest horizon of its shapes (follow(); INFINITY without shapes).
-  double cross_lines(std::uint32_t index, const Point& from, const Point& to, double band,
-                     bool first, double time);
-  double visit_zones(std::uint32_t index, const Point& from, const Point& to, double band,
-                     bool first, double time);
+  // Each looks at one shape for a track moving from `from` to `to`, decides what it can, and
+  // returns the shape's clearance from `to` (follow(): 0 within the band).
+  // Looks at the shapes that the move from `from` to `to` may have brought within their band.
+  void look(std::uint32_t index, const Point& from, const Point& to, double band, bool first,
+            double time);
+  double look_at_line(std::uint32_t index, std::size_t line, const Point& from, const Point& to,
+                      double band, bool first, double time);
+  double look_at_zone(std::uint32_t index, std::size_t zone, const Point& from, const Point& to,
+                      double band, bool first, double time);
   void enter(std::uint32_t index, std::size_t zone, const Point& where, double time);
   void leave(std::uint32_t index, std::size_t zone, const Point& where, double time, bool lost);
   void dwell(double time);
@@ -120,6 +129,7 @@ class EventCounter {
   EventsConfig config_;
   std::vector<PreparedLine> lines_;
   std::vector<Bounds> zone_bounds_;
+  std::vector<std::vector<PreparedEdge>> zone_edges_;
   std::vector<Slot> slots_;
   std::vector<std::uint32_t> live_;  // slots in use, in no order
   std::vector<std::uint32_t> free_;
@@ -127,6 +137,9 @@ class EventCounter {
   std::vector<std::uint32_t> births_;  // this update's reports of ids not followed yet
   std::vector<LineState> line_states_;
   std::vector<ZoneState> zone_states_;
+  // Per slot, its lines' then its zones' clearances from the slot's `look` (follow()): no point
+  // of the line, or of the zone's border, is nearer.
+  std::vector<double> clearances_;
   std::vector<Event> events_;
   std::vector<LineCounts> line_counts_;
   std::vector<ZoneCounts> zone_counts_;
@@ -134,8 +147,14 @@ class EventCounter {
   std::vector<double> earliest_pending_;
   tracker::RecentWindow noise_window_;
   double box_noise_{0.0};
+  std::int64_t noise_values_{0};  // pushed into noise_window_
+  std::int64_t followed_{0};      // reports followed, ever
+  bool measuring_noise_{true};    // in this update (update())
   std::int64_t updates_{0};
   std::int64_t tracks_not_followed_{0};
+  // No live slot was last seen before this (a bound: the lost-track scan runs only when it can
+  // find one).
+  double oldest_seen_{INFINITY};
 };
 
 }  // namespace rtmot::events

@@ -49,21 +49,25 @@ bool crossing_position(const Segment& s, const Point& p, const Point& q, double&
 
 namespace {
 
-double squared_distance_to_segment(const Point& p, const Segment& s) {
+PreparedEdge prepare_edge(const Segment& s) {
   const double dx = s.to.x - s.from.x;
   const double dy = s.to.y - s.from.y;
   const double squared = dx * dx + dy * dy;
-  double t = squared > 0.0 ? ((p.x - s.from.x) * dx + (p.y - s.from.y) * dy) / squared : 0.0;
+  return {s.from, dx, dy, squared > 0.0 ? 1.0 / squared : 0.0};
+}
+
+double squared_distance_to_edge(const Point& p, const PreparedEdge& e) {
+  double t = ((p.x - e.from.x) * e.dx + (p.y - e.from.y) * e.dy) * e.inverse_squared_length;
   t = std::clamp(t, 0.0, 1.0);
-  const double ex = p.x - (s.from.x + t * dx);
-  const double ey = p.y - (s.from.y + t * dy);
+  const double ex = p.x - (e.from.x + t * e.dx);
+  const double ey = p.y - (e.from.y + t * e.dy);
   return ex * ex + ey * ey;
 }
 
 }  // namespace
 
 double distance_to_segment(const Point& p, const Segment& s) {
-  return std::sqrt(squared_distance_to_segment(p, s));
+  return std::sqrt(squared_distance_to_edge(p, prepare_edge(s)));
 }
 
 bool segments_intersect(const Segment& a, const Segment& b) {
@@ -87,17 +91,27 @@ bool inside_polygon(const std::vector<Point>& polygon, const Point& p) {
   return inside;
 }
 
-double distance_to_boundary(const std::vector<Point>& polygon, const Point& p) {
-  // Squared per edge, one root at the end: the counter asks this of every track near a zone.
+std::vector<PreparedEdge> prepare_edges(const std::vector<Point>& polygon) {
+  std::vector<PreparedEdge> edges;
+  edges.reserve(polygon.size());
+  for (std::size_t i = 0; i < polygon.size(); ++i) edges.push_back(prepare_edge(edge(polygon, i)));
+  return edges;
+}
+
+double distance_to_boundary(const std::vector<PreparedEdge>& edges, const Point& p) {
+  // Squared per edge, one root at the end.
   double nearest = INFINITY;
-  for (std::size_t i = 0; i < polygon.size(); ++i)
-    nearest = std::min(nearest, squared_distance_to_segment(p, edge(polygon, i)));
+  for (const PreparedEdge& e : edges) nearest = std::min(nearest, squared_distance_to_edge(p, e));
   return std::sqrt(nearest);
 }
 
+double distance_to_boundary(const std::vector<Point>& polygon, const Point& p) {
+  return distance_to_boundary(prepare_edges(polygon), p);
+}
+
 bool move_meets_boundary(const std::vector<Point>& polygon, const Point& p, const Point& q) {
-  for (std::size_t i = 0; i < polygon.size(); ++i)
-    if (segments_intersect({p, q}, edge(polygon, i))) return true;
+  for (std::size_t i = 0, j = polygon.size() - 1; i < polygon.size(); j = i++)
+    if (segments_intersect({p, q}, {polygon[j], polygon[i]})) return true;
   return false;
 }
 

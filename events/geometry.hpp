@@ -38,6 +38,17 @@ bool inside_polygon(const std::vector<Point>& polygon, const Point& p);
 
 double distance_to_boundary(const std::vector<Point>& polygon, const Point& p);
 
+/// An edge with what the distance to it needs prepared: the counter asks the distance to a zone's
+/// border of every track near it, and a division per edge was most of that.
+struct PreparedEdge {
+  Point from;
+  double dx{0.0};
+  double dy{0.0};
+  double inverse_squared_length{0.0};  // 0 for a zero-length edge
+};
+std::vector<PreparedEdge> prepare_edges(const std::vector<Point>& polygon);
+double distance_to_boundary(const std::vector<PreparedEdge>& edges, const Point& p);
+
 /// True when the move p -> q meets any edge of the polygon.
 bool move_meets_boundary(const std::vector<Point>& polygon, const Point& p, const Point& q);
 

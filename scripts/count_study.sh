@@ -4,7 +4,10 @@
 # Runs `rtmot track` for the rtmot and SORT presets at intervals 1, 5 and 10, counts crossings of
 # the lines written down in LINES (configs/counting/mot15-lines.yaml) with `rtmot count`, and prints
 # the total absolute count error against the ground truth counted at every frame, with the floor
-# (the ground truth kept at frames 1, 1+N, ...). Stops with the failing step's status.
+# (the ground truth kept at frames 1, 1+N, ...), then per preset and interval the crossings counted
+# and how the error splits into over- and under-counts (per sequence, line and direction: a cell
+# counted above its reference adds to "over", below to "under"; within a cell they cancel, so both
+# are lower bounds). Stops with the failing step's status.
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 build="${1:-$root/build}"
@@ -37,4 +40,18 @@ for preset in rtmot sort; do
     row+=" $(error_of --interval "$n" --tracks "$work/$preset-$n") |"
   done
   echo "$row"
+done
+echo
+echo "| preset | interval | counted | reference | over | under |"
+echo "|---|---|---|---|---|---|"
+for preset in rtmot sort; do
+  for n in "${intervals[@]}"; do
+    "$rtmot" count --dataset "$dataset" --lines "$lines" --reference --interval "$n" \
+      --tracks "$work/$preset-$n" |
+      awk -v p="$preset" -v n="$n" '
+        NF == 6 && $3 ~ /^[0-9]+$/ {
+          for (i = 3; i <= 4; ++i) { d = $i - $(i + 2); if (d > 0) over += d; else under -= d }
+          counted += $3 + $4; reference += $5 + $6 }
+        END { printf "| %s | %d | %d | %d | %d | %d |\n", p, n, counted, reference, over, under }'
+  done
 done

@@ -23,6 +23,19 @@ class RecentWindow {
 
   void push(float value);
 
+  /// False when a value pushed now could not be in the window at the next snapshot (the window
+  /// is full and more than its capacity of values come before that snapshot): a caller may then
+  /// pass() instead of working the value out and pushing it; the statistics stay the same.
+  bool keeps_next() const {
+    return filled_ < values_.size() || values_.empty() ||
+           seen_ + static_cast<std::int64_t>(values_.size()) >= next_snapshot_;
+  }
+
+  /// Counts `count` values without keeping them: where keeps_next() is false, the statistics stay
+  /// the same; elsewhere (a caller whose schedule counts more than the values it keeps) the window
+  /// keeps what was pushed before.
+  void pass(std::int64_t count = 1) { seen_ += count; }
+
   /// True when enough values came since the last snapshot() for the statistics to be redone.
   bool due() const { return seen_ >= next_snapshot_; }
 

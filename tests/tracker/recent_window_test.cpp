@@ -54,5 +54,33 @@ TEST(RecentWindow, TakesALongerGapOnceFullWhenAsked) {
   EXPECT_FLOAT_EQ(window.order_statistic(0.5), 845.F);  // the last 100 values: 795..894
 }
 
+// A caller that passes the values keeps_next() says are lost anyway (the event counter, which
+// then skips working them out) sees the same snapshots and statistics as one that pushes them all.
+TEST(RecentWindow, PassingTheValuesItWouldDropChangesNothing) {
+  RecentWindow all(100, 250);
+  RecentWindow passing(100, 250);
+  int passed = 0;
+  for (int i = 1; i <= 2000; ++i) {
+    const float value = static_cast<float>((i * 7919) % 1000);  // not sorted
+    all.push(value);
+    if (passing.keeps_next()) {
+      passing.push(value);
+    } else {
+      passing.pass();
+      ++passed;
+    }
+    ASSERT_EQ(all.due(), passing.due()) << i;
+    if (all.due()) {
+      all.snapshot();
+      passing.snapshot();
+      ASSERT_FLOAT_EQ(all.order_statistic(0.5), passing.order_statistic(0.5)) << i;
+      ASSERT_FLOAT_EQ(all.order_statistic(0.9), passing.order_statistic(0.9)) << i;
+    }
+  }
+  EXPECT_EQ(all.seen(), passing.seen());
+  EXPECT_GT(passed, 1000);  // 150 of each 250 once full
+  EXPECT_TRUE(RecentWindow(0).keeps_next());
+}
+
 }  // namespace
 }  // namespace rtmot::tracker
