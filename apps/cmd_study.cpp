@@ -227,9 +227,9 @@ Subcommand add_study_command(CLI::App& parent) {
   CLI::App* cli = parent.add_subcommand(
       "study",
       "Frame-rate study: every predictor x affinity, tracker option and preset at several frame "
-      "intervals, on det/det.txt and on gt/gt.txt as a perfect detector; the presets on five "
-      "synthetic detectors made from the ground truth; cross-validation of the default's "
-      "candidates; tables and SVG plots");
+      "intervals, on det/det.txt and on gt/gt.txt as a perfect detector; the presets on "
+      "synthetic detectors made from the ground truth (those held back from every choice "
+      "included); cross-validation of the default's candidates; tables and SVG plots");
   cli->add_option("--dataset", options->dataset,
                   "a sequence folder (with seqinfo.ini) or a folder of them")
       ->required();
