@@ -24,12 +24,13 @@
 # thread), RTMOT_PIPELINE_TAG (added to the pipeline logs' names, e.g. pass2),
 # RTMOT_PIPELINE_IN_FLIGHT ("1 2": detector.in_flight values, each run per backend and source count;
 # "-" leaves the setting out, for trees older than it), RTMOT_PIPELINE_LOOP (25: plays of the 16
-# frames per source), RTMOT_PIPELINE_PLAYBACK ("every-frame"; also realtime: frames released at
-# the source's rate, the latency a camera would see), RTMOT_PIPELINE_FPS (10: the images:// rate,
-# which only realtime honours), RTMOT_TESTS_FILTER (a --gtest_filter for the tests stage). Each
-# pipeline run writes pipeline-TAG-FORMAT-PLAYBACK-BACKEND-N-ifK.{log,json,smi,threads} and one row
-# of pipeline-summary-TAG-FORMAT.tsv (FPS, detector FPS, ms per image, p50/p99 capture->sent, GPU
-# busy over the run proper and over the whole process, CPU seconds of the capture and detect
+# frames per source), RTMOT_PIPELINE_PLAYBACK ("every-frame"; also realtime: frames released at the
+# source's rate, the latency a camera would see), RTMOT_PIPELINE_FPS (10: the images:// rate, which
+# only realtime honours), RTMOT_TESTS_FILTER (a --gtest_filter for the tests stage),
+# RTMOT_BENCH_ARGS (detector_batch_bench's arguments instead of every backend at batch 1, 2, 4, 8).
+# Each pipeline run writes pipeline-TAG-FORMAT-PLAYBACK-BACKEND-N-ifK.{log,json,smi,threads} and one
+# row of pipeline-summary-TAG-FORMAT.tsv (FPS, detector FPS, ms per image, p50/p99 capture->sent,
+# GPU busy over the run proper and over the whole process, CPU seconds of the capture and detect
 # threads).
 set -euo pipefail
 out="${1:?usage: gpu_machine.sh OUT_DIR [stages]}"
@@ -193,8 +194,8 @@ fi
 if has bench; then
   for pass in $(seq 1 "${RTMOT_PASSES:-3}"); do
     step "detector_batch_bench ($tag) pass $pass"
-    "${run_env[@]}" "$build/bench/detector_batch_bench" --backends cpu,cuda,cuda-fp16 --batches 1,2,4,8 \
-      --iterations 60 2>&1 | tee "$out/bench-$tag-$pass.log" | tail -n 14
+    # shellcheck disable=SC2086 # RTMOT_BENCH_ARGS: words
+    "${run_env[@]}" "$build/bench/detector_batch_bench" ${RTMOT_BENCH_ARGS:---backends cpu,cuda,cuda-fp16 --batches 1,2,4,8 --iterations 60} 2>&1 | tee "$out/bench-$tag-$pass.log" | tail -n 14
     # the benchmark reports a backend it cannot run as "skipped": here that is a failure
     ! grep -q "skipped" "$out/bench-$tag-$pass.log" || die "detector_batch_bench skipped a backend (above)"
   done
