@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -61,6 +62,8 @@ SsdPostprocessor::SsdPostprocessor(std::vector<Anchor> anchors, int num_classes,
   // The worst case (every class of every anchor passes) once, so run() never grows these.
   candidates_.reserve(anchors_.size() * class_ids_.size());
   kept_.reserve(anchors_.size());
+  const auto max_kept = static_cast<std::size_t>(std::max(config_.max_detections, 0));
+  emitted_.reserve(std::min(anchors_.size(), max_kept) * class_ids_.size());
 }
 
 void SsdPostprocessor::run(const float* box_encodings, const float* class_logits, int image_width,
@@ -113,6 +116,7 @@ void SsdPostprocessor::suppress_and_emit(int image_width, int image_height,
   const auto width = static_cast<float>(image_width);
   const auto height = static_cast<float>(image_height);
   const auto max_kept = static_cast<std::size_t>(std::max(config_.max_detections, 0));
+  emitted_.clear();
   for (auto group = candidates_.begin(); group != candidates_.end();) {
     const int class_id = group->class_id;
     kept_.clear();
@@ -131,13 +135,16 @@ void SsdPostprocessor::suppress_and_emit(int image_width, int image_height,
       const float x2 = std::clamp(k.x2, 0.F, width);
       const float y2 = std::clamp(k.y2, 0.F, height);
       if (x2 <= x1 || y2 <= y1) continue;  // entirely outside the image
-      out.push_back({{x1, y1, x2 - x1, y2 - y1}, k.score, k.class_id});
+      emitted_.push_back({{x1, y1, x2 - x1, y2 - y1}, k.score, k.class_id});
     }
   }
-  std::sort(out.begin(), out.end(), [](const tracker::Detection& a, const tracker::Detection& b) {
-    return a.score > b.score;
-  });
-  if (out.size() > max_kept) out.resize(max_kept);
+  std::sort(
+      emitted_.begin(), emitted_.end(),
+      [](const tracker::Detection& a, const tracker::Detection& b) { return a.score > b.score; });
+  // Reserving the whole budget once means a later frame with more detections never grows `out`.
+  out.reserve(max_kept);
+  out.insert(out.end(), emitted_.begin(),
+             emitted_.begin() + static_cast<std::ptrdiff_t>(std::min(emitted_.size(), max_kept)));
 }
 
 }  // namespace rtmot::detector

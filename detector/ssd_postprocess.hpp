@@ -52,6 +52,9 @@ class SsdPostprocessor {
   float logit_threshold_;       // sigmoid is monotonic: compare logits, take exp() of few
   std::vector<Candidate> candidates_;
   std::vector<Candidate> kept_;
+  // Every class's survivors before the overall cut to max_detections: the caller's vector then
+  // only ever receives at most max_detections, so it reaches its final capacity on the first call.
+  std::vector<tracker::Detection> emitted_;
 };
 
 }  // namespace rtmot::detector

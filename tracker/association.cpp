@@ -1,6 +1,7 @@
 #include "tracker/association.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include "tracker/affinity.hpp"
 
@@ -26,7 +27,6 @@ void Associator::associate(const TrackerConfig& config, double threshold,
   affinities_.resize(static_cast<std::size_t>(rows) * cols);
   row_hits_.assign(rows, 0);
   col_hits_.assign(cols, 0);
-  int above = 0;
   for (int r = 0; r < rows; ++r) {
     for (int c = 0; c < cols; ++c) {
       const double value = affinity(config, candidates[c].predicted, detections[r].box,
@@ -35,11 +35,54 @@ void Associator::associate(const TrackerConfig& config, double threshold,
       if (value > threshold) {
         ++row_hits_[r];
         ++col_hits_[c];
-        ++above;
       }
     }
   }
-  const bool one_to_one = above > 0 && *std::max_element(row_hits_.begin(), row_hits_.end()) == 1 &&
+  solve(threshold, rows, cols, matches);
+}
+
+double normalised_centre_distance(const Box& predicted, const Box& detection) {
+  const double dx = (double{detection.center_x()} - predicted.center_x()) / predicted.w;
+  const double dy = (double{detection.center_y()} - predicted.center_y()) / predicted.h;
+  return std::hypot(dx, dy);
+}
+
+void Associator::associate_by_distance(double per_frame, double max_reach,
+                                       const std::vector<Detection>& detections,
+                                       const std::vector<AssociationCandidate>& candidates,
+                                       std::vector<AssociationMatch>& matches) {
+  const int rows = static_cast<int>(detections.size());
+  const int cols = static_cast<int>(candidates.size());
+  if (rows == 0 || cols == 0) return;
+  const auto at = [cols](int r, int c) { return static_cast<std::size_t>(r) * cols + c; };
+  affinities_.resize(static_cast<std::size_t>(rows) * cols);
+  row_hits_.assign(rows, 0);
+  col_hits_.assign(cols, 0);
+  for (int c = 0; c < cols; ++c) {
+    const Box& predicted = candidates[c].predicted;
+    const double reach = std::min(per_frame * candidates[c].gate_frames, max_reach);
+    for (int r = 0; r < rows; ++r) {
+      const Box& box = detections[r].box;
+      const double distance = normalised_centre_distance(predicted, box);
+      const double heights = double{box.h} / predicted.h;
+      const bool possible = distance <= reach && heights <= kDistanceRoundHeightRatio &&
+                            heights >= 1.0 / kDistanceRoundHeightRatio;
+      // In (0, 1], larger when closer; -1 (below the threshold 0) when out of reach.
+      affinities_[at(r, c)] = possible ? 1.0 / (1.0 + distance) : -1.0;
+      if (possible) {
+        ++row_hits_[r];
+        ++col_hits_[c];
+      }
+    }
+  }
+  solve(0.0, rows, cols, matches);
+}
+
+void Associator::solve(double threshold, int rows, int cols,
+                       std::vector<AssociationMatch>& matches) {
+  const auto at = [cols](int r, int c) { return static_cast<std::size_t>(r) * cols + c; };
+  const bool any_hit = std::any_of(row_hits_.begin(), row_hits_.end(), [](int n) { return n > 0; });
+  const bool one_to_one = any_hit && *std::max_element(row_hits_.begin(), row_hits_.end()) == 1 &&
                           *std::max_element(col_hits_.begin(), col_hits_.end()) == 1;
   if (one_to_one) {
     for (int r = 0; r < rows; ++r) {

@@ -16,6 +16,13 @@ struct AssociationCandidate {
   float noise_margin{0.F};  // the gate margin the stream's box noise asks for (noise_gate_factor)
 };
 
+/// The distance round's pairs differ in height by at most this factor: a far detection of a
+/// person nearer to or further from the camera is another person (the events' link uses 1.5 too).
+inline constexpr double kDistanceRoundHeightRatio = 1.5;
+
+/// How far `detection`'s centre lies from `predicted`'s, in `predicted`'s width and height.
+double normalised_centre_distance(const Box& predicted, const Box& detection);
+
 struct AssociationMatch {
   int detection;  // index into the detections
   int candidate;  // index into the candidates
@@ -34,7 +41,19 @@ class Associator {
                  const std::vector<AssociationCandidate>& candidates,
                  std::vector<AssociationMatch>& matches);
 
+  /// The same round by centre distance (TrackerConfig::distance_gate_per_frame): a pair is
+  /// possible when the detection's centre lies within min(per_frame x gate_frames, max_reach)
+  /// of the candidate's predicted centre, in the predicted box's sizes, and their heights are
+  /// within kDistanceRoundHeightRatio; the assignment prefers the closer pairs.
+  void associate_by_distance(double per_frame, double max_reach,
+                             const std::vector<Detection>& detections,
+                             const std::vector<AssociationCandidate>& candidates,
+                             std::vector<AssociationMatch>& matches);
+
  private:
+  // Appends the matches for the affinities_ already filled (rows x cols, row-major).
+  void solve(double threshold, int rows, int cols, std::vector<AssociationMatch>& matches);
+
   std::vector<double> affinities_;
   std::vector<double> costs_;
   std::vector<int> row_hits_;

@@ -29,6 +29,8 @@ TrackerConfig with_every_option(TrackerConfig base) {
   base.second_round_threshold = 0.5;
   base.max_gate_margin = 0.4;
   base.noise_gate_factor = 3.0;
+  base.distance_gate_per_frame = 0.5;
+  base.distance_gate_max = 5.0;
   return base;
 }
 
@@ -92,6 +94,11 @@ std::optional<std::string> config_problem(const TrackerConfig& config) {
            "]";
   if (!(config.noise_gate_factor >= 0.0 && config.noise_gate_factor <= limits::kMaxNoiseGateFactor))
     return "noise_gate_factor must be in [0, " + std::to_string(limits::kMaxNoiseGateFactor) + "]";
+  if (!(config.distance_gate_per_frame >= 0.0 &&
+        config.distance_gate_per_frame <= limits::kMaxDistanceGate &&
+        config.distance_gate_max >= 0.0 && config.distance_gate_max <= limits::kMaxDistanceGate))
+    return "distance_gate_per_frame and distance_gate_max must be in [0, " +
+           std::to_string(limits::kMaxDistanceGate) + "]";
   return std::nullopt;
 }
 

@@ -125,6 +125,14 @@ struct TrackerConfig {
   /// detections land from their tracks' one-frame predictions, tracker/box_noise.hpp), up to
   /// max_gate_margin: the detector's jitter as the stream shows it. 0 = off.
   double noise_gate_factor{0.0};
+  /// A last association round by centre distance: a track still coasting after every other
+  /// round may take a high-score detection no round took whose centre lies within
+  /// `distance_gate_per_frame` x (nominal frames since the previous processed frame) of its
+  /// prediction, at most `distance_gate_max`, in the predicted box's sizes (dx/w, dy/h), heights
+  /// within 1.5x. Reaches people who moved more than their own size between processed frames far
+  /// apart, where no IoU gate does. 0 = off.
+  double distance_gate_per_frame{0.0};
+  double distance_gate_max{5.0};
 
   // --- particle filter ---
   int particle_count{100};

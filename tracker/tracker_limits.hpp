@@ -14,6 +14,8 @@ inline constexpr double kMaxImageSide = 100000.0;
 inline constexpr double kMaxScoreQuantile = 0.99;
 // A box eleven times its size matches anything.
 inline constexpr double kMaxGateMargin = 5.0;
+// A centre eleven box sizes away is anywhere in a crowd: the distance gate's largest reach.
+inline constexpr double kMaxDistanceGate = 10.0;
 // Past it any jitter asks for the whole max_gate_margin.
 inline constexpr double kMaxNoiseGateFactor = 100.0;
 

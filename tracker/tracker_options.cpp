@@ -196,6 +196,12 @@ std::vector<TrackerOption> make_table() {
            "widen the gate by this many times the stream's median box offset from the "
            "prediction (0: off)",
            &C::noise_gate_factor, 0.0, limits::kMaxNoiseGateFactor),
+      real("distance_gate_per_frame",
+           "a last round matches a coasting track to a leftover detection whose centre is within "
+           "this many box sizes per nominal frame between processed frames (0: off)",
+           &C::distance_gate_per_frame, 0.0, limits::kMaxDistanceGate),
+      real("distance_gate_max", "the largest reach of that round, in box sizes",
+           &C::distance_gate_max, 0.0, limits::kMaxDistanceGate),
       integer("particle_count", "particles per track (particle predictor)", &C::particle_count, 1,
               limits::kMaxParticles),
       integer<std::uint64_t>("seed", "random seed of the particle predictor", &C::seed, 0,

@@ -53,6 +53,8 @@ TEST(TrackerOptions, EveryKnobOfTheConfigCanBeSet) {
                                      {"second_round_threshold", "0.45"},
                                      {"max_gate_margin", "0.25"},
                                      {"noise_gate_factor", "2.5"},
+                                     {"distance_gate_per_frame", "0.35"},
+                                     {"distance_gate_max", "3.5"},
                                      {"particle_count", "33"},
                                      {"seed", "18446744073709551615"},
                                      {"max_tracks", "20"},
@@ -86,11 +88,13 @@ TEST(TrackerOptions, EveryKnobOfTheConfigCanBeSet) {
   EXPECT_DOUBLE_EQ(config.second_round_threshold, 0.45);
   EXPECT_DOUBLE_EQ(config.max_gate_margin, 0.25);
   EXPECT_DOUBLE_EQ(config.noise_gate_factor, 2.5);
+  EXPECT_DOUBLE_EQ(config.distance_gate_per_frame, 0.35);
+  EXPECT_DOUBLE_EQ(config.distance_gate_max, 3.5);
   EXPECT_EQ(config.particle_count, 33);
   EXPECT_EQ(config.seed, 18446744073709551615ULL);
   EXPECT_EQ(config.max_tracks, 20);
   EXPECT_EQ(config.max_detections, 30);
-  EXPECT_EQ(tracker_options().size(), 33U) << "a new TrackerConfig field needs a line here too";
+  EXPECT_EQ(tracker_options().size(), 35U) << "a new TrackerConfig field needs a line here too";
 }
 
 TEST(TrackerOptions, AnAffinityBringsItsUsualThresholdUnlessOneFollows) {
