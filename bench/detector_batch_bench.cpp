@@ -2,8 +2,10 @@
 // process: for each thread count and batch size it builds one detector per backend and then calls
 // them in turn, call by call, so a shared or loaded machine's drift hits every backend alike. It
 // times detect_batch() over vtest.avi frames held in memory and, inside it, the forward pass alone
-// (SsdDetector::last_forward_ns), and prints min / median per batch and per image, and each
-// backend's median forward pass relative to the first backend's. Not Google Benchmark: the
+// (SsdDetector::last_forward_ns) and the preprocessing of the call's images (last_preprocess_ns,
+// "pre med": the batch's images in parallel on OpenCV's pool, so --threads 1 shows them serial),
+// and prints min / median per batch and per image, and each backend's median forward pass
+// relative to the first backend's. Not Google Benchmark: the
 // numbers wanted are the min and median of individual calls, per image, for a table
 // (docs/gpu.md, docs/cpu-detector.md).
 //
@@ -111,6 +113,7 @@ struct Run {
   std::unique_ptr<rtmot::detector::SsdDetector> detector;
   std::vector<double> call_ms;
   std::vector<double> forward_ms;
+  std::vector<double> preprocess_ms;
 };
 
 std::unique_ptr<rtmot::detector::SsdDetector> make_detector(const Options& options,
@@ -147,15 +150,15 @@ int main(int argc, char** argv) {
       "called in turn; OpenCV %s\n",
       frames.size(), rtmot::bench::bench_frames_uri().c_str(), frames[0].cols, frames[0].rows,
       options.iterations, CV_VERSION);
-  std::printf("%-10s %7s %5s | %9s %9s | %9s %9s | %9s %9s | %8s | %6s\n", "backend", "threads",
-              "batch", "call min", "call med", "fwd min", "fwd med", "img med", "fwd/img",
-              "images/s", "fwd x");
+  std::printf("%-10s %7s %5s | %9s %9s | %9s %9s | %9s %9s | %8s | %6s | %8s\n", "backend",
+              "threads", "batch", "call min", "call med", "fwd min", "fwd med", "img med",
+              "fwd/img", "images/s", "fwd x", "pre med");
   for (const int threads : options.threads) {
     for (const int batch : options.batches) {
       std::vector<Run> runs;
       for (const std::string& backend : options.backends) {
         try {
-          runs.push_back({backend, make_detector(options, backend, threads, batch), {}, {}});
+          runs.push_back({backend, make_detector(options, backend, threads, batch), {}, {}, {}});
           std::printf("# %s\n", runs.back().detector->describe().c_str());
         } catch (const rtmot::InputError& e) {
           std::printf("%-10s %7d %5d | skipped: %s\n", backend.c_str(), threads, batch, e.what());
@@ -181,6 +184,8 @@ int main(int argc, char** argv) {
           if (i < 0) continue;  // warm-up
           run.call_ms.push_back(ms);
           run.forward_ms.push_back(static_cast<double>(run.detector->last_forward_ns()) * 1e-6);
+          run.preprocess_ms.push_back(static_cast<double>(run.detector->last_preprocess_ns()) *
+                                      1e-6);
         }
       }
       // With --vary the calls hold batch - 0.5 images on average.
@@ -192,11 +197,12 @@ int main(int argc, char** argv) {
       for (const Run& run : runs) {
         const double call_median = median(run.call_ms);
         const double forward_median = median(run.forward_ms);
-        std::printf("%-10s %7d %5s | %9.2f %9.2f | %9.2f %9.2f | %9.2f %9.2f | %8.1f | %6.2f\n",
-                    run.backend.c_str(), threads, label.c_str(), minimum(run.call_ms), call_median,
-                    minimum(run.forward_ms), forward_median, call_median / per_call,
-                    forward_median / per_call, 1000.0 * per_call / call_median,
-                    baseline / forward_median);
+        std::printf(
+            "%-10s %7d %5s | %9.2f %9.2f | %9.2f %9.2f | %9.2f %9.2f | %8.1f | %6.2f | %8.2f\n",
+            run.backend.c_str(), threads, label.c_str(), minimum(run.call_ms), call_median,
+            minimum(run.forward_ms), forward_median, call_median / per_call,
+            forward_median / per_call, 1000.0 * per_call / call_median, baseline / forward_median,
+            median(run.preprocess_ms));
       }
       std::fflush(stdout);
     }

@@ -123,10 +123,12 @@ SsdDetector::SsdDetector(SsdConfig config)
                                              : cv::dnn::Net()),
       postprocess_(read_anchors(anchors_path_of(config_)), kNumClasses,
                    postprocess_config(config_)),
-      resized_(kInputSize, kInputSize, CV_8UC3),
-      normalized_(kInputSize, kInputSize, CV_32FC3),
       output_names_{"box_encodings", "class_logits"} {
   if (config_.threads > 0) cv::setNumThreads(config_.threads);
+  for (int slot = 0; slot < config_.max_batch; ++slot) {
+    resized_.emplace_back(kInputSize, kInputSize, CV_8UC3);
+    normalized_.emplace_back(kInputSize, kInputSize, CV_32FC3);
+  }
   if (backend_.engine != Engine::xnnpack || !start_xnnpack()) start_opencv();
   running_ = true;
   // The choice and its reason are logged by whoever builds the pipeline (describe()), once.
@@ -295,26 +297,59 @@ void SsdDetector::forward(int count) {
           .count();
 }
 
-void SsdDetector::preprocess(const cv::Mat& bgr_image, int slot) {
+namespace {
+
+void require_bgr(const cv::Mat& bgr_image) {
   if (bgr_image.empty() || bgr_image.type() != CV_8UC3) {
     throw std::invalid_argument("SsdDetector: expects non-empty 8-bit BGR images");
   }
+}
+
+}  // namespace
+
+void SsdDetector::preprocess(const cv::Mat& bgr_image, int slot) {
+  const auto index = static_cast<std::size_t>(slot);
+  cv::Mat& resized = resized_[index];
+  cv::Mat& normalized = normalized_[index];
   // Bilinear with half-pixel centres (cv::resize), as the reference detections were made (see
   // docs/model.md). The TF graph's own ResizeBilinear (no half-pixel centres) samples up to 0.8
   // source pixels elsewhere; measured on vtest.avi that moves scores by up to 0.17 against the
   // reference, this way by 5e-5. (cv::resize also allocates two small interpolation tables.)
-  cv::resize(bgr_image, resized_, resized_.size(), 0.0, 0.0, cv::INTER_LINEAR);
-  resized_.convertTo(normalized_, CV_32F, kPixelScale, -1.0);
+  cv::resize(bgr_image, resized, resized.size(), 0.0, 0.0, cv::INTER_LINEAR);
+  resized.convertTo(normalized, CV_32F, kPixelScale, -1.0);
   if (xnn_) {
-    cv::cvtColor(normalized_, xnn_inputs_[static_cast<std::size_t>(slot)], cv::COLOR_BGR2RGB);
+    cv::cvtColor(normalized, xnn_inputs_[index], cv::COLOR_BGR2RGB);
     return;  // XNNPACK takes NHWC: the same values, interleaved
   }
-  cv::split(normalized_, planes_.data() + 3 * slot);  // into blob_, reordered to RGB
+  cv::split(normalized, planes_.data() + 3 * slot);  // into blob_, reordered to RGB
+}
+
+// Why in parallel: on the GPU the lane thread's host work per batch limited the stage, not the
+// device (docs/gpu.md §3, "Batches in flight"), and of that host work the preprocessing of the
+// batch's images, one after another, is the largest part (measured: docs/gpu.md). Each image
+// writes only its own slot's buffers and its own planes of the blob, so the result is the same
+// bytes as the serial loop. No option: on one image, or a pool of one thread, parallel_for_ runs
+// the body inline; a call from a second lane while the pool is busy runs inline too (OpenCV does
+// not nest or share its pool), so it costs nothing where it cannot help.
+void SsdDetector::preprocess_batch(const cv::Mat* const* images, int count) {
+  const auto start = std::chrono::steady_clock::now();
+  for (int i = 0; i < count; ++i) require_bgr(*images[i]);  // no throw inside the workers
+  if (count == 1) {
+    preprocess(*images[0], 0);
+  } else {
+    cv::parallel_for_(cv::Range(0, count), [&](const cv::Range& range) {
+      for (int i = range.start; i < range.end; ++i) preprocess(*images[i], i);
+    });
+  }
+  last_preprocess_ns_ =
+      std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - start)
+          .count();
 }
 
 void SsdDetector::detect(const cv::Mat& bgr_image, std::int64_t /*frame_number*/,
                          std::vector<tracker::Detection>& out) {
-  preprocess(bgr_image, 0);
+  const cv::Mat* const image = &bgr_image;
+  preprocess_batch(&image, 1);
   forward(1);
   postprocess_.run(boxes_, logits_, bgr_image.cols, bgr_image.rows, out);
 }
@@ -328,7 +363,7 @@ void SsdDetector::detect_batch(const cv::Mat* const* images, const std::int64_t*
       static_cast<std::size_t>(postprocess_.num_anchors()) * kNumClasses;
   for (int first = 0; first < count; first += config_.max_batch) {
     const int n = std::min(config_.max_batch, count - first);
-    for (int i = 0; i < n; ++i) preprocess(*images[first + i], i);
+    preprocess_batch(images + first, n);
     forward(n);
     // Outputs are [n, anchors, 4] and [n, anchors, 91]: image i's rows follow image i-1's.
     for (int i = 0; i < n; ++i) {

@@ -79,12 +79,18 @@ class SsdDetector : public Detector {
   /// and the download of the outputs, which OpenCV does synchronously; on XNNPACK the run and the
   /// joining of the output heads), for benchmarks and stats.
   std::int64_t last_forward_ns() const { return last_forward_ns_; }
+  /// Wall time of the last detect()/detect_batch() call's preprocessing (resize, normalise, into
+  /// the input blob) of all its images, for benchmarks.
+  std::int64_t last_preprocess_ns() const { return last_preprocess_ns_; }
   std::string describe() const override;
 
   const BackendChoice& backend() const { return backend_; }
 
  private:
   void preprocess(const cv::Mat& bgr_image, int slot);
+  /// preprocess() of images[0..count) into slots 0..count, the images in parallel (OpenCV's
+  /// thread pool), timed into last_preprocess_ns_.
+  void preprocess_batch(const cv::Mat* const* images, int count);
   /// Runs a network on the first `count` images of blob_ (count <= max_batch): net_ for one,
   /// batch_net_ on all max_batch slots otherwise.
   void forward(int count);
@@ -104,10 +110,11 @@ class SsdDetector : public Detector {
   cv::dnn::Net net_;                     // input 1 x 3 x 300 x 300, always
   cv::dnn::Net batch_net_;               // input max_batch x 3 x 300 x 300, when max_batch > 1
   SsdPostprocessor postprocess_;
-  // Reused every frame (sizes fixed by the network), so steady state allocates no image buffers.
-  cv::Mat resized_;     // 300x300 BGR, 8-bit
-  cv::Mat normalized_;  // 300x300 BGR, float in [-1, 1]
-  cv::Mat blob_;        // max_batch x 3 x 300 x 300 RGB planes: the network input
+  // Reused every frame (sizes fixed by the network), so steady state allocates no image buffers;
+  // one of each per batch slot, so that a batch's images are preprocessed in parallel.
+  std::vector<cv::Mat> resized_;     // 300x300 BGR, 8-bit
+  std::vector<cv::Mat> normalized_;  // 300x300 BGR, float in [-1, 1]
+  cv::Mat blob_;                     // max_batch x 3 x 300 x 300 RGB planes: the network input
   // 4-D headers on blob_'s first image and on all of it, made once because a 4-D cv::Mat header
   // allocates its size/step arrays.
   cv::Mat single_view_;
@@ -121,6 +128,7 @@ class SsdDetector : public Detector {
   const float* boxes_{nullptr};
   const float* logits_{nullptr};
   std::int64_t last_forward_ns_{0};
+  std::int64_t last_preprocess_ns_{0};
   bool running_{false};  // start-up (warm-up) is over
   ForwardFault fault_;   // the test hook RTMOT_FAULT_FORWARD_AFTER (detector/forward_fault.hpp)
 };

@@ -259,7 +259,7 @@ std::vector<RunSetting> detector_settings() {
       parsed<int>(
           "detector.in_flight", "--in-flight",
           "batches in flight in the detect stage, each on a detector of its own; auto = 3 on CUDA, "
-          "1 otherwise",
+          "2 on CUDA fp16, 1 otherwise",
           "auto or an integer in [1, " + std::to_string(kMaxInFlight) + "]",
           [](const std::string& t, std::string&) -> std::optional<int> {
             if (t == "auto") return 0;

@@ -152,17 +152,25 @@ std::vector<std::unique_ptr<detector::Detector>> make_detectors(const RunConfig&
   lanes.push_back(build_detector(config, true));
   const auto* ssd = dynamic_cast<const detector::SsdDetector*>(lanes.front().get());
   const bool cuda = ssd != nullptr && ssd->backend().backend == cv::dnn::DNN_BACKEND_CUDA;
-  // auto: three on CUDA, where the GPU runs one batch while the host prepares and decodes the
-  // others. Measured on the H100 (docs/gpu.md §3, 8 sources): 1 -> 2 -> 3 -> 4 lanes gave
-  // 782-921 -> 1250-1369 -> 1652-1772 -> 2024-2123 FPS on cuda, 598-625 -> 810-900 -> 1001-1040
-  // -> 1117-1168 on cuda-fp16, whose p99 grew past 3; each lane holds its own networks and host
-  // thread, so 3 is the knee. One on the CPU, where a second lane only takes cores from the
-  // first's OpenCV threads (docs/gpu.md).
-  const int wanted = config.detector.in_flight > 0 ? config.detector.in_flight : (cuda ? 3 : 1);
+  const bool fp16 = cuda && ssd->backend().target == cv::dnn::DNN_TARGET_CUDA_FP16;
+  // auto: on CUDA the GPU runs one batch while the host prepares and decodes the others. Measured
+  // on an H200, 8 sources, every frame, two passes (docs/gpu.md §3, "Batches in flight", the
+  // batch's images preprocessed in parallel): 1 -> 2 -> 3 -> 4 lanes gave 1311-1567 -> 1890-2215
+  // -> 1969-2464 -> 2357-2735 FPS on cuda, p99 12-16 -> 17-20 -> 19-24 -> 20-25 ms: 3 keeps p99
+  // within what one lane had before the parallel preprocessing (24-25 ms). On cuda-fp16 the GPU
+  // is the limit sooner: 840-934 -> 1193-1196 -> 1292-1301 -> 1390 FPS, GPU busy 53-59 -> 69-71
+  // -> 74 -> 77-79 %, and p99 20-23 -> 29 -> 37 -> 45-46 ms: 2 lanes keep p99 within one lane's
+  // before (28-32 ms) and stay above 900 FPS; a 3rd buys 8 % for 30 % more p99. At a camera rate
+  // (8 x 60 fps) the lane count does not move p99 (8-13 ms). Each lane holds its own networks and
+  // host thread. One on the CPU, where a second lane only takes cores from the first's OpenCV
+  // threads (docs/gpu.md).
+  const int automatic = fp16 ? 2 : cuda ? 3 : 1;
+  const int wanted = config.detector.in_flight > 0 ? config.detector.in_flight : automatic;
   // One after another: each loads, warms up and (CUDA) captures its graphs alone.
   while (static_cast<int>(lanes.size()) < wanted) lanes.push_back(build_detector(config, false));
   spdlog::info("detector: {} batch{} in flight{}", wanted, wanted == 1 ? "" : "es",
                config.detector.in_flight > 0 ? ""
+               : fp16                        ? " (auto: CUDA fp16)"
                : cuda                        ? " (auto: CUDA)"
                                              : " (auto: not CUDA)");
   return lanes;

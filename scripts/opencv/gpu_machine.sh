@@ -24,9 +24,14 @@
 # thread), RTMOT_PIPELINE_TAG (added to the pipeline logs' names, e.g. pass2),
 # RTMOT_PIPELINE_IN_FLIGHT ("1 2": detector.in_flight values, each run per backend and source count;
 # "-" leaves the setting out, for trees older than it), RTMOT_PIPELINE_LOOP (25: plays of the 16
-# frames per source). Each pipeline run writes pipeline-TAG-FORMAT-BACKEND-N-ifK.{log,json,smi} and
-# one row of pipeline-summary-TAG-FORMAT.tsv (FPS, detector FPS, ms per image, p50/p99
-# capture->sent, GPU busy over the run proper and over the whole process).
+# frames per source), RTMOT_PIPELINE_PLAYBACK ("every-frame"; also realtime: frames released at the
+# source's rate, the latency a camera would see), RTMOT_PIPELINE_FPS (10: the images:// rate, which
+# only realtime honours), RTMOT_TESTS_FILTER (a --gtest_filter for the tests stage),
+# RTMOT_BENCH_ARGS (detector_batch_bench's arguments instead of every backend at batch 1, 2, 4, 8).
+# Each pipeline run writes pipeline-TAG-FORMAT-PLAYBACK-BACKEND-N-ifK.{log,json,smi,threads} and one
+# row of pipeline-summary-TAG-FORMAT.tsv (FPS, detector FPS, ms per image, p50/p99 capture->sent,
+# GPU busy over the run proper and over the whole process, CPU seconds of the capture and detect
+# threads).
 set -euo pipefail
 out="${1:?usage: gpu_machine.sh OUT_DIR [stages]}"
 stages="${2:-opencv rtmot tests bench profile pipeline}"
@@ -181,7 +186,7 @@ export RTMOT_VTEST_FRAMES="$frames" RTMOT_BENCH_FRAMES="images://$frames"
 
 if has tests; then
   step "detector tests ($tag)"
-  (cd "$build" && "${run_env[@]}" ./tests/detector/detector_tests) >"$out/detector_tests-$tag.log" 2>&1 ||
+  (cd "$build" && "${run_env[@]}" ./tests/detector/detector_tests ${RTMOT_TESTS_FILTER:+"--gtest_filter=$RTMOT_TESTS_FILTER"}) >"$out/detector_tests-$tag.log" 2>&1 ||
     { grep -E "FAILED|Failure" -A3 "$out/detector_tests-$tag.log" | head -n 40; die "detector tests failed"; }
   grep -E "matched|PASSED|on (cpu|cuda)" "$out/detector_tests-$tag.log" | head -n 30
 fi
@@ -189,8 +194,8 @@ fi
 if has bench; then
   for pass in $(seq 1 "${RTMOT_PASSES:-3}"); do
     step "detector_batch_bench ($tag) pass $pass"
-    "${run_env[@]}" "$build/bench/detector_batch_bench" --backends cpu,cuda,cuda-fp16 --batches 1,2,4,8 \
-      --iterations 60 2>&1 | tee "$out/bench-$tag-$pass.log" | tail -n 14
+    # shellcheck disable=SC2086 # RTMOT_BENCH_ARGS: words
+    "${run_env[@]}" "$build/bench/detector_batch_bench" ${RTMOT_BENCH_ARGS:---backends cpu,cuda,cuda-fp16 --batches 1,2,4,8 --iterations 60} 2>&1 | tee "$out/bench-$tag-$pass.log" | tail -n 14
     # the benchmark reports a backend it cannot run as "skipped": here that is a failure
     ! grep -q "skipped" "$out/bench-$tag-$pass.log" || die "detector_batch_bench skipped a backend (above)"
   done
@@ -240,36 +245,64 @@ PY
   fi
   suffix="$format${RTMOT_PIPELINE_TAG:+-$RTMOT_PIPELINE_TAG}"
   summary="$out/pipeline-summary-$tag-$suffix.tsv"
-  printf 'backend\tsources\tin_flight\tfps\tdetector_fps\tms_per_image\tp50_ms\tp99_ms\tgpu_busy_run_pct\tgpu_busy_all_pct\tbatches\n' >"$summary"
+  printf 'playback\tbackend\tsources\tin_flight\tfps\tdetector_fps\tms_per_image\tp50_ms\tp99_ms\tgpu_busy_run_pct\tgpu_busy_all_pct\tbatches\tcpu_s_capture\tcpu_s_detect\twall_s\n' >"$summary"
   for backend in ${RTMOT_PIPELINE_BACKENDS:-cpu cuda cuda-fp16}; do
     config="/tmp/rtmot-$tag-$backend.yaml"
     sed -e "s|^  model: .*|  model: $source_dir/models/ssdlite_mobilenet_v2_coco.onnx|" \
       -e "s|^  backend: auto|  backend: ${backend%-fp16}\n  fp16: $([[ $backend == *fp16 ]] && echo on || echo off)|" \
       -e "s|^  udp: .*|  udp: 127.0.0.1:5600|" -e "s|^  jsonl_file: .*|  jsonl_file: /tmp/tracks-$backend.jsonl|" \
       "$source_dir/configs/desktop.yaml" >"$config"
+    for playback in ${RTMOT_PIPELINE_PLAYBACK:-every-frame}; do
+    [[ $playback == every-frame || $playback == realtime ]] || die "RTMOT_PIPELINE_PLAYBACK: every-frame or realtime, not '$playback'"
     for n in ${RTMOT_PIPELINE_SOURCES:-1 2 4 8}; do
       # detector.in_flight (batches in flight in the detect stage); "-" = the tree's default (a
       # tree older than the setting)
       for k in ${RTMOT_PIPELINE_IN_FLIGHT:-1 2}; do
-        name="pipeline-$tag-$suffix-$backend-$n-if$k"
-        step "pipeline ($tag, $suffix) every-frame on $backend, $n sources, in flight $k"
+        name="pipeline-$tag-$suffix-$playback-$backend-$n-if$k"
+        step "pipeline ($tag, $suffix) $playback on $backend, $n sources, in flight $k"
         args=()
-        for ((i = 0; i < n; ++i)); do args+=(--source "images://$pipeline_frames?fps=10&loop=${RTMOT_PIPELINE_LOOP:-25}"); done
+        for ((i = 0; i < n; ++i)); do args+=(--source "images://$pipeline_frames?fps=${RTMOT_PIPELINE_FPS:-10}&loop=${RTMOT_PIPELINE_LOOP:-25}"); done
         [[ $k == - ]] || args+=(--in-flight "$k")
         nvidia-smi --query-gpu=timestamp,utilization.gpu --format=csv,noheader,nounits -lms 100 >"/tmp/smi-$n.txt" &
         smi=$!
-        "${run_env[@]}" "$build/apps/rtmot" run --config "$config" "${args[@]}" --playback every-frame \
-          --report "$out/$name.json" >"$out/$name.log" 2>&1 ||
-          { kill "$smi"; tail -n 20 "$out/$name.log"; die "rtmot run failed ($backend, $n sources, in flight $k)"; }
+        "${run_env[@]}" "$build/apps/rtmot" run --config "$config" "${args[@]}" --playback "$playback" \
+          --report "$out/$name.json" >"$out/$name.log" 2>&1 &
+        rtmot=$!
+        # CPU seconds per thread (utime + stime from /proc, the last reading before the process
+        # ends: a thread that ended earlier keeps its last reading), to show where the host time goes
+        python3 - "$rtmot" >"$out/$name.threads" <<'PY' &
+import os, sys, time
+pid, tick, last = sys.argv[1], os.sysconf('SC_CLK_TCK'), {}
+start = time.monotonic()
+while os.path.exists(f'/proc/{pid}/stat'):
+    try:
+        for tid in os.listdir(f'/proc/{pid}/task'):
+            try:
+                name = open(f'/proc/{pid}/task/{tid}/comm').read().strip()
+                fields = open(f'/proc/{pid}/task/{tid}/stat').read().rsplit(')', 1)[1].split()
+                last[tid] = (name, (int(fields[11]) + int(fields[12])) / tick)
+            except OSError:
+                pass
+    except OSError:
+        break
+    time.sleep(0.05)
+print(f'wall_s\t{time.monotonic() - start:.2f}')
+for tid, (name, cpu) in sorted(last.items(), key=lambda item: -item[1][1]):
+    print(f'{name}\t{tid}\t{cpu:.2f}')
+PY
+        sampler=$!
+        wait "$rtmot" ||
+          { kill "$smi"; tail -n 20 "$out/$name.log"; die "rtmot run failed ($playback, $backend, $n sources, in flight $k)"; }
+        wait "$sampler" || die "thread sampler failed ($name)"
         kill "$smi" && wait "$smi" 2>/dev/null || true
         cp "/tmp/smi-$n.txt" "$out/$name.smi"
         # GPU busy: the mean of the 100 ms samples over the whole process (start-up included) and
         # over the run proper (from the log's "detector: ..." line, once every detector is built,
         # to the final report line)
-        python3 - "$out/$name.log" "/tmp/smi-$n.txt" "$out/$name.json" "$backend" "$n" "$k" >>"$summary" <<'PY' || die "pipeline summary failed ($name)"
+        python3 - "$out/$name.log" "/tmp/smi-$n.txt" "$out/$name.json" "$backend" "$n" "$k" "$playback" "$out/$name.threads" >>"$summary" <<'PY' || die "pipeline summary failed ($name)"
 import json, re, sys
 from datetime import datetime
-log, smi, report, backend, n, k = sys.argv[1:]
+log, smi, report, backend, n, k, playback, threads = sys.argv[1:]
 def at(text, fmt):
     return datetime.strptime(text, fmt).timestamp()
 start = end = None
@@ -292,12 +325,24 @@ def mean(values):
 run = [u for t, u in samples if start is not None and end is not None and start <= t <= end]
 r = json.load(open(report))
 e2e = r['latency']['end_to_end']
-print('\t'.join([backend, n, k, f"{r['fps']:.1f}", f"{r['detector_fps']:.1f}", f"{1000 / r['fps']:.3f}",
+cpu = {'capture': 0.0, 'detect': 0.0}
+wall = 'nan'
+for line in open(threads):
+    parts = line.rstrip('\n').split('\t')
+    if parts[0] == 'wall_s':
+        wall = parts[1]
+    elif 'captur' in parts[0]:
+        cpu['capture'] += float(parts[2])
+    elif 'detect' in parts[0] or 'lane' in parts[0]:
+        cpu['detect'] += float(parts[2])
+print('\t'.join([playback, backend, n, k, f"{r['fps']:.1f}", f"{r['detector_fps']:.1f}", f"{1000 / r['fps']:.3f}",
                  f"{e2e['p50_ms']:.1f}", f"{e2e['p99_ms']:.1f}", f"{mean(run):.0f} ({len(run)} samples)",
-                 f"{mean([u for _, u in samples]):.0f}", str(r['detector_batches'])]))
+                 f"{mean([u for _, u in samples]):.0f}", str(r['detector_batches']),
+                 f"{cpu['capture']:.2f}", f"{cpu['detect']:.2f}", wall]))
 PY
         tail -n 1 "$summary"
       done
+    done
     done
   done
   cat "$summary"
