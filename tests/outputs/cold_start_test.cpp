@@ -16,6 +16,7 @@
 #include "child_process.hpp"
 #include "outputs/rtsp_video_server.hpp"
 #include "platform/video_source.hpp"
+#include "scratch_folder.hpp"
 #include "shared_data.hpp"
 
 namespace rtmot::outputs {
@@ -25,11 +26,9 @@ using namespace std::chrono_literals;
 
 class ColdStart : public ::testing::Test {
  protected:
-  std::filesystem::path folder_ = std::filesystem::path(::testing::TempDir()) /
-                                  ("rtmot-cold-" + std::to_string(::getpid()) + "-" +
-                                   ::testing::UnitTest::GetInstance()->current_test_info()->name());
+  test::ScratchFolder scratch_{"cold"};  // removed when the test passed
+  std::filesystem::path folder_ = scratch_.path();
   std::filesystem::path model_ = test::source_path("models/ssdlite_mobilenet_v2_coco.onnx");
-  void SetUp() override { std::filesystem::create_directories(folder_); }
 
   int run_to_end(const std::vector<std::string>& args) {
     std::vector<std::string> argv{RTMOT_BINARY};

@@ -18,6 +18,7 @@
 #include "child_process.hpp"
 #include "metrics_scrape.hpp"
 #include "mosquitto_broker.hpp"
+#include "scratch_folder.hpp"
 #include "shared_data.hpp"
 
 namespace rtmot::outputs {
@@ -49,15 +50,10 @@ bool wait_for_text(const std::filesystem::path& file, const std::string& text,
 
 class EventsVtestRun : public ::testing::Test {
  protected:
-  std::filesystem::path folder_ = std::filesystem::path(::testing::TempDir()) /
-                                  ("rtmot-events-vtest-" + std::to_string(::getpid()));
+  test::ScratchFolder scratch_{"events-vtest"};  // removed when the test passed
+  std::filesystem::path folder_ = scratch_.path();
   std::filesystem::path model_ = test::source_path("models/ssdlite_mobilenet_v2_coco.onnx");
   std::filesystem::path video_ = test::shared_path("data/video/vtest.avi");
-  void SetUp() override {
-    std::filesystem::remove_all(folder_);
-    std::filesystem::create_directories(folder_);
-  }
-  void TearDown() override { std::filesystem::remove_all(folder_); }
 };
 
 TEST_F(EventsVtestRun, ListenMqttAndMetricsAgree) {

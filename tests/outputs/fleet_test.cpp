@@ -16,6 +16,7 @@
 #include "message_test_data.hpp"
 #include "mosquitto_broker.hpp"
 #include "outputs/mqtt_publisher.hpp"
+#include "scratch_folder.hpp"
 #include "shared_data.hpp"
 
 namespace rtmot::outputs {
@@ -114,9 +115,8 @@ FleetRun run_fleet(
 
 class Fleet : public ::testing::Test {
  protected:
-  std::filesystem::path folder_ = std::filesystem::path(::testing::TempDir()) /
-                                  ("rtmot-fleet-" + std::to_string(::getpid()) + "-" +
-                                   ::testing::UnitTest::GetInstance()->current_test_info()->name());
+  test::ScratchFolder scratch_{"fleet"};  // removed when the test passed
+  std::filesystem::path folder_ = scratch_.path();
 
   std::unique_ptr<test::ChildProcess> start_listener(const test::MosquittoBroker& broker,
                                                      const std::string& filter = "fleet/#") {

@@ -15,6 +15,7 @@
 #include "mosquitto_broker.hpp"
 #include "outputs/mqtt_publisher.hpp"
 #include "outputs/mqtt_subscriber.hpp"
+#include "scratch_folder.hpp"
 
 namespace rtmot::outputs {
 namespace {
@@ -64,9 +65,8 @@ bool wait_until(const std::function<bool()>& done, std::chrono::milliseconds lim
 
 class Mqtt : public ::testing::Test {
  protected:
-  std::filesystem::path folder_ = std::filesystem::path(::testing::TempDir()) /
-                                  ("rtmot-mqtt-" + std::to_string(::getpid()) + "-" +
-                                   ::testing::UnitTest::GetInstance()->current_test_info()->name());
+  test::ScratchFolder scratch_{"mqtt"};  // removed when the test passed
+  std::filesystem::path folder_ = scratch_.path();
 };
 
 TEST(MqttUri, ReadsBrokerTopicQosAndFormat) {

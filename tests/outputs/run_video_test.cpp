@@ -12,6 +12,7 @@
 
 #include "child_process.hpp"
 #include "gst_read_back.hpp"
+#include "scratch_folder.hpp"
 #include "shared_data.hpp"
 
 namespace rtmot::outputs {
@@ -23,15 +24,10 @@ constexpr int frames = 150;
 
 class RunVideo : public ::testing::Test {
  protected:
-  std::filesystem::path folder_ = std::filesystem::path(::testing::TempDir()) /
-                                  ("rtmot-run-video-" + std::to_string(::getpid()) + "-" +
-                                   ::testing::UnitTest::GetInstance()->current_test_info()->name());
+  test::ScratchFolder scratch_{"run-video"};  // removed when the test passed
+  std::filesystem::path folder_ = scratch_.path();
   std::filesystem::path model_ = test::source_path("models/ssdlite_mobilenet_v2_coco.onnx");
   std::filesystem::path video_ = test::shared_path("data/video/vtest.avi");
-  void SetUp() override {
-    std::filesystem::remove_all(folder_);
-    std::filesystem::create_directories(folder_);
-  }
 };
 
 TEST_F(RunVideo, DemoWritesEverySourceFrameAsBrowserPlayableH264) {

@@ -21,6 +21,7 @@
 #include "outputs/video_target.hpp"
 #include "platform/gst_ptr.hpp"
 #include "platform/video_source.hpp"
+#include "scratch_folder.hpp"
 #include "shared_data.hpp"
 
 namespace rtmot::outputs {
@@ -121,10 +122,8 @@ TEST(Overlay, StyleScalesWithFrameHeight) {
 
 class VideoOutputs : public ::testing::Test {
  protected:
-  std::filesystem::path folder_ = std::filesystem::path(::testing::TempDir()) /
-                                  ("rtmot-video-" + std::to_string(::getpid()) + "-" +
-                                   ::testing::UnitTest::GetInstance()->current_test_info()->name());
-  void SetUp() override { std::filesystem::create_directories(folder_); }
+  test::ScratchFolder scratch_{"video"};  // removed when the test passed
+  std::filesystem::path folder_ = scratch_.path();
 };
 
 TEST(VideoTarget, ReadsEveryKind) {
