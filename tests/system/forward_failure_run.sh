@@ -11,6 +11,8 @@
 # FRAMES names a folder of frames (no GStreamer codecs to cut vtest.avi with).
 # Usage: forward_failure_run.sh RTMOT SOURCE_DIR SHARED_DIR [BACKEND [FRAMES]]
 set -euo pipefail
+# shellcheck source=tests/system/cut_video.sh
+source "$(dirname "${BASH_SOURCE[0]}")/cut_video.sh"
 rtmot=$1 source_dir=$2 shared_dir=$3 backend=${4:-cpu} frames=${5:-}
 video=$shared_dir/data/video/vtest.avi
 model=$source_dir/models/ssdlite_mobilenet_v2_coco.onnx
@@ -25,11 +27,7 @@ mkdir -p "$work/cam-a" "$work/cam-b"
 if [[ -n $frames ]]; then
   cp "$frames"/* "$work/cam-a/"
 else
-  gst-launch-1.0 -q filesrc location="$video" ! decodebin ! identity eos-after=16 ! videoconvert \
-  ! jpegenc ! multifilesink location="$work/cam-a/%06d.jpg" index=1 >/dev/null 2>&1 ||
-  fail "gst-launch-1.0 could not cut $video into images"
-  find "$work/cam-a" -name '*.jpg' | LC_ALL=C sort | tail -n +13 | xargs -r rm --
-  [[ $(ls "$work/cam-a" | wc -l) == 12 ]] || fail "12 images expected: $(ls "$work/cam-a")"
+  cut_video_into_images "$video" "$work/cam-a" 12 || exit 1
 fi
 cp "$work/cam-a"/* "$work/cam-b/"
 images=$(ls "$work/cam-a" | wc -l)

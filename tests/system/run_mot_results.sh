@@ -13,6 +13,8 @@
 # 5. A results folder that cannot be created: exit 3, one line naming it and the field, nothing left.
 # Usage: run_mot_results.sh RTMOT SOURCE_DIR SHARED_DIR
 set -euo pipefail
+# shellcheck source=tests/system/cut_video.sh
+source "$(dirname "${BASH_SOURCE[0]}")/cut_video.sh"
 rtmot=$1 source_dir=$2 shared_dir=$3
 mot15=$shared_dir/data/mot15-train
 for f in TUD-Campus/det/det.txt KITTI-17/det/det.txt TUD-Stadtmitte/det/det.txt \
@@ -117,16 +119,7 @@ video=$shared_dir/data/video/vtest.avi
 [[ -f $video ]] || fail "missing test input $video"
 sequence=$work/vtest-seq
 mkdir -p "$sequence/img1" "$sequence/gt"
-# This machine's gst-launch-1.0 with this machine's plugins: the cross stage points GStreamer's
-# variables at the arm64 sysroot's plugin set (scripts/cross_env.sh), which only rtmot under qemu reads.
-env -u GST_REGISTRY -u GST_REGISTRY_UPDATE -u GST_REGISTRY_FORK -u GST_PLUGIN_SYSTEM_PATH -u GST_PLUGIN_PATH \
-  gst-launch-1.0 -q filesrc location="$video" ! decodebin ! identity eos-after=16 ! videoconvert \
-  ! jpegenc ! multifilesink location="$sequence/img1/%06d.jpg" index=1 >/dev/null 2>&1 ||
-  fail "gst-launch-1.0 could not cut $video into images"
-# identity's EOS races the last buffers into the sink (eos-after=12 gave 11 or 12 images, seen 2 in
-# 8 runs): cut a few more and keep the first 12.
-find "$sequence/img1" -name '*.jpg' | LC_ALL=C sort | tail -n +13 | xargs -r rm --
-[[ $(ls "$sequence/img1" | wc -l) == 12 ]] || fail "12 images expected: $(ls "$sequence/img1")"
+cut_video_into_images "$video" "$sequence/img1" 12 || exit 1
 printf '[Sequence]\nname=vtest-seq\nimDir=img1\nframeRate=10\nseqLength=12\nimWidth=768\nimHeight=576\nimExt=.jpg\n' \
   >"$sequence/seqinfo.ini"
 "$rtmot" run --source "images://$sequence/img1?fps=10" --model "$model" --playback every-frame \
