@@ -16,22 +16,18 @@ Associator::Associator(int rows, int cols) {
   assignment_.reserve(rows, cols);
 }
 
-void Associator::associate(const TrackerConfig& config, double threshold,
-                           const std::vector<Detection>& detections,
-                           const std::vector<AssociationCandidate>& candidates,
-                           std::vector<AssociationMatch>& matches) {
-  const int rows = static_cast<int>(detections.size());
-  const int cols = static_cast<int>(candidates.size());
-  if (rows == 0 || cols == 0) return;
-  const auto at = [cols](int r, int c) { return static_cast<std::size_t>(r) * cols + c; };
+// Fills the rows x cols affinities (row-major), counts each row's and column's pairs above the
+// threshold (what tells a one-to-one frame from one the solver must settle), and solves.
+template <typename AffinityOf>
+void Associator::fill_and_solve(int rows, int cols, double threshold, const AffinityOf& affinity_of,
+                                std::vector<AssociationMatch>& matches) {
   affinities_.resize(static_cast<std::size_t>(rows) * cols);
   row_hits_.assign(rows, 0);
   col_hits_.assign(cols, 0);
   for (int r = 0; r < rows; ++r) {
     for (int c = 0; c < cols; ++c) {
-      const double value = affinity(config, candidates[c].predicted, detections[r].box,
-                                    candidates[c].gate_frames, candidates[c].noise_margin);
-      affinities_[at(r, c)] = value;
+      const double value = affinity_of(r, c);
+      affinities_[static_cast<std::size_t>(r) * cols + c] = value;
       if (value > threshold) {
         ++row_hits_[r];
         ++col_hits_[c];
@@ -39,6 +35,22 @@ void Associator::associate(const TrackerConfig& config, double threshold,
     }
   }
   solve(threshold, rows, cols, matches);
+}
+
+void Associator::associate(const TrackerConfig& config, double threshold,
+                           const std::vector<Detection>& detections,
+                           const std::vector<AssociationCandidate>& candidates,
+                           std::vector<AssociationMatch>& matches) {
+  const int rows = static_cast<int>(detections.size());
+  const int cols = static_cast<int>(candidates.size());
+  if (rows == 0 || cols == 0) return;
+  fill_and_solve(
+      rows, cols, threshold,
+      [&](int r, int c) {
+        return affinity(config, candidates[c].predicted, detections[r].box,
+                        candidates[c].gate_frames, candidates[c].noise_margin);
+      },
+      matches);
 }
 
 double normalised_centre_distance(const Box& predicted, const Box& detection) {
@@ -54,28 +66,20 @@ void Associator::associate_by_distance(double per_frame, double max_reach,
   const int rows = static_cast<int>(detections.size());
   const int cols = static_cast<int>(candidates.size());
   if (rows == 0 || cols == 0) return;
-  const auto at = [cols](int r, int c) { return static_cast<std::size_t>(r) * cols + c; };
-  affinities_.resize(static_cast<std::size_t>(rows) * cols);
-  row_hits_.assign(rows, 0);
-  col_hits_.assign(cols, 0);
-  for (int c = 0; c < cols; ++c) {
-    const Box& predicted = candidates[c].predicted;
-    const double reach = std::min(per_frame * candidates[c].gate_frames, max_reach);
-    for (int r = 0; r < rows; ++r) {
-      const Box& box = detections[r].box;
-      const double distance = normalised_centre_distance(predicted, box);
-      const double heights = double{box.h} / predicted.h;
-      const bool possible = distance <= reach && heights <= kDistanceRoundHeightRatio &&
-                            heights >= 1.0 / kDistanceRoundHeightRatio;
-      // In (0, 1], larger when closer; -1 (below the threshold 0) when out of reach.
-      affinities_[at(r, c)] = possible ? 1.0 / (1.0 + distance) : -1.0;
-      if (possible) {
-        ++row_hits_[r];
-        ++col_hits_[c];
-      }
-    }
-  }
-  solve(0.0, rows, cols, matches);
+  // In (0, 1], larger when closer; -1 (below the threshold 0) when out of reach.
+  fill_and_solve(
+      rows, cols, 0.0,
+      [&](int r, int c) {
+        const Box& predicted = candidates[c].predicted;
+        const Box& box = detections[r].box;
+        const double reach = std::min(per_frame * candidates[c].gate_frames, max_reach);
+        const double distance = normalised_centre_distance(predicted, box);
+        const double heights = double{box.h} / predicted.h;
+        const bool possible = distance <= reach && heights <= kDistanceRoundHeightRatio &&
+                              heights >= 1.0 / kDistanceRoundHeightRatio;
+        return possible ? 1.0 / (1.0 + distance) : -1.0;
+      },
+      matches);
 }
 
 void Associator::solve(double threshold, int rows, int cols,

@@ -51,6 +51,9 @@ class Associator {
                              std::vector<AssociationMatch>& matches);
 
  private:
+  template <typename AffinityOf>
+  void fill_and_solve(int rows, int cols, double threshold, const AffinityOf& affinity_of,
+                      std::vector<AssociationMatch>& matches);
   // Appends the matches for the affinities_ already filled (rows x cols, row-major).
   void solve(double threshold, int rows, int cols, std::vector<AssociationMatch>& matches);
 
