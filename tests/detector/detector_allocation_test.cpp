@@ -2,6 +2,7 @@
 // operator new in this executable (its own binary, so no other test is affected).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <opencv2/core/version.hpp>
 #include <vector>
 
@@ -182,23 +183,32 @@ TEST(DetectorAllocation, XnnpackAllocatesNothingInSteadyState) {
   const xnn_allocator counting{nullptr,   &xnn_counted,         &xnn_counted_realloc,
                                &xnn_free, &xnn_counted_aligned, &xnn_free};
   ASSERT_EQ(xnn_initialize(&counting), xnn_status_success);
-  long counts[2] = {0, 0};
+  // The batch's images are preprocessed on OpenCV's thread pool, so which thread resizes which
+  // image, and in which frame a pool thread gets its first task, is the scheduler's choice: on a
+  // loaded 2-core CI machine a worker first ran in a counted frame and added its per-thread state
+  // (3 blocks, once). So: every frame in which no thread allocated for the first time allocates
+  // the same (cv::resize's two tables per image), and a first-time thread's frame only adds to it.
+  constexpr int kFrames = 6;
+  long steady = -1;  // the count of the first frame without a first-time thread
   std::size_t largest = 0;
   xnnpack_allocations = 0;
-  for (long& count : counts) {
+  for (int frame = 0; frame < kFrames; ++frame) {
     const test::CountingScope counting_new;
     detector.detect(*images[1], 2, one);
     detector.detect_batch(images.data(), numbers.data(), 4, many);
     detector.detect_batch(images.data(), numbers.data(), 2, many);
-    count = counting_new.allocations();
-    largest = counting_new.largest();
+    const long count = counting_new.allocations();
+    largest = std::max(largest, counting_new.largest());
+    std::cout << "xnnpack detect + detect_batch(4) + detect_batch(2), frame " << frame << ": "
+              << count << " operator new allocations, " << counting_new.new_threads()
+              << " first-time threads (largest " << counting_new.largest() << " bytes)\n";
+    if (counting_new.new_threads() > 0) continue;
+    if (steady < 0) steady = count;
+    EXPECT_EQ(count, steady) << "frame " << frame;
   }
-  std::cout << "xnnpack detect + detect_batch(4) + detect_batch(2): " << counts[1]
-            << " operator new allocations (largest " << largest << " bytes), "
-            << xnnpack_allocations.load() << " XNNPACK allocations\n";
+  EXPECT_GE(steady, 0) << "every frame had a first-time thread: nothing steady was seen";
+  std::cout << xnnpack_allocations.load() << " XNNPACK allocations\n";
   EXPECT_EQ(xnnpack_allocations.load(), 0);
-  // What remains is cv::resize's two small interpolation tables per image, the same every frame.
-  EXPECT_EQ(counts[0], counts[1]);
   EXPECT_LT(largest, kImageBytes);
 }
 #endif
