@@ -16,14 +16,19 @@ constexpr std::int64_t kNoiseSnapshotGap = 2048;
 // Reports this many frame periods apart or less are neighbouring frames (timestamps wobble).
 constexpr double kNeighbourGap = 1.5;
 
+// A bound below `earliest + threshold` by more than the rounding of `time - earliest`: before it
+// no visit is due (the exact test is `time - earliest >= threshold`).
+double due_from(double earliest, double threshold) {
+  return earliest + threshold - 1e-9 * (std::abs(earliest) + threshold + 1.0);
+}
+
 }  // namespace
 
 EventCounter::EventCounter(EventsConfig config)
-    : config_(std::move(config)), noise_window_(kNoiseWindow, kNoiseSnapshotGap) {
+    : config_(std::move(config)), grid_(config_), noise_window_(kNoiseWindow, kNoiseSnapshotGap) {
   const auto tracks = static_cast<std::size_t>(std::max(config_.max_tracks, 1));
   slots_.resize(tracks);
   line_states_.resize(tracks * config_.lines.size());
-  clearances_.resize(tracks * (config_.lines.size() + config_.zones.size()));
   zone_states_.resize(tracks * config_.zones.size());
   // An update decides at most one crossing per track and line, and per track and zone an enter
   // and an exit (a move through it) plus one dwell: the list never grows past this.
@@ -290,58 +295,75 @@ void EventCounter::look(std::uint32_t index, const Point& from, const Point& to,
   Slot& slot = slots_[index];
   const std::size_t lines = lines_.size();
   const std::size_t shapes = lines + config_.zones.size();
-  if (shapes == 0) {
-    slot.clearance = INFINITY;
-    return;
-  }
-  double* const clearance = &clearances_[index * shapes];
+  double clearance = INFINITY;
+  std::uint64_t undecided = 0;
+  double nearest = INFINITY;           // the nearest decided shape's clearance
+  std::size_t nearest_shape = shapes;  // none
+  double others = INFINITY;            // every other decided shape's
   const auto look_at = [&](std::size_t k) {
-    return k < lines ? look_at_line(index, k, from, to, band, first, time)
-                     : look_at_zone(index, k - lines, from, to, band, first, time);
+    const double c = k < lines ? look_at_line(index, k, from, to, band, first, time)
+                               : look_at_zone(index, k - lines, from, to, band, first, time);
+    clearance = std::min(clearance, c);
+    if (c > 0.0) {
+      if (c < nearest) {
+        others = std::min(others, nearest);
+        nearest = c;
+        nearest_shape = k;
+      } else {
+        others = std::min(others, c);
+      }
+    } else if (k < ShapeGrid::kMaxShapes) {
+      undecided |= std::uint64_t{1} << k;
+    }
   };
-  // The shapes other than the nearest were last looked at from `full_look`, where none was
-  // nearer than `second`. While the track is closer to full_look than that, less the band (its
-  // positions since are: see follow()), only the nearest shape can decide anything: a track near
-  // one line looks at that line alone.
-  const double fx = to.x - slot.full_look.x;
-  const double fy = to.y - slot.full_look.y;
-  const double far_room = slot.second - band;
-  if (!first && far_room > 0.0 && fx * fx + fy * fy < far_room * far_room) {
-    const std::size_t k = slot.nearest;
-    clearance[k] = look_at(k);
-    slot.clearance = std::min(clearance[k], slot.second - std::sqrt(fx * fx + fy * fy));
-    slot.look = to;
-    return;
-  }
-  // Each shape's clearance, less the move since it was looked at, is still a clearance from `to`
-  // (and the move from `from` lies within the old disc): only the shapes it brings within the
-  // band are looked at.
-  const double moved_far = first ? INFINITY : std::sqrt(fx * fx + fy * fy);
-  const double near = clearance[slot.nearest];
-  for (std::size_t k = 0; k < shapes; ++k) clearance[k] -= moved_far;
-  if (!first) {
-    const double nx = to.x - slot.look.x;
-    const double ny = to.y - slot.look.y;
-    clearance[slot.nearest] = near - std::sqrt(nx * nx + ny * ny);
-  }
-  double nearest = INFINITY;
-  double second = INFINITY;
-  std::size_t nearest_shape = 0;
-  for (std::size_t k = 0; k < shapes; ++k) {
-    if (!(clearance[k] > band)) clearance[k] = look_at(k);
-    if (clearance[k] < nearest) {
-      second = nearest;
-      nearest = clearance[k];
-      nearest_shape = k;
-    } else {
-      second = std::min(second, clearance[k]);
+  // A track near one shape (or within the band of some) is looked at often. While it stays
+  // nearer to where the grid was last read than the other shapes' clearance from there (less
+  // the band), they have nothing to decide (as in follow()): only the near ones are looked at.
+  if (!first && slot.near != 0) {
+    const double fx = to.x - slot.full_look.x;
+    const double fy = to.y - slot.full_look.y;
+    const double room = slot.others - band;
+    if (room > 0.0 && fx * fx + fy * fy < room * room) {
+      clearance = slot.others - std::sqrt(fx * fx + fy * fy);
+      for (std::uint64_t near = slot.near; near != 0; near &= near - 1)
+        look_at(static_cast<std::size_t>(__builtin_ctzll(near)));
+      slot.clearance = clearance;
+      slot.undecided = undecided;
+      slot.look = to;
+      return;
     }
   }
-  slot.clearance = nearest;
-  slot.second = second;
-  slot.nearest = static_cast<std::uint32_t>(nearest_shape);
-  slot.full_look = to;
+  // The grid's cell of `to` names the shapes near it (its candidates); every other shape is at
+  // least the cell's clearance away from `to`. When that is more than the band plus the move,
+  // the whole move stayed beyond the band of each of them, and each was decided when last
+  // looked at (the undecided are looked at anyway): they have nothing to decide. Otherwise (a
+  // long move, a track off the grid, its first report) every shape is looked at.
+  const std::uint32_t cell = first ? ShapeGrid::kOutside : grid_.cell_of(to);
+  bool all = true;
+  if (cell != ShapeGrid::kOutside) {
+    const ShapeGrid::Cell& near_to = grid_.cell(cell);
+    const double room = near_to.clearance - band;
+    const double mx = to.x - from.x;
+    const double my = to.y - from.y;
+    if (room > 0.0 && mx * mx + my * my < room * room) {
+      all = false;
+      clearance = near_to.clearance;
+      others = near_to.clearance;
+      for (std::uint64_t near = near_to.candidates | slot.undecided; near != 0; near &= near - 1)
+        look_at(static_cast<std::size_t>(__builtin_ctzll(near)));
+    }
+  }
+  if (all)
+    for (std::size_t k = 0; k < shapes; ++k) look_at(k);
+  slot.clearance = clearance;
+  slot.undecided = undecided;
   slot.look = to;
+  // The near ones: the undecided and the nearest decided (with more shapes than bits: none).
+  slot.near = !grid_.enabled()          ? 0
+              : nearest_shape == shapes ? undecided
+                                        : undecided | std::uint64_t{1} << nearest_shape;
+  slot.full_look = to;
+  slot.others = others;
 }
 
 void EventCounter::count_crossing(std::size_t line, const Slot& slot, int side, const Point& where,
@@ -367,10 +389,28 @@ double EventCounter::look_at_zone(std::uint32_t index, std::size_t z, const Poin
     // How far outside the zone's box: no further than from the zone itself.
     const double outside_x = std::max({bounds.min_x - to.x, to.x - bounds.max_x, 0.0});
     const double outside_y = std::max({bounds.min_y - to.y, to.y - bounds.max_y, 0.0});
-    return std::sqrt(outside_x * outside_x + outside_y * outside_y);
+    state.look = to;
+    state.clearance = std::sqrt(outside_x * outside_x + outside_y * outside_y);
+    return state.clearance;
+  }
+  // A move from and to points of the disc where the zone was last decided stays farther than the
+  // band from the border, on the side it was decided: nothing to decide, and no border distance
+  // to work out (a track inside a zone's box is near it for many updates).
+  const double room = state.clearance - band;
+  if (room > 0.0) {
+    const double tx = to.x - state.look.x;
+    const double ty = to.y - state.look.y;
+    const double fx = from.x - state.look.x;
+    const double fy = from.y - state.look.y;
+    const double squared_room = room * room;
+    if (tx * tx + ty * ty < squared_room && fx * fx + fy * fy < squared_room)
+      return state.clearance - std::sqrt(tx * tx + ty * ty);
   }
   const double distance = distance_to_boundary(zone_edges_[z], to);
-  if (distance <= band) return 0.0;  // the dead band: decides nothing
+  if (distance <= band) {  // the dead band: decides nothing
+    state.clearance = 0.0;
+    return 0.0;
+  }
   const bool inside = inside_polygon(zone.polygon, to);
   if (inside != state.inside) {
     if (inside) {
@@ -384,6 +424,8 @@ double EventCounter::look_at_zone(std::uint32_t index, std::size_t z, const Poin
     enter(index, z, to, time);
     leave(index, z, to, time, /*lost=*/false);
   }
+  state.look = to;
+  state.clearance = distance;
   return distance;
 }
 
@@ -391,8 +433,11 @@ void EventCounter::enter(std::uint32_t index, std::size_t zone, const Point& whe
   ZoneState& state = zone_state(index, zone);
   state.inside = true;
   state.dwell_sent = false;
+  state.clearance = 0.0;  // the disc was of the other side
   state.entered_at = time;
   earliest_pending_[zone] = std::min(earliest_pending_[zone], time);
+  if (config_.zones[zone].dwell_seconds > 0.0)
+    next_dwell_due_ = std::min(next_dwell_due_, due_from(time, config_.zones[zone].dwell_seconds));
   emit(EventKind::zone_enter, zone, slots_[index], where, time);
   ++zone_counts_[zone].entered;
   ++zone_counts_[zone].occupancy;
@@ -403,6 +448,7 @@ void EventCounter::leave(std::uint32_t index, std::size_t zone, const Point& whe
   ZoneState& state = zone_state(index, zone);
   emit(EventKind::zone_exit, zone, slots_[index], where, time, time - state.entered_at, lost);
   state.inside = false;
+  state.clearance = 0.0;  // the disc was of the other side
   auto& counts = zone_counts_[zone];
   ++counts.exited;
   if (lost) ++counts.lost_inside;
@@ -410,6 +456,8 @@ void EventCounter::leave(std::uint32_t index, std::size_t zone, const Point& whe
 }
 
 void EventCounter::dwell(double time) {
+  if (time < next_dwell_due_) return;  // no zone has a visit due: one comparison per update
+  next_dwell_due_ = INFINITY;
   for (std::size_t z = 0; z < config_.zones.size(); ++z) {
     const double threshold = config_.zones[z].dwell_seconds;
     // No visit can be due before the earliest one waiting (a bound: exits do not raise it).
@@ -429,6 +477,10 @@ void EventCounter::dwell(double time) {
     }
     earliest_pending_[z] = earliest;
   }
+  for (std::size_t z = 0; z < config_.zones.size(); ++z)
+    if (config_.zones[z].dwell_seconds > 0.0 && std::isfinite(earliest_pending_[z]))
+      next_dwell_due_ =
+          std::min(next_dwell_due_, due_from(earliest_pending_[z], config_.zones[z].dwell_seconds));
 }
 
 void EventCounter::forget(std::uint32_t index, double time) {

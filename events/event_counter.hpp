@@ -12,6 +12,7 @@
 
 #include "events/event.hpp"
 #include "events/events_config.hpp"
+#include "events/shape_grid.hpp"
 #include "tracker/box.hpp"
 #include "tracker/recent_window.hpp"
 
@@ -64,6 +65,10 @@ class EventCounter {
     bool inside{false};
     bool dwell_sent{false};
     double entered_at{0.0};
+    // Where the zone was last decided, and how far its border was from there (0: no disc). Every
+    // point of that disc is on the side `inside` says, so a move within it decides nothing.
+    Point look;
+    double clearance{0.0};
   };
   struct Size {
     double w{0.0};
@@ -83,11 +88,15 @@ class EventCounter {
     // Where the shapes were last looked at, and the smallest of their clearances (follow()).
     Point look;
     double clearance{0.0};
-    // Where every shape was last looked at, the nearest one then, and the smallest clearance of
-    // the others from there (look()).
+    // The shapes (bit k: shape k, lines first) that were within the band when last looked at:
+    // their side or visit is undecided, and they are looked at again whatever the grid says.
+    std::uint64_t undecided{0};
+    // Where the grid was last read, the shapes near the track then (the undecided and the
+    // nearest decided one) and the smallest clearance of all others from there: while the track
+    // stays nearer to there than that less the band, only the near ones are looked at.
     Point full_look;
-    double second{0.0};
-    std::uint32_t nearest{0};
+    std::uint64_t near{0};
+    double others{0.0};
   };
 
   static constexpr std::uint32_t kNone = ~std::uint32_t{0};
@@ -104,11 +113,11 @@ class EventCounter {
   void count_crossing(std::size_t line, const Slot& slot, int side, const Point& where,
                       double time);
   void follow(std::uint32_t index, const tracker::TrackReport& report, double time);
-  // Each looks at one shape for a track moving from `from` to `to`, decides what it can, and
-  // returns the shape's clearance from `to` (follow(): 0 within the band).
   // Looks at the shapes that the move from `from` to `to` may have brought within their band.
   void look(std::uint32_t index, const Point& from, const Point& to, double band, bool first,
             double time);
+  // Each looks at one shape for a track moving from `from` to `to`, decides what it can, and
+  // returns the shape's clearance from `to` (follow(): 0 within the band).
   double look_at_line(std::uint32_t index, std::size_t line, const Point& from, const Point& to,
                       double band, bool first, double time);
   double look_at_zone(std::uint32_t index, std::size_t zone, const Point& from, const Point& to,
@@ -137,14 +146,14 @@ class EventCounter {
   std::vector<std::uint32_t> births_;  // this update's reports of ids not followed yet
   std::vector<LineState> line_states_;
   std::vector<ZoneState> zone_states_;
-  // Per slot, its lines' then its zones' clearances from the slot's `look` (follow()): no point
-  // of the line, or of the zone's border, is nearer.
-  std::vector<double> clearances_;
+  ShapeGrid grid_;
   std::vector<Event> events_;
   std::vector<LineCounts> line_counts_;
   std::vector<ZoneCounts> zone_counts_;
   // Per zone: no visit without its dwell event entered before this (INFINITY: none waits).
   std::vector<double> earliest_pending_;
+  // No zone has a visit due before this (dwell() is one comparison until then).
+  double next_dwell_due_{INFINITY};
   tracker::RecentWindow noise_window_;
   double box_noise_{0.0};
   std::int64_t noise_values_{0};  // pushed into noise_window_

@@ -58,7 +58,10 @@ PreparedEdge prepare_edge(const Segment& s) {
 
 double squared_distance_to_edge(const Point& p, const PreparedEdge& e) {
   double t = ((p.x - e.from.x) * e.dx + (p.y - e.from.y) * e.dy) * e.inverse_squared_length;
-  t = std::clamp(t, 0.0, 1.0);
+  // std::clamp's result, without its branches (min/max instructions): a point's nearest spot on
+  // an edge is as often an end as not, and the branches were mispredicted.
+  t = t > 0.0 ? t : 0.0;
+  t = t < 1.0 ? t : 1.0;
   const double ex = p.x - (e.from.x + t * e.dx);
   const double ey = p.y - (e.from.y + t * e.dy);
   return ex * ex + ey * ey;

@@ -375,6 +375,25 @@ TEST(SkippedGeometry, FarTracksStillCountEveryCrossingAndVisit) {
                                            EventKind::zone_enter, EventKind::zone_exit}));
 }
 
+// Past ShapeGrid::kMaxShapes the counter has no grid and looks at every shape when it looks:
+// 70 lines, crossed one after the other by a walk, and back by a jump over all of them.
+TEST(SkippedGeometry, MoreShapesThanTheGridHoldsStillCountEveryCrossing) {
+  EventsConfig config = one_line();
+  config.lines.clear();
+  for (int i = 0; i < 70; ++i)
+    config.lines.push_back(
+        {"l" + std::to_string(i), {{100.0 + 20 * i, 0}, {100.0 + 20 * i, 200}}, true});
+  Walk w(config);
+  std::vector<double> xs;
+  for (double x = 50; x <= 1600; x += 3) xs.push_back(x);
+  xs.push_back(50);  // back over every line at once
+  w.walk(1, xs);
+  for (const LineCounts& counts : w.counter.line_counts()) {
+    EXPECT_EQ(counts.in, 1);
+    EXPECT_EQ(counts.out, 1);
+  }
+}
+
 TEST(Capacity, TracksBeyondTheTableAreNotFollowedAndSaySo) {
   EventsConfig config = one_line();
   config.max_tracks = 2;
