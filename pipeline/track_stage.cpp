@@ -18,6 +18,23 @@ int most_tracks(const std::vector<TrackInput>& inputs) {
 
 }  // namespace
 
+std::uint32_t TrackStage::Stream::dropped_before(std::int64_t frame_number) const {
+  return static_cast<std::uint32_t>(std::max<std::int64_t>(0, frame_number - 1 - frames_processed));
+}
+
+void TrackStage::Stream::stamp(messages::FrameResult& result, std::int64_t frame_number,
+                               std::int64_t pts_ns, std::uint32_t frames_dropped) {
+  result.stream_id = stream_id;
+  result.run_id = messages::this_process_run_id();
+  result.sequence = static_cast<std::uint64_t>(messages++);
+  result.source_outage = false;
+  result.end_of_stream = false;
+  result.predicted = false;
+  result.frame_number = frame_number;
+  result.pts_ns = pts_ns;
+  result.frames_dropped = frames_dropped;
+}
+
 TrackStage::TrackStage(const std::vector<TrackInput>& inputs, SpscQueue<DetectedFrame>& input,
                        std::size_t queue_capacity, bool keep_images, bool full_rate)
     : input_(input),
@@ -55,17 +72,9 @@ void TrackStage::run(const std::atomic<bool>& abort) {
       const auto& decided = stream.counter->update(reports, seconds);
       result.events.assign(decided.begin(), decided.end());
     }
-    result.stream_id = stream.stream_id;
-    result.run_id = messages::this_process_run_id();  // a restarted board: a new run id
-    result.sequence = static_cast<std::uint64_t>(stream.messages++);
+    stream.stamp(result, in->info.frame_number, in->info.pts_ns,
+                 stream.dropped_before(in->info.frame_number));
     result.source_outage = in->outage;
-    result.end_of_stream = false;
-    result.predicted = false;
-    result.frame_number = in->info.frame_number;
-    result.pts_ns = in->info.pts_ns;
-    // Every frame before this one that did not become a message was dropped somewhere.
-    const std::int64_t dropped = in->info.frame_number - 1 - stream.frames_processed;
-    result.frames_dropped = static_cast<std::uint32_t>(std::max<std::int64_t>(0, dropped));
     result.times = in->times;
     result.times.tracked_ns = platform::steady_now_ns();
     out->input = in->input;
@@ -100,17 +109,9 @@ bool TrackStage::send_predicted(const DetectedFrame& in, Stream& stream,
     // Into the slot's reserved track storage: no allocation.
     stream.tracker->predict_reported_at(static_cast<double>(skipped.pts_ns) * 1e-9, result.tracks);
     result.events.clear();
-    result.stream_id = stream.stream_id;
-    result.run_id = messages::this_process_run_id();
-    result.sequence = static_cast<std::uint64_t>(stream.messages++);
-    result.source_outage = false;
-    result.end_of_stream = false;
+    stream.stamp(result, skipped.frame_number, skipped.pts_ns,
+                 stream.dropped_before(skipped.frame_number));
     result.predicted = true;
-    result.frame_number = skipped.frame_number;
-    result.pts_ns = skipped.pts_ns;
-    // As for a processed frame: the frames before it the detector did not process.
-    const std::int64_t dropped = skipped.frame_number - 1 - stream.frames_processed;
-    result.frames_dropped = static_cast<std::uint32_t>(std::max<std::int64_t>(0, dropped));
     result.times = messages::FrameTimes{};
     result.times.captured_ns = skipped.capture_ns;
     result.times.tracked_ns = platform::steady_now_ns();
@@ -135,15 +136,8 @@ void TrackStage::finish_streams(const std::atomic<bool>& abort) {
     messages::FrameResult& result = out->result;
     result.tracks.clear();
     result.events.assign(decided.begin(), decided.end());
-    result.stream_id = stream.stream_id;
-    result.run_id = messages::this_process_run_id();
-    result.sequence = static_cast<std::uint64_t>(stream.messages++);
-    result.source_outage = false;
+    stream.stamp(result, stream.last_frame_number, stream.last_pts_ns, stream.last_frames_dropped);
     result.end_of_stream = true;
-    result.predicted = false;
-    result.frame_number = stream.last_frame_number;
-    result.pts_ns = stream.last_pts_ns;
-    result.frames_dropped = stream.last_frames_dropped;
     result.times = messages::FrameTimes{};
     result.times.captured_ns = platform::steady_now_ns();
     result.times.tracked_ns = result.times.captured_ns;

@@ -51,6 +51,14 @@ class TrackStage {
     std::int64_t last_frame_number{0};
     std::int64_t last_pts_ns{0};
     std::uint32_t last_frames_dropped{0};
+
+    /// Frames before `frame_number` that did not become a processed message: dropped somewhere.
+    std::uint32_t dropped_before(std::int64_t frame_number) const;
+    /// The header every message of the stream carries, in one place: the stream, the run (a
+    /// restarted board: a new run id), the stream's next sequence number, the frame and its
+    /// time; the kind flags cleared, for the caller to set the one that applies.
+    void stamp(messages::FrameResult& result, std::int64_t frame_number, std::int64_t pts_ns,
+               std::uint32_t frames_dropped);
   };
 
   void finish_streams(const std::atomic<bool>& abort);
