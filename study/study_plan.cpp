@@ -109,7 +109,8 @@ std::vector<StudyConfiguration> ablation_configurations() {
       ablation("-duration", [](TrackerConfig& c) { c.confirm_by_duration = false; }),
       ablation("-coast", [](TrackerConfig& c) { c.min_coast_updates = 0; }),
       ablation("-gate", [](TrackerConfig& c) { c.time_widened_gate = false; }),
-      ablation("+frame-gap-clock", [](TrackerConfig& c) { c.gate_clock = GateClock::frame_gap; }),
+      ablation("+since-match-clock",
+               [](TrackerConfig& c) { c.gate_clock = GateClock::since_match; }),
       ablation("-sr-iou", [](TrackerConfig& c) { c.second_round_threshold = 0.0; }),
       ablation("-sr-recent", [](TrackerConfig& c) { c.second_round_recent_only = false; }),
       ablation("-keep", [](TrackerConfig& c) { c.keep_confirmation = false; }),
@@ -130,6 +131,12 @@ std::vector<StudyConfiguration> ablation_configurations() {
       ablation("-strong-birth", [](TrackerConfig& c) { c.strong_birth_range_cut = 0.0; }),
       ablation("-noise-gate", [](TrackerConfig& c) { c.noise_gate_factor = 0.0; }),
       ablation("-cap", [](TrackerConfig& c) { c.score_range_cap = 0.0; }),
+      // Issue 21 section 3: the cap engaged on every shape (at the median, as the first round).
+      ablation("+cap-always",
+               [](TrackerConfig& c) {
+                 c.score_range_cap = 0.5;
+                 c.score_range_cap_below = 1.0;
+               }),
   };
 }
 
@@ -163,6 +170,13 @@ std::vector<StudyConfiguration> study_configurations(bool quick) {
        tracker::with_options(
            *tracker::find_preset("rtmot"),
            {{"score_range_cap", "0"}, {"gate_clock", "frame_gap"}, {"noise_gate_factor", "3"}})});
+  // The default of issue 21's first round (the cap at the median on every shape, the gate clock
+  // the time since the track's match): what issue 21 section 3's default is compared with.
+  configurations.push_back(
+      {"preset-rtmot-issue21", "presets",
+       tracker::with_options(*tracker::find_preset("rtmot"), {{"score_range_cap", "0.5"},
+                                                              {"score_range_cap_below", "1"},
+                                                              {"gate_clock", "since_match"}})});
   // ByteTrack with its own Kalman filter too: the preset keeps SORT's, which scores higher here,
   // so that the bar the default is held to is the stronger ByteTrack (docs/study/reading.md).
   configurations.push_back(
@@ -183,11 +197,18 @@ std::vector<StudyConfiguration> cv_candidates(bool quick) {
     return Choice{std::move(name) + "-split",
                   {{option, value}, {"second_round", "true"}, {"low_score", "-1e30"}}};
   };
-  // The same split with its range capped at the median of the recent scores (issue 21: on
-  // floor-heavy, long-tailed scores a fraction of the range lies far up the tail).
-  const auto capped = [&split](const std::string& name, std::string_view value) {
-    Choice choice = split(name + "-cap-0.5", "score_range_cut", value);
-    choice.options.emplace_back("score_range_cap", "0.5");
+  // The same split with its range capped at a quantile of the recent scores (issue 21: on
+  // floor-heavy, long-tailed scores a fraction of the range lies far up the tail); the cap engaged
+  // always, or only where it lies below 0.2 of the range (issue 21 section 3: a floor-heavy shape,
+  // not a stream whose false detections merely outnumber its true ones), and engaged only there it
+  // may also sit lower (the 0.45 or 0.4 quantile) without touching calibrated scores.
+  const auto capped = [&split](const std::string& name, std::string_view value,
+                               std::string_view quantile = "0.5", std::string_view below = "1") {
+    Choice choice = split(name + "-cap-" + std::string(quantile) +
+                              (below == "1" ? "" : "-below-" + std::string(below)),
+                          "score_range_cut", value);
+    choice.options.emplace_back("score_range_cap", quantile);
+    choice.options.emplace_back("score_range_cap_below", below);
     return choice;
   };
   // The quantile cut is a study rule: the split's other settings with it as a knob.
@@ -204,7 +225,13 @@ std::vector<StudyConfiguration> cv_candidates(bool quick) {
                                   split("range-0.5", "score_range_cut", "0.5"),
                                   capped("range-0.3", "0.3"),
                                   capped("range-0.4", "0.4"),
-                                  capped("range-0.5", "0.5")};
+                                  capped("range-0.5", "0.5"),
+                                  capped("range-0.3", "0.3", "0.5", "0.2"),
+                                  capped("range-0.4", "0.4", "0.5", "0.2"),
+                                  capped("range-0.3", "0.3", "0.45", "0.2"),
+                                  capped("range-0.4", "0.4", "0.45", "0.2"),
+                                  capped("range-0.3", "0.3", "0.4", "0.2"),
+                                  capped("range-0.4", "0.4", "0.4", "0.2")};
   const auto values = [quick](std::string name, std::string_view option,
                               std::vector<std::string_view> all) {
     std::vector<Choice> choices;

@@ -98,6 +98,16 @@ const std::vector<SyntheticDetectorSpec>& synthetic_detectors() {
       {"holdout-n", 0.10, 2.0, 8.0, 6, 0.3, 0.05, 1.8, -1.0, ScoreScale::square, 404, true},
       {"holdout-o", 0.30, 5.0, 5.0, 4, 0.4, 0.07, 1.5, -1.0, ScoreScale::sigmoid, 405, true},
       {"holdout-p", 0.35, 10.0, 1.5, 3, 0.5, 0.11, 1.1, -1.0, ScoreScale::sinh, 406, true},
+      // Issue 21 section 3, second round: a fourth held-back set, written down and committed
+      // before any tracker ran on it and before the shape-adaptive split was tried: three
+      // floor-heavy, long-tailed shapes and three calibrated probabilities, two of those with
+      // many false positives near their floor.
+      {"holdout-q", 0.20, 3.0, 4.0, 3, 0.3, 0.06, 1.6, -1.0, ScoreScale::exp, 501, true},
+      {"holdout-r", 0.25, 4.0, 6.0, 5, 0.4, 0.05, 1.4, -1.0, ScoreScale::sigmoid, 502, true},
+      {"holdout-s", 0.35, 6.0, 2.0, 2, 0.5, 0.08, 1.3, -1.0, ScoreScale::square, 503, true},
+      {"holdout-t", 0.15, 2.0, 3.5, 4, 0.3, 0.07, 1.7, -1.0, ScoreScale::percent, 504, true},
+      {"holdout-u", 0.30, 5.0, 2.5, 3, 0.3, 0.05, 1.6, -1.0, ScoreScale::exp_steep, 505, true},
+      {"holdout-v", 0.20, 3.0, 5.0, 4, 0.4, 0.10, 1.2, -1.0, ScoreScale::frcnn, 506, true},
   };
   return specs;
 }

@@ -16,10 +16,11 @@ constexpr double kRangeHigh = 0.99;
 }  // namespace
 
 ScoreCut::ScoreCut(double quantile, double range_fraction, int window, bool track_range,
-                   double range_cap_quantile)
+                   double range_cap_quantile, double range_cap_below)
     : quantile_(quantile),
       range_fraction_(range_fraction),
       range_cap_quantile_(range_cap_quantile),
+      range_cap_below_(range_cap_below),
       window_(quantile > 0.0 || range_fraction > 0.0 || track_range
                   ? static_cast<std::size_t>(std::max(window, 1))
                   : 0U),
@@ -58,7 +59,11 @@ void ScoreCut::recompute() {
   if (quantile_ > 0.0) cut_ = window_.order_statistic(quantile_);
   low_ = window_.order_statistic(kRangeLow);
   high_ = window_.order_statistic(kRangeHigh);
-  cap_ = range_cap_quantile_ > 0.0 ? window_.order_statistic(range_cap_quantile_) : kNoCap;
+  cap_ = kNoCap;
+  if (range_cap_quantile_ > 0.0) {
+    const float cap = window_.order_statistic(range_cap_quantile_);
+    if (cap < low_ + static_cast<float>(range_cap_below_) * (high_ - low_)) cap_ = cap;
+  }
   if (range_fraction_ > 0.0) cut_ = std::max(cut_, range_point(range_fraction_));
 }
 

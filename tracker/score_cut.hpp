@@ -13,6 +13,12 @@
 //   range lies far up the tail and marks most true detections low. The cap bounds the share marked
 //   low by c whatever the shape, and where the range point lies below it (the shapes above) it
 //   changes nothing.
+// - engaged only on a floor-heavy shape: the cap applies only while its quantile lies below a
+//   fraction g of the range (the default: the 0.4 quantile below 0.2 of the range, most scores
+//   piled near a floor under a long upper tail). Where it sits higher, true and false detections
+//   spread over the range alike, and a stream whose false detections merely outnumber its true
+//   ones (its median low, but not at a floor) keeps the plain range split: capped, the split
+//   would fall among the false ones.
 // Causal: the cut for a frame depends on that frame and the ones before only, so `rtmot run` and
 // `rtmot track` agree.
 #include <cstdint>
@@ -32,9 +38,10 @@ class ScoreCut {
   /// `quantile` and `range_fraction` in [0, 1); 0 disables that cut. `window`: how many recent
   /// scores are remembered. `track_range`: keep the window for range_point() even with both cuts
   /// off. `range_cap_quantile` in [0, 1): every range point is at most that quantile of the recent
-  /// scores (0: no cap).
+  /// scores (0: no cap). `range_cap_below` in (0, 1]: the cap applies only while that quantile
+  /// lies below low + range_cap_below x (high - low) (1: whenever it is lower than a range point).
   ScoreCut(double quantile, double range_fraction, int window, bool track_range = false,
-           double range_cap_quantile = 0.0);
+           double range_cap_quantile = 0.0, double range_cap_below = 1.0);
 
   /// Adds the finite scores of `detections` to the window; returns the cut for this frame
   /// (the lowest float when disabled or nothing was seen). Allocates nothing.
@@ -52,6 +59,7 @@ class ScoreCut {
   double quantile_;
   double range_fraction_;
   double range_cap_quantile_;
+  double range_cap_below_;
   RecentWindow window_;
   float cut_;
   float low_;   // 1st percentile of the window at the last recompute

@@ -50,7 +50,7 @@ struct Tracker::State {
         box_noise(c.noise_gate_factor > 0.0 ? kBoxNoiseWindow : 0),
         score_cut(0.0, c.score_range_cut, kScoreWindow,
                   c.strong_birth_range_cut > 0.0 || (extension && extension->needs_score_range()),
-                  c.score_range_cap),
+                  c.score_range_cap, c.score_range_cap_below),
         cascades(c.confirmed_tracks_first || (extension && extension->cascades())) {
     const auto tracks = static_cast<std::size_t>(config.max_tracks);
     const auto detections = static_cast<std::size_t>(config.max_detections);

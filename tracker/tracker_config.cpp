@@ -13,6 +13,7 @@ TrackerConfig with_every_option(TrackerConfig base) {
   base.low_score = 0.3F;
   base.score_range_cut = 0.5;
   base.score_range_cap = 0.5;
+  base.score_range_cap_below = 0.2;
   base.observation_centric_reupdate = true;
   base.time_widened_gate = true;
   base.gate_clock = GateClock::frame_gap;

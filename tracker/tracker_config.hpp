@@ -59,6 +59,9 @@ struct TrackerConfig {
   /// scores: on floor-heavy, long-tailed scores (margins, un-squashed network outputs) a fraction
   /// of the range lies far up the tail and would mark most true detections low. 0 = no cap.
   double score_range_cap{0.0};
+  /// The cap engages only where its quantile lies below this fraction of the range: on a
+  /// floor-heavy shape only, not where false detections merely outnumber true ones (1: always).
+  double score_range_cap_below{1.0};
   /// A track is deleted after more than `max_age` nominal frames without a match.
   int max_age{1};
   /// A track is reported once it has `min_hits` consecutive matches.

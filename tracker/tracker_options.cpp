@@ -133,6 +133,10 @@ std::vector<TrackerOption> make_table() {
            "no point of that range (the split, strong births) lies above this quantile of the "
            "recent scores, whatever their shape (0: no cap)",
            &C::score_range_cap, 0.0, limits::kMaxScoreQuantile),
+      real("score_range_cap_below",
+           "the cap engages only while its quantile lies below this fraction of the range: on a "
+           "floor-heavy shape (1: always)",
+           &C::score_range_cap_below, 0.0, 1.0),
       integer("max_age", "nominal frames a track survives without a match", &C::max_age, 0,
               kMaxFrames),
       integer("min_hits", "consecutive matches before a track is reported", &C::min_hits, 0,

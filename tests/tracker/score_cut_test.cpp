@@ -126,6 +126,33 @@ TEST(ScoreCut, TheCapHoldsTheRangeCutOnALongTailedScale) {
   EXPECT_EQ(cut.range_point(0.9), cut.range_point(0.5));
 }
 
+// Issue 21 section 3: the cap engaged only on a floor-heavy shape. On a calibrated probability
+// whose false detections outnumber the true ones (3 to 1 here) the median lies low, below 0.3 of
+// the range, and a cap that always engages pulls the split down among the false detections; with
+// `range_cap_below` 0.2 the median is not low enough to count as a floor and the split stays where
+// the range puts it. On the long-tailed scale the median lies near the floor and the cap engages.
+TEST(ScoreCut, TheCapEngagesOnlyOnAFloorHeavyShape) {
+  std::mt19937 engine(11);
+  std::normal_distribution<float> truth(1.5F, 1.F);
+  std::normal_distribution<float> clutter(0.F, 1.F);
+  std::vector<std::vector<float>> latent(300);
+  for (auto& frame : latent) {
+    for (int i = 0; i < 6; ++i) frame.push_back(std::max(truth(engine), -1.F));
+    for (int i = 0; i < 18; ++i) frame.push_back(std::max(clutter(engine), -1.F));
+  }
+  const auto sigmoid_scale = [](float z) { return 1.F / (1.F + std::exp(1.F - z)); };
+  const auto exp_scale = [](float z) { return std::exp(1.5F * z); };
+  const auto plain = kept_by(ScoreCut(0.0, 0.3, 1024), latent, sigmoid_scale);
+  const auto always = kept_by(ScoreCut(0.0, 0.3, 1024, false, 0.5), latent, sigmoid_scale);
+  const auto floor_only = kept_by(ScoreCut(0.0, 0.3, 1024, false, 0.5, 0.2), latent, sigmoid_scale);
+  EXPECT_GT(count_kept(always), count_kept(plain));  // the median lies below the range point
+  EXPECT_EQ(floor_only, plain);
+  EXPECT_EQ(kept_by(ScoreCut(0.0, 0.3, 1024, false, 0.5, 0.2), latent, exp_scale),
+            kept_by(ScoreCut(0.0, 0.3, 1024, false, 0.5), latent, exp_scale));
+  EXPECT_NE(kept_by(ScoreCut(0.0, 0.3, 1024), latent, exp_scale),
+            kept_by(ScoreCut(0.0, 0.3, 1024, false, 0.5, 0.2), latent, exp_scale));
+}
+
 TEST(ScoreCut, DisabledOrConstantScoresCutNothing) {
   ScoreCut off(0.0, 0.0, 1024);
   const std::vector<Detection> frame = {Detection{Box{0, 0, 1, 1}, -3.F, 1},

@@ -38,6 +38,7 @@ TEST(TrackerOptions, EveryKnobOfTheConfigCanBeSet) {
                                      {"second_round", "true"},
                                      {"low_score", "0.05"},
                                      {"score_range_cap", "0.45"},
+                                     {"score_range_cap_below", "0.15"},
                                      {"observation_centric_reupdate", "true"},
                                      {"time_widened_gate", "true"},
                                      {"gate_clock", "frame_gap"},
@@ -65,6 +66,7 @@ TEST(TrackerOptions, EveryKnobOfTheConfigCanBeSet) {
   EXPECT_FLOAT_EQ(config.detection_threshold, 0.25F);
   EXPECT_DOUBLE_EQ(config.score_range_cut, 0.6);
   EXPECT_DOUBLE_EQ(config.score_range_cap, 0.45);
+  EXPECT_DOUBLE_EQ(config.score_range_cap_below, 0.15);
   EXPECT_EQ(config.max_age, 7);
   EXPECT_EQ(config.min_hits, 4);
   EXPECT_EQ(config.time_step, TimeStep::elapsed);
@@ -94,7 +96,7 @@ TEST(TrackerOptions, EveryKnobOfTheConfigCanBeSet) {
   EXPECT_EQ(config.seed, 18446744073709551615ULL);
   EXPECT_EQ(config.max_tracks, 20);
   EXPECT_EQ(config.max_detections, 30);
-  EXPECT_EQ(tracker_options().size(), 35U) << "a new TrackerConfig field needs a line here too";
+  EXPECT_EQ(tracker_options().size(), 36U) << "a new TrackerConfig field needs a line here too";
 }
 
 TEST(TrackerOptions, AnAffinityBringsItsUsualThresholdUnlessOneFollows) {
