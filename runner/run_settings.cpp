@@ -258,8 +258,8 @@ std::vector<RunSetting> detector_settings() {
                    {0, kMaxThreads}, [](RunConfig& c) -> int& { return c.detector.threads; }),
       parsed<int>(
           "detector.in_flight", "--in-flight",
-          "batches in flight in the detect stage, each on a detector of its own; auto = 3 on CUDA, "
-          "2 on CUDA fp16, 1 otherwise",
+          "batches in flight in the detect stage, each on a detector of its own; auto = 3 on CUDA "
+          "(fp32 and fp16), 1 otherwise",
           "auto or an integer in [1, " + std::to_string(kMaxInFlight) + "]",
           [](const std::string& t, std::string&) -> std::optional<int> {
             if (t == "auto") return 0;

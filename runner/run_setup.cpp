@@ -152,7 +152,6 @@ std::vector<std::unique_ptr<detector::Detector>> make_detectors(const RunConfig&
   lanes.push_back(build_detector(config, true));
   const auto* ssd = dynamic_cast<const detector::SsdDetector*>(lanes.front().get());
   const bool cuda = ssd != nullptr && ssd->backend().backend == cv::dnn::DNN_BACKEND_CUDA;
-  const bool fp16 = cuda && ssd->backend().target == cv::dnn::DNN_TARGET_CUDA_FP16;
   // auto: on CUDA the GPU runs one batch while the host prepares and decodes the others. Measured
   // on an H200, 8 sources, every frame, two passes (docs/gpu.md §3, "Batches in flight", the
   // batch's images preprocessed in parallel): 1 -> 2 -> 3 -> 4 lanes gave 1311-1567 -> 1890-2215
@@ -161,16 +160,18 @@ std::vector<std::unique_ptr<detector::Detector>> make_detectors(const RunConfig&
   // is the limit sooner: 840-934 -> 1193-1196 -> 1292-1301 -> 1390 FPS, GPU busy 53-59 -> 69-71
   // -> 74 -> 77-79 %, and p99 20-23 -> 29 -> 37 -> 45-46 ms: 2 lanes keep p99 within one lane's
   // before (28-32 ms) and stay above 900 FPS; a 3rd buys 8 % for 30 % more p99. At a camera rate
-  // (8 x 60 fps) the lane count does not move p99 (8-13 ms). Each lane holds its own networks and
-  // host thread. One on the CPU, where a second lane only takes cores from the first's OpenCV
-  // threads (docs/gpu.md).
-  const int automatic = fp16 ? 2 : cuda ? 3 : 1;
+  // (8 x 60 fps) the lane count does not move p99 (8-13 ms). On the H100 (docs/gpu.md, "Three
+  // lanes on cuda-fp16") 2 lanes left the GPU busy 65-69 % at 8 sources and 3 reached 71-72 %
+  // (the issue's 70 %) with 1235-1262 FPS and p99 37.6-38.4 ms, within what one lane had before
+  // batches in flight (37.6-44.9 ms), and camera-rate p99 the same (12.7 against 12.2 ms): so 3
+  // on fp16 as on fp32. Each lane holds its own networks and host thread. One on the CPU, where a
+  // second lane only takes cores from the first's OpenCV threads (docs/gpu.md).
+  const int automatic = cuda ? 3 : 1;
   const int wanted = config.detector.in_flight > 0 ? config.detector.in_flight : automatic;
   // One after another: each loads, warms up and (CUDA) captures its graphs alone.
   while (static_cast<int>(lanes.size()) < wanted) lanes.push_back(build_detector(config, false));
   spdlog::info("detector: {} batch{} in flight{}", wanted, wanted == 1 ? "" : "es",
                config.detector.in_flight > 0 ? ""
-               : fp16                        ? " (auto: CUDA fp16)"
                : cuda                        ? " (auto: CUDA)"
                                              : " (auto: not CUDA)");
   return lanes;
