@@ -154,6 +154,13 @@ int run_study_command(const StudyCommandOptions& options) {
                dataset.size(), configurations.size(), inputs.size(), intervals.size(),
                options.jobs);
   const auto progress = [](int done, int total, const study::StudyTable& table, int interval) {
+    // A held-back detector's scores go to its tables only: a log read while a default is still
+    // being chosen must not show how any candidate does on it (docs/study.md, the protocol).
+    if (study::is_held_back(table.input)) {
+      spdlog::info("[{}/{}] {} on {} interval {}: held back (in the tables only)", done, total,
+                   table.configuration.name, study::to_string(table.input), interval);
+      return;
+    }
     for (const auto& row : table.rows) {
       if (row.interval == interval) {
         spdlog::info("[{}/{}] {} on {} interval {}: MOTA {:.1f} IDF1 {:.1f}", done, total,

@@ -65,6 +65,11 @@ std::vector<StudyInput> held_back_inputs() {
   return synthetic_inputs_held_back(true);
 }
 
+bool is_held_back(const StudyInput& input) {
+  return input.kind == StudyInput::Kind::synthetic &&
+         synthetic_detectors().at(static_cast<std::size_t>(input.synthetic)).held_back;
+}
+
 std::vector<LoadedSequence> load_study_dataset(const fs::path& dataset) {
   std::vector<LoadedSequence> sequences;
   for (const motio::SequenceFolder& folder : motio::find_sequences(dataset)) {

@@ -45,6 +45,8 @@ std::string input_title(StudyInput input);
 std::vector<StudyInput> synthetic_inputs();
 /// The held-back synthetic detectors, in synthetic_detectors() order.
 std::vector<StudyInput> held_back_inputs();
+/// Whether `input` is one of held_back_inputs(): its scores belong in the held-out tables only.
+bool is_held_back(const StudyInput& input);
 
 struct LoadedSequence {
   motio::SequenceInfo info;

@@ -7,6 +7,7 @@
 
 #include "motio/mot_files.hpp"
 #include "shared_data.hpp"
+#include "study/study_dataset.hpp"
 #include "tracker/box_geometry.hpp"
 
 namespace rtmot::study {
@@ -91,6 +92,22 @@ TEST(SyntheticDetector, MakesWhatItsRecipeSays) {
   // DPM-like margins: true positives score higher, and the scale is not [0, 1].
   EXPECT_GT(hit_score / static_cast<double>(hits), false_score / static_cast<double>(falses) + 1.0);
   EXPECT_GT(hit_score / static_cast<double>(hits), 1.0);
+}
+
+// The study's log names a held-back detector's runs but never their scores (apps/cmd_study.cpp):
+// the test is which inputs count as held back.
+TEST(SyntheticDetector, HeldBackInputsAreExactlyTheHoldoutRecipes) {
+  const auto& specs = synthetic_detectors();
+  int held_back = 0;
+  for (std::size_t i = 0; i < specs.size(); ++i) {
+    const auto input = StudyInput::synthetic_detector(static_cast<int>(i));
+    EXPECT_EQ(is_held_back(input), specs[i].name.rfind("holdout-", 0) == 0) << specs[i].name;
+    held_back += is_held_back(input) ? 1 : 0;
+  }
+  EXPECT_EQ(held_back, static_cast<int>(held_back_inputs().size()));
+  EXPECT_GE(held_back, 22);  // holdout-a..v
+  EXPECT_FALSE(is_held_back(StudyInput::detections));
+  EXPECT_FALSE(is_held_back(StudyInput::ground_truth));
 }
 
 }  // namespace
