@@ -1,10 +1,15 @@
 #pragma once
 // The one RAII output file of rtmot (results, message files, reports, tables). Written in whole
 // records: a record is buffered whole and the buffer reaches the disk only at record boundaries,
-// so a reader never sees half of one, even after SIGKILL (a record above the buffer's size goes
-// out in one write() of its own), and a failed write (disk full) is cut back to the last whole
-// record. A file can also appear only once complete: written to a temporary beside it and renamed
-// by close(), so a stopped or killed program leaves the old file or the new one, never a part.
+// in one write() (a record above the buffer's size goes out in one write() of its own), and a
+// failed write (disk full) is cut back to the last whole record. A process killed (SIGKILL, or
+// the second stop signal's immediate exit) while that write() copies can leave one torn record
+// at the end: the kernel stops a write between two pages of the file, so such a cut lies at a
+// 4096-byte boundary and only at the end; readers report it as a record cut at the end
+// (MessageFileReader: broken_framing, "cut after"), and a reader of JSON lines drops an
+// unterminated last line. Nothing before it is ever torn. A file can also appear only once
+// complete: written to a temporary beside it and renamed by close(), so a stopped or killed program
+// leaves the old file or the new one, never a part.
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
