@@ -16,11 +16,16 @@ Associator::Associator(int rows, int cols) {
   assignment_.reserve(rows, cols);
 }
 
-// Fills the rows x cols affinities (row-major), counts each row's and column's pairs above the
-// threshold (what tells a one-to-one frame from one the solver must settle), and solves.
+// Fills the detections x candidates affinities (row-major), counts each row's and column's pairs
+// above the threshold (what tells a one-to-one frame from one the solver must settle), and solves.
 template <typename AffinityOf>
-void Associator::fill_and_solve(int rows, int cols, double threshold, const AffinityOf& affinity_of,
+void Associator::fill_and_solve(const std::vector<Detection>& detections,
+                                const std::vector<AssociationCandidate>& candidates,
+                                double threshold, const AffinityOf& affinity_of,
                                 std::vector<AssociationMatch>& matches) {
+  const int rows = static_cast<int>(detections.size());
+  const int cols = static_cast<int>(candidates.size());
+  if (rows == 0 || cols == 0) return;
   affinities_.resize(static_cast<std::size_t>(rows) * cols);
   row_hits_.assign(rows, 0);
   col_hits_.assign(cols, 0);
@@ -41,11 +46,8 @@ void Associator::associate(const TrackerConfig& config, double threshold,
                            const std::vector<Detection>& detections,
                            const std::vector<AssociationCandidate>& candidates,
                            std::vector<AssociationMatch>& matches) {
-  const int rows = static_cast<int>(detections.size());
-  const int cols = static_cast<int>(candidates.size());
-  if (rows == 0 || cols == 0) return;
   fill_and_solve(
-      rows, cols, threshold,
+      detections, candidates, threshold,
       [&](int r, int c) {
         return affinity(config, candidates[c].predicted, detections[r].box,
                         candidates[c].gate_frames, candidates[c].noise_margin);
@@ -63,12 +65,9 @@ void Associator::associate_by_distance(double per_frame, double max_reach,
                                        const std::vector<Detection>& detections,
                                        const std::vector<AssociationCandidate>& candidates,
                                        std::vector<AssociationMatch>& matches) {
-  const int rows = static_cast<int>(detections.size());
-  const int cols = static_cast<int>(candidates.size());
-  if (rows == 0 || cols == 0) return;
   // In (0, 1], larger when closer; -1 (below the threshold 0) when out of reach.
   fill_and_solve(
-      rows, cols, 0.0,
+      detections, candidates, 0.0,
       [&](int r, int c) {
         const Box& predicted = candidates[c].predicted;
         const Box& box = detections[r].box;

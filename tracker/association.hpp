@@ -52,8 +52,9 @@ class Associator {
 
  private:
   template <typename AffinityOf>
-  void fill_and_solve(int rows, int cols, double threshold, const AffinityOf& affinity_of,
-                      std::vector<AssociationMatch>& matches);
+  void fill_and_solve(const std::vector<Detection>& detections,
+                      const std::vector<AssociationCandidate>& candidates, double threshold,
+                      const AffinityOf& affinity_of, std::vector<AssociationMatch>& matches);
   // Appends the matches for the affinities_ already filled (rows x cols, row-major).
   void solve(double threshold, int rows, int cols, std::vector<AssociationMatch>& matches);
 
