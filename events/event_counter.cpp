@@ -16,6 +16,17 @@ constexpr std::int64_t kNoiseSnapshotGap = 2048;
 // Reports this many frame periods apart or less are neighbouring frames (timestamps wobble).
 constexpr double kNeighbourGap = 1.5;
 
+// True when `from` is nearer to `to` than `radius`: with `radius` the distance of `to` from a zone's
+// border, the move from -> to lies in a disc that holds no point of the border and cannot meet it.
+// (A move that meets the border from outside, with `from` beyond the band, is longer than that
+// distance plus the band: the margin is the band, far above rounding.) It spares most moves the
+// eight segment tests of move_meets_boundary(): they are a few pixels, the distances more.
+bool within(const Point& from, const Point& to, double radius) {
+  const double dx = to.x - from.x;
+  const double dy = to.y - from.y;
+  return dx * dx + dy * dy < radius * radius;
+}
+
 // A bound below `earliest + threshold` by more than the rounding of `time - earliest`: before it
 // no visit is due (the exact test is `time - earliest >= threshold`).
 double due_from(double earliest, double threshold) {
@@ -61,19 +72,10 @@ EventCounter::EventCounter(EventsConfig config)
 }
 
 Point EventCounter::anchor_of(const tracker::Box& box) const {
-  const double x = double{box.x} + 0.5 * box.w;
-  const double y =
-      config_.anchor == Anchor::bottom_centre ? double{box.y} + box.h : double{box.y} + 0.5 * box.h;
-  return {x, y};
+  return anchor_at(box, config_.anchor == Anchor::bottom_centre);
 }
 
-std::uint32_t EventCounter::find_live(std::int32_t track_id, std::size_t position) const {
-  // A tracker reports its tracks in the same order update after update: the slot that held the
-  // report at this position last time is nearly always the one. Otherwise a scan of the live.
-  if (position < hints_.size()) {
-    const std::uint32_t hint = hints_[position];
-    if (hint < slots_.size() && slots_[hint].live && slots_[hint].track_id == track_id) return hint;
-  }
+std::uint32_t EventCounter::find_live(std::int32_t track_id) const {
   for (const std::uint32_t index : live_)
     if (slots_[index].track_id == track_id) return index;
   return kNone;
@@ -82,14 +84,12 @@ std::uint32_t EventCounter::find_live(std::int32_t track_id, std::size_t positio
 // Inline into update(): it runs for every report, and most of the time it is a few loads, one
 // comparison and a few stores (the call's register saves were a sizable part of that).
 inline void EventCounter::follow(std::uint32_t index, const tracker::TrackReport& report,
-                                 double time) {
+                                 double time, const PerUpdate& now) {
   Slot& slot = slots_[index];
-  ++followed_;
-  const Point to = anchor_of(report.box);
+  const Point to = anchor_at(report.box, now.bottom_centre);
   const bool first = slot.last_update < 0;
-  if (measuring_noise_) measure_noise(slot, report.box, time);
-  const double band = std::max(config_.dead_band.min_px,
-                               config_.dead_band.noise_factor * box_noise_ * report.box.h);
+  if (now.measuring_noise) measure_noise(slot, report.box, time);
+  const double band = std::max(now.min_band, now.noise_factor * box_noise_ * report.box.h);
   slot.class_id = report.class_id;
   const Point from = first ? to : slot.anchor;
   // The clearance: when the shapes were last looked at, from `look`, no line and no zone border
@@ -108,7 +108,7 @@ inline void EventCounter::follow(std::uint32_t index, const tracker::TrackReport
   slot.size = {report.box.w, report.box.h};
   slot.previous_update = slot.last_update;
   slot.anchor = to;
-  slot.last_update = updates_;
+  slot.last_update = now.update;
   slot.previous_seen = slot.last_seen;
   slot.last_seen = time;
 }
@@ -121,14 +121,27 @@ const std::vector<Event>& EventCounter::update(const std::vector<tracker::TrackR
   // median is next redone: the window holds kNoiseWindow values and the median is redone every
   // kNoiseSnapshotGap reports; in between the reports are only counted (measuring every track
   // of every update was a third of the counter's time).
-  measuring_noise_ = noise_window_.keeps_next();
-  const std::int64_t followed_before = followed_;
+  // What every report reads, read once: across the stores into a slot and the calls of look()
+  // the compiler reloaded each member, and divided by the slot size for slots_.size(), for every
+  // report (a third of the instructions per report).
+  const PerUpdate now{noise_window_.keeps_next(), config_.anchor == Anchor::bottom_centre,
+                      config_.dead_band.min_px, config_.dead_band.noise_factor, updates_};
+  const bool every_class = config_.classes.empty();
+  const double lost_after = config_.lost_after_seconds;
+  const std::size_t report_count = reports.size();
+  const std::size_t hint_count = hints_.size();
+  const std::size_t slot_count = slots_.size();
+  std::int64_t followed = 0;
   // Known tracks first, so that a track born now can only take over one that was not reported.
-  for (std::size_t r = 0; r < reports.size(); ++r) {
+  for (std::size_t r = 0; r < report_count; ++r) {
     const tracker::TrackReport& report = reports[r];
-    if (!counts_class(report.class_id)) continue;
-    std::uint32_t index = find_live(report.id, r);
-    if (index != kNone && time_seconds - slots_[index].last_seen > config_.lost_after_seconds) {
+    if (!every_class && !counts_class(report.class_id)) continue;
+    // A tracker reports its tracks in the same order update after update: the slot that held the
+    // report at this position last time is nearly always the one. Otherwise a scan of the live.
+    std::uint32_t index = r < hint_count ? hints_[r] : kNone;
+    if (!(index < slot_count && slots_[index].live && slots_[index].track_id == report.id))
+      index = find_live(report.id);
+    if (index != kNone && time_seconds - slots_[index].last_seen > lost_after) {
       forget(index, time_seconds);  // gone too long: this is a new life under the same id
       index = kNone;
     }
@@ -140,8 +153,9 @@ const std::vector<Event>& EventCounter::update(const std::vector<tracker::TrackR
       }
       continue;
     }
-    if (r < hints_.size()) hints_[r] = index;
-    follow(index, report, time_seconds);
+    if (r < hint_count) hints_[r] = index;
+    follow(index, report, time_seconds, now);
+    ++followed;
   }
   for (const std::uint32_t r : births_) {
     const tracker::TrackReport& report = reports[r];
@@ -163,8 +177,9 @@ const std::vector<Event>& EventCounter::update(const std::vector<tracker::TrackR
       for (std::size_t l = 0; l < config_.lines.size(); ++l) line_state(index, l) = LineState{};
       for (std::size_t z = 0; z < config_.zones.size(); ++z) zone_state(index, z) = ZoneState{};
     }
-    if (r < hints_.size()) hints_[r] = index;
-    follow(index, report, time_seconds);
+    if (r < hint_count) hints_[r] = index;
+    follow(index, report, time_seconds, now);
+    ++followed;
   }
   // Tracks unseen too long are gone. A scan of every live track per update would cost as much as
   // following them; the oldest sighting is a bound that says when one can be due.
@@ -179,8 +194,8 @@ const std::vector<Event>& EventCounter::update(const std::vector<tracker::TrackR
       }
     }
   }
-  if (!measuring_noise_) {
-    noise_window_.pass(followed_ - followed_before);
+  if (!now.measuring_noise) {
+    noise_window_.pass(followed);
     settle_noise();
   }
   dwell(time_seconds);
@@ -418,7 +433,8 @@ double EventCounter::look_at_zone(std::uint32_t index, std::size_t z, const Poin
     } else {
       leave(index, z, to, time, /*lost=*/false);
     }
-  } else if (!inside && !first && move_meets_boundary(zone.polygon, from, to) &&
+  } else if (!inside && !first && !within(from, to, distance) &&
+             move_meets_boundary(zone.polygon, from, to) &&
              distance_to_boundary(zone_edges_[z], from) > band) {
     // Through the zone between two processed frames: it was inside, for an unknown while.
     enter(index, z, to, time);

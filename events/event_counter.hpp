@@ -105,14 +105,28 @@ class EventCounter {
     return config_.classes.empty() || std::find(config_.classes.begin(), config_.classes.end(),
                                                 class_id) != config_.classes.end();
   }
-  std::uint32_t find_live(std::int32_t track_id, std::size_t position) const;
+  // One update's settings, as update() hands them to follow() for each report.
+  struct PerUpdate {
+    bool measuring_noise;  // the box noise, in this update
+    bool bottom_centre;    // the anchor
+    double min_band;
+    double noise_factor;
+    std::int64_t update;
+  };
+  static Point anchor_at(const tracker::Box& box, bool bottom_centre) {
+    const double x = double{box.x} + 0.5 * box.w;
+    const double y = bottom_centre ? double{box.y} + box.h : double{box.y} + 0.5 * box.h;
+    return {x, y};
+  }
+  std::uint32_t find_live(std::int32_t track_id) const;
   std::uint32_t find_broken_off(const tracker::TrackReport& report, double time) const;
   Point anchor_of(const tracker::Box& box) const;
   void measure_noise(const Slot& slot, const tracker::Box& box, double time);
   void settle_noise();
   void count_crossing(std::size_t line, const Slot& slot, int side, const Point& where,
                       double time);
-  void follow(std::uint32_t index, const tracker::TrackReport& report, double time);
+  void follow(std::uint32_t index, const tracker::TrackReport& report, double time,
+              const PerUpdate& now);
   // Looks at the shapes that the move from `from` to `to` may have brought within their band.
   void look(std::uint32_t index, const Point& from, const Point& to, double band, bool first,
             double time);
@@ -157,8 +171,6 @@ class EventCounter {
   tracker::RecentWindow noise_window_;
   double box_noise_{0.0};
   std::int64_t noise_values_{0};  // pushed into noise_window_
-  std::int64_t followed_{0};      // reports followed, ever
-  bool measuring_noise_{true};    // in this update (update())
   std::int64_t updates_{0};
   std::int64_t tracks_not_followed_{0};
   // No live slot was last seen before this (a bound: the lost-track scan runs only when it can
