@@ -14,13 +14,18 @@ constexpr std::size_t kNoiseWindow = 256;
 // nth_element over them every 5 frames (the tracker's 256) was a quarter of the counter's time.
 constexpr std::int64_t kNoiseSnapshotGap = 2048;
 // Reports this many frame periods apart or less are neighbouring frames (timestamps wobble).
+// The farthest a track's disc is moved from `to` (place_disc()): far enough to be a half plane
+// near the track, near enough for the rounding of its centre (about 1e-12 px) to stay far below
+// kDiscRounding, which its radius is made smaller by.
+constexpr double kMaxDiscShift = 4096.0;
+constexpr double kDiscRounding = 1e-6;
 constexpr double kNeighbourGap = 1.5;
 
-// True when `from` is nearer to `to` than `radius`: with `radius` the distance of `to` from a zone's
-// border, the move from -> to lies in a disc that holds no point of the border and cannot meet it.
-// (A move that meets the border from outside, with `from` beyond the band, is longer than that
-// distance plus the band: the margin is the band, far above rounding.) It spares most moves the
-// eight segment tests of move_meets_boundary(): they are a few pixels, the distances more.
+// True when `from` is nearer to `to` than `radius`: with `radius` the distance of `to` from a
+// zone's border, the move from -> to lies in a disc that holds no point of the border and cannot
+// meet it. (A move that meets the border from outside, with `from` beyond the band, is longer than
+// that distance plus the band: the margin is the band, far above rounding.) It spares most moves
+// the eight segment tests of move_meets_boundary(): they are a few pixels, the distances more.
 bool within(const Point& from, const Point& to, double radius) {
   const double dx = to.x - from.x;
   const double dy = to.y - from.y;
@@ -305,6 +310,34 @@ inline double EventCounter::look_at_line(std::uint32_t index, std::size_t l, con
   return std::abs(distance);
 }
 
+inline void EventCounter::place_disc(Slot& slot, std::uint32_t index, const Point& to,
+                                     double clearance, double others, double nearest,
+                                     std::size_t nearest_shape) {
+  slot.look = to;
+  slot.clearance = clearance;
+  // A track near a line is most often near that line alone, walking to it or away from it. A
+  // disc around `to` of the line's distance would have it looked at again each time it has gone
+  // that distance less the band: a dozen looks as it walks away from a line it crossed, the
+  // distance left doubling each time. The disc moved away from the line by `shift`, its radius
+  // grown by as much, is as far from the line; it stays clear of every other shape while its
+  // radius is at most their clearance from `to` less the shift (triangle inequality); and it
+  // holds the disc around `to`: looked at again as soon as before when walking to the line, far
+  // later when walking along or away. The disc of follow() only needs to hold `to` and meet no
+  // shape (and it is convex, so it holds the moves between its points too): still exact.
+  const bool line_binds = clearance > 0.0 && nearest_shape < lines_.size() && others > nearest;
+  if (!line_binds) return;
+  const double shift = std::min(0.5 * (others - nearest), kMaxDiscShift);
+  const PreparedLine& line = lines_[nearest_shape];
+  // (-dy, dx) / length: the unit normal toward positive signed distances.
+  const double away =
+      (line_state(index, nearest_shape).distance > 0.0 ? shift : -shift) * line.inverse_length;
+  const Point centre{to.x - line.dy * away, to.y + line.dx * away};
+  const double radius = std::min(nearest + shift, others - shift) - kDiscRounding;
+  if (!(std::isfinite(centre.x) && std::isfinite(centre.y) && radius > nearest)) return;
+  slot.look = centre;
+  slot.clearance = radius;
+}
+
 void EventCounter::look(std::uint32_t index, const Point& from, const Point& to, double band,
                         bool first, double time) {
   Slot& slot = slots_[index];
@@ -339,12 +372,12 @@ void EventCounter::look(std::uint32_t index, const Point& from, const Point& to,
     const double fy = to.y - slot.full_look.y;
     const double room = slot.others - band;
     if (room > 0.0 && fx * fx + fy * fy < room * room) {
-      clearance = slot.others - std::sqrt(fx * fx + fy * fy);
+      const double base = slot.others - std::sqrt(fx * fx + fy * fy);
+      clearance = base;
       for (std::uint64_t near = slot.near; near != 0; near &= near - 1)
         look_at(static_cast<std::size_t>(__builtin_ctzll(near)));
-      slot.clearance = clearance;
+      place_disc(slot, index, to, clearance, std::min(base, others), nearest, nearest_shape);
       slot.undecided = undecided;
-      slot.look = to;
       return;
     }
   }
@@ -370,9 +403,9 @@ void EventCounter::look(std::uint32_t index, const Point& from, const Point& to,
   }
   if (all)
     for (std::size_t k = 0; k < shapes; ++k) look_at(k);
-  slot.clearance = clearance;
+  // (`others` holds the cell's clearance where the grid was read.)
+  place_disc(slot, index, to, clearance, others, nearest, nearest_shape);
   slot.undecided = undecided;
-  slot.look = to;
   // The near ones: the undecided and the nearest decided (with more shapes than bits: none).
   slot.near = !grid_.enabled()          ? 0
               : nearest_shape == shapes ? undecided

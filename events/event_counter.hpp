@@ -85,7 +85,8 @@ class EventCounter {
     Point anchor;
     Size size;
     Size previous_size;
-    // Where the shapes were last looked at, and the smallest of their clearances (follow()).
+    // The disc of follow(): no shape meets it, the last position looked at is in it (its centre,
+    // or moved away from a line: place_disc()).
     Point look;
     double clearance{0.0};
     // The shapes (bit k: shape k, lines first) that were within the band when last looked at:
@@ -130,6 +131,10 @@ class EventCounter {
   // Looks at the shapes that the move from `from` to `to` may have brought within their band.
   void look(std::uint32_t index, const Point& from, const Point& to, double band, bool first,
             double time);
+  // Sets the disc of follow() after a look from `to`: `clearance` of every shape looked at and
+  // the bound of the others, `others` the same without the nearest decided shape, `nearest` its.
+  void place_disc(Slot& slot, std::uint32_t index, const Point& to, double clearance, double others,
+                  double nearest, std::size_t nearest_shape);
   // Each looks at one shape for a track moving from `from` to `to`, decides what it can, and
   // returns the shape's clearance from `to` (follow(): 0 within the band).
   double look_at_line(std::uint32_t index, std::size_t line, const Point& from, const Point& to,
