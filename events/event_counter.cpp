@@ -271,7 +271,8 @@ void EventCounter::measure_noise(const Slot& slot, const tracker::Box& box, doub
 void EventCounter::settle_noise() {
   if (!noise_window_.due()) return;
   noise_window_.snapshot();
-  if (noise_values_ > 0) box_noise_ = noise_window_.order_statistic(0.5);
+  // Every value pushed is a finite (|ddw| h + |ddh| w) / (2 w h) with w, h > 0: +0 or more.
+  if (noise_values_ > 0) box_noise_ = noise_window_.order_statistic_of_nonnegative(0.5);
 }
 
 inline double EventCounter::look_at_line(std::uint32_t index, std::size_t l, const Point& from,

@@ -1,7 +1,9 @@
 #include "tracker/recent_window.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstring>
 
 namespace rtmot::tracker {
 namespace {
@@ -46,6 +48,30 @@ float RecentWindow::order_statistic(double quantile) {
       static_cast<std::ptrdiff_t>(std::floor(quantile * static_cast<double>(snapshot_size_)));
   std::nth_element(scratch_.begin(), scratch_.begin() + k, end);
   return scratch_[static_cast<std::size_t>(k)];
+}
+
+float RecentWindow::order_statistic_of_nonnegative(double quantile) const {
+  auto rank =
+      static_cast<std::uint32_t>(std::floor(quantile * static_cast<double>(snapshot_size_)));
+  // The rank-th smallest bit pattern, its bytes from the highest: each pass counts the values
+  // that share the bytes found so far by their next byte, and finds the byte that holds the rank.
+  std::uint32_t found = 0;
+  std::uint32_t known = 0;  // the bits of `found` decided so far
+  for (int shift = 24; shift >= 0; shift -= 8) {
+    std::array<std::uint32_t, 256> count{};
+    for (std::size_t i = 0; i < snapshot_size_; ++i) {
+      std::uint32_t bits = 0;
+      std::memcpy(&bits, &scratch_[i], sizeof bits);
+      count[(bits >> shift) & 0xFFU] += static_cast<std::uint32_t>((bits & known) == found);
+    }
+    std::uint32_t byte = 0;
+    while (rank >= count[byte]) rank -= count[byte++];
+    found |= byte << shift;
+    known |= 0xFFU << shift;
+  }
+  float value = 0.F;
+  std::memcpy(&value, &found, sizeof value);
+  return value;
 }
 
 }  // namespace rtmot::tracker

@@ -46,6 +46,12 @@ class RecentWindow {
   /// reorders the copy. Needs a snapshot of at least one value.
   float order_statistic(double quantile);
 
+  /// order_statistic()'s value where every value of the snapshot is +0 or more (no -0, no NaN),
+  /// found on the floats' bits (their order is then the integers'), a byte at a time, without
+  /// branching on the values: nth_element's mispredicted branches made a median of 256 values
+  /// cost 2 us, half of that. Leaves the copy as it is.
+  float order_statistic_of_nonnegative(double quantile) const;
+
   void reset();
 
  private:

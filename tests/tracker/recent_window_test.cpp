@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <random>
 #include <vector>
 
 namespace rtmot::tracker {
@@ -18,6 +19,28 @@ TEST(RecentWindow, KeepsTheLastValuesOnly) {
   EXPECT_FLOAT_EQ(window.order_statistic(0.5), 3.F);
   EXPECT_FLOAT_EQ(window.order_statistic(0.99), 4.F);
   EXPECT_EQ(window.seen(), 6);
+}
+
+TEST(RecentWindow, NonnegativeOrderStatisticsAreNthElements) {
+  // Box-noise-like values (many close together, repeats, zeros), windows partly and wholly full.
+  std::mt19937 random(11);
+  std::gamma_distribution<float> noise(2.F, 0.01F);
+  std::uniform_int_distribution<int> kind(0, 9);
+  for (const std::size_t capacity : {1U, 7U, 256U}) {
+    for (int round = 0; round < 50; ++round) {
+      RecentWindow window(capacity);
+      const int values = 1 + round * 7;
+      for (int i = 0; i < values; ++i) {
+        const int k = kind(random);
+        window.push(k == 0 ? 0.F : k == 1 ? 0.0125F : k == 2 ? 1e30F : noise(random));
+      }
+      window.snapshot();
+      for (const double quantile : {0.0, 0.25, 0.5, 0.9, 0.999}) {
+        const float fast = window.order_statistic_of_nonnegative(quantile);
+        ASSERT_EQ(fast, window.order_statistic(quantile)) << capacity << " " << round;
+      }
+    }
+  }
 }
 
 TEST(RecentWindow, RedoesItsStatisticsOnASchedule) {
