@@ -460,7 +460,12 @@ double EventCounter::look_at_zone(std::uint32_t index, std::size_t z, const Poin
     state.clearance = 0.0;
     return 0.0;
   }
-  const bool inside = inside_polygon(zone.polygon, to);
+  // A zone decided at its last look (a clearance) has had nothing come within its band since
+  // (it would have been looked at): `from` is on the side it says, and a move shorter than the
+  // distance of `to` from the border stays there. No even-odd test then.
+  const bool inside = state.clearance > 0.0 && within(from, to, distance)
+                          ? state.inside
+                          : inside_polygon(zone.polygon, to);
   if (inside != state.inside) {
     if (inside) {
       enter(index, z, to, time);

@@ -70,25 +70,27 @@ class EventCounter {
     Point look;
     double clearance{0.0};
   };
+  // A box's size as the tracker reports it (floats: half the bytes of doubles, the same values).
   struct Size {
-    double w{0.0};
-    double h{0.0};
+    float w{0.F};
+    float h{0.F};
   };
+  // What follow() reads for every report first (the skip test), then what it writes.
   struct Slot {
     bool live{false};
     std::int32_t track_id{0};
     std::int32_t class_id{0};
+    // The disc of follow(): no shape meets it, the last position looked at is in it (its centre,
+    // or moved away from a line or a zone's box: place_disc()).
+    Point look;
+    double clearance{0.0};
     double last_seen{0.0};
-    double previous_seen{0.0};
     std::int64_t last_update{-1};
-    std::int64_t previous_update{-1};
     Point anchor;
     Size size;
     Size previous_size;
-    // The disc of follow(): no shape meets it, the last position looked at is in it (its centre,
-    // or moved away from a line: place_disc()).
-    Point look;
-    double clearance{0.0};
+    double previous_seen{0.0};
+    std::int64_t previous_update{-1};
     // The shapes (bit k: shape k, lines first) that were within the band when last looked at:
     // their side or visit is undecided, and they are looked at again whatever the grid says.
     std::uint64_t undecided{0};
