@@ -455,7 +455,7 @@ double EventCounter::look_at_zone(std::uint32_t index, std::size_t z, const Poin
     if (tx * tx + ty * ty < squared_room && fx * fx + fy * fy < squared_room)
       return state.clearance - std::sqrt(tx * tx + ty * ty);
   }
-  const double distance = distance_to_boundary(zone_edges_[z], to);
+  const double distance = distance_to_boundary_beyond(zone_edges_[z], to, band);
   if (distance <= band) {  // the dead band: decides nothing
     state.clearance = 0.0;
     return 0.0;
@@ -474,7 +474,7 @@ double EventCounter::look_at_zone(std::uint32_t index, std::size_t z, const Poin
     }
   } else if (!inside && !first && !within(from, to, distance) &&
              move_meets_boundary(zone.polygon, from, to) &&
-             distance_to_boundary(zone_edges_[z], from) > band) {
+             distance_to_boundary_beyond(zone_edges_[z], from, band) > band) {
     // Through the zone between two processed frames: it was inside, for an unknown while.
     enter(index, z, to, time);
     leave(index, z, to, time, /*lost=*/false);

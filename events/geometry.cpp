@@ -108,6 +108,19 @@ double distance_to_boundary(const std::vector<PreparedEdge>& edges, const Point&
   return std::sqrt(nearest);
 }
 
+double distance_to_boundary_beyond(const std::vector<PreparedEdge>& edges, const Point& p,
+                                   double band) {
+  const double squared_band = band * band;
+  double nearest = INFINITY;
+  for (const PreparedEdge& e : edges) {
+    const double squared = squared_distance_to_edge(p, e);
+    nearest = std::min(nearest, squared);
+    // The square is a cheap filter; the root decides (as distance_to_boundary()'s would).
+    if (squared <= squared_band && std::sqrt(squared) <= band) return std::sqrt(squared);
+  }
+  return std::sqrt(nearest);
+}
+
 double distance_to_boundary(const std::vector<Point>& polygon, const Point& p) {
   return distance_to_boundary(prepare_edges(polygon), p);
 }

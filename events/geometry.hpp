@@ -48,6 +48,11 @@ struct PreparedEdge {
 };
 std::vector<PreparedEdge> prepare_edges(const std::vector<Point>& polygon);
 double distance_to_boundary(const std::vector<PreparedEdge>& edges, const Point& p);
+/// distance_to_boundary() where it is more than `band`; otherwise some value of at most `band`,
+/// found at the first edge within it: a caller that only compares with the band learns the
+/// same, and a point near the border (half of those the counter asks about) skips the rest.
+double distance_to_boundary_beyond(const std::vector<PreparedEdge>& edges, const Point& p,
+                                   double band);
 
 /// True when the move p -> q meets any edge of the polygon.
 bool move_meets_boundary(const std::vector<Point>& polygon, const Point& p, const Point& q);
