@@ -4,6 +4,8 @@
 #include <gst/app/gstappsink.h>
 #include <gst/gst.h>
 #include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <chrono>
 #include <fstream>
@@ -207,6 +209,23 @@ TEST_F(VideoOutputs, Mp4HasEveryFrameAsH264IndexFirst) {
   EXPECT_NE(bytes.find("avc1"), std::string::npos);
   ASSERT_NE(bytes.find("moov"), std::string::npos);
   EXPECT_LT(bytes.find("moov"), bytes.find("mdat"));
+}
+
+// A writer killed by SIGKILL leaves its PATH.tmp-PID (it cannot remove it): the next video written
+// to PATH removes it (common/stale_temporaries.hpp).
+TEST_F(VideoOutputs, AKilledWritersTemporaryGoesWithTheNextVideo) {
+  const auto path = folder_ / "demo.mkv";
+  const pid_t gone = ::fork();
+  if (gone == 0) ::_exit(0);
+  ASSERT_GT(gone, 0);
+  ::waitpid(gone, nullptr, 0);
+  const auto left = folder_ / ("demo.mkv.tmp-" + std::to_string(gone));
+  { std::ofstream(left) << "half a video"; }
+  auto stream = open_video_stream(target_of(path.string()), 30.0);
+  EXPECT_EQ(push_test_frames(*stream, 0ms), frame_count);
+  stream->close();
+  EXPECT_FALSE(std::filesystem::exists(left));
+  EXPECT_GT(std::filesystem::file_size(path), 0U);
 }
 
 TEST_F(VideoOutputs, MkvHasEveryFrame) {
