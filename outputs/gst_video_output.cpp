@@ -13,6 +13,7 @@
 #include <cstring>
 
 #include "common/input_error.hpp"
+#include "common/stale_temporaries.hpp"
 #include "outputs/bgr_buffer.hpp"
 #include "outputs/encoder_padding.hpp"
 
@@ -158,7 +159,10 @@ GstVideoOutput::Started GstVideoOutput::launch(int width, int height) {
     // a device or FIFO there (/dev/full, a pipe to a player) is written in place.
     struct stat status {};
     const bool special = ::stat(target_.path.c_str(), &status) == 0 && !S_ISREG(status.st_mode);
-    if (!special) written_path_ = target_.path + ".tmp-" + std::to_string(::getpid());
+    if (!special) {
+      remove_stale_temporaries(target_.path);
+      written_path_ = temporary_path_for(target_.path).string();
+    }
     g_object_set(sink.get(), "location", special ? target_.path.c_str() : written_path_.c_str(),
                  nullptr);
   }
