@@ -144,7 +144,8 @@ Subcommand add_track_command(CLI::App& parent) {
          "--preset", options->preset,
          "starting configuration (" + tracker::preset_names() + "); options below override it")
       ->capture_default_str();
-  options->tracker_flags.add_to(*cli);
+  options->tracker_flags.add_to(*cli, motio::kSequenceSuppliedOptions,
+                                "rtmot track takes it from each sequence's seqinfo.ini");
   cli->add_option("--interval", options->interval,
                   "process frames 1, 1+N, 1+2N, ... only (frame numbers and times kept)")
       ->check(integer_in(1, motio::kMaxFrame))

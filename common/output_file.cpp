@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "common/input_error.hpp"
+#include "common/stale_temporaries.hpp"
 
 namespace rtmot {
 namespace {
@@ -36,9 +37,8 @@ OutputFile::OutputFile(std::filesystem::path path, Publish publish, std::size_t 
       publish_(effective_publish(path_, publish)),
       buffer_(std::max<std::size_t>(buffer_bytes, 1)) {
   record_ends_.reserve(1024);
-  written_path_ = publish_ == Publish::on_close
-                      ? std::filesystem::path(path_.string() + ".tmp-" + std::to_string(::getpid()))
-                      : path_;
+  if (publish_ == Publish::on_close) remove_stale_temporaries(path_);
+  written_path_ = publish_ == Publish::on_close ? temporary_path_for(path_) : path_;
   fd_ = ::open(written_path_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
   if (fd_ < 0) {
     const int error = errno;

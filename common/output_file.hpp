@@ -22,7 +22,8 @@ class OutputFile {
  public:
   enum class Publish {
     as_written,  // PATH itself, created or truncated now (streams: messages, JSON lines)
-    on_close,    // PATH appears at close(), whole; until then PATH.tmp-<pid>
+    on_close,    // PATH appears at close(), whole; until then PATH.tmp-<pid>; temporaries of
+                 // writers that no longer run are removed first (common/stale_temporaries.hpp)
   };
 
   /// Throws InputError (bad_input) naming `path` if it cannot be created.

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <functional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "motio/frame_detections.hpp"
@@ -15,6 +16,11 @@
 #include "tracker/tracker_extension.hpp"
 
 namespace rtmot::motio {
+
+/// The tracker options a sequence supplies (its seqinfo.ini's frame rate and image size):
+/// track_detections sets them, whatever the configuration said.
+inline const std::vector<std::string_view> kSequenceSuppliedOptions{"frame_rate", "image_width",
+                                                                    "image_height"};
 
 struct TrackOptions {
   /// frame_rate and image size are taken from the sequence's seqinfo.ini.

@@ -115,6 +115,13 @@ void AnnotatedVideo::finish() {
         frames_.dropped(), frames_.capacity());
   }
   stream_->close();
+  const std::uint64_t streamed = stream_->frames_streamed();
+  if (streamed < written_) {
+    spdlog::info(
+        "video: {} of {} frames were streamed; a live stream drops a frame while its encoder is "
+        "behind (or no client watches) rather than fall behind the camera",
+        streamed, written_);
+  }
 }
 
 }  // namespace rtmot::outputs

@@ -13,6 +13,7 @@
 #include <cstring>
 
 #include "common/input_error.hpp"
+#include "common/stale_temporaries.hpp"
 #include "outputs/bgr_buffer.hpp"
 #include "outputs/encoder_padding.hpp"
 
@@ -149,12 +150,19 @@ GstVideoOutput::Started GstVideoOutput::launch(int width, int height) {
             ExitCode::encoder_failed};
   }
   source_.reset(gst_bin_get_by_name(GST_BIN(pipeline_.get()), "src"));
+  if (const ObjectPtr<GstPad> pad{gst_element_get_static_pad(source_.get(), "src")}) {
+    gst_pad_add_probe(pad.get(), GST_PAD_PROBE_TYPE_BUFFER, &GstVideoOutput::on_frame_streamed,
+                      this, nullptr);
+  }
   if (const ObjectPtr<GstElement> sink{gst_bin_get_by_name(GST_BIN(pipeline_.get()), "sink")}) {
     // Published by rename, as common/output_file does: right for a regular file or a new one;
     // a device or FIFO there (/dev/full, a pipe to a player) is written in place.
     struct stat status {};
     const bool special = ::stat(target_.path.c_str(), &status) == 0 && !S_ISREG(status.st_mode);
-    if (!special) written_path_ = target_.path + ".tmp-" + std::to_string(::getpid());
+    if (!special) {
+      remove_stale_temporaries(target_.path);
+      written_path_ = temporary_path_for(target_.path).string();
+    }
     g_object_set(sink.get(), "location", special ? target_.path.c_str() : written_path_.c_str(),
                  nullptr);
   }
@@ -178,6 +186,11 @@ GstVideoOutput::Started GstVideoOutput::launch(int width, int height) {
   source_.reset();
   pipeline_.reset();
   return failed;
+}
+
+GstPadProbeReturn GstVideoOutput::on_frame_streamed(GstPad*, GstPadProbeInfo*, gpointer self) {
+  static_cast<GstVideoOutput*>(self)->frames_streamed_.fetch_add(1, std::memory_order_relaxed);
+  return GST_PAD_PROBE_OK;
 }
 
 void GstVideoOutput::throw_if_error() {

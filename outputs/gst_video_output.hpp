@@ -8,6 +8,7 @@
 // half (an mp4 without its index) never appears under the name asked for.
 #include <gst/gst.h>
 
+#include <atomic>
 #include <cstdint>
 #include <string>
 
@@ -31,8 +32,13 @@ class GstVideoOutput final : public VideoStream {
 
   void push(const cv::Mat& bgr) override;
   void close() override;
+  /// Frames that left the appsrc into the encoder (counted by a pad probe).
+  std::uint64_t frames_streamed() const override {
+    return frames_streamed_.load(std::memory_order_relaxed);
+  }
 
  private:
+  static GstPadProbeReturn on_frame_streamed(GstPad*, GstPadProbeInfo*, gpointer self);
   void start(int width, int height);
   struct Started {
     std::string problem;  // empty: playing
@@ -54,6 +60,10 @@ class GstVideoOutput final : public VideoStream {
   platform::gst::ObjectPtr<GstBus> bus_;
   std::string written_path_;  // files: PATH.tmp-PID until close() renames it to PATH
   std::uint64_t frames_{0};
+  // Written by the pipeline's streaming thread, read by anyone: a statistic that publishes no
+  // other memory, so relaxed order is enough. The probe lives as long as the pipeline, which is
+  // stopped before this object goes.
+  std::atomic<std::uint64_t> frames_streamed_{0};
   bool closed_{false};
 };
 

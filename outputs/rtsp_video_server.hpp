@@ -38,7 +38,9 @@ class RtspVideoServer final : public VideoStream {
   /// Frames that left the appsrc into the encoder (counted by a pad probe): what a client that
   /// watched throughout received. Fewer than pushed when no client watched yet, or when the encoder
   /// fell behind and the two-frame leaky queue dropped the oldest (a live stream shows the newest).
-  std::uint64_t frames_streamed() const { return frames_streamed_.load(std::memory_order_relaxed); }
+  std::uint64_t frames_streamed() const override {
+    return frames_streamed_.load(std::memory_order_relaxed);
+  }
 
  private:
   static void on_media_configure(GstRTSPMediaFactory*, GstRTSPMedia* media, gpointer self);

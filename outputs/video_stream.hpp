@@ -1,6 +1,7 @@
 #pragma once
 // A destination for annotated frames (outputs/video_target.hpp says which): every frame pushed is
 // encoded by GStreamer (H.264 or H.265: outputs/video_encoding.hpp).
+#include <cstdint>
 #include <memory>
 #include <opencv2/core/mat.hpp>
 
@@ -17,6 +18,10 @@ class VideoStream {
   virtual void push(const cv::Mat& bgr) = 0;
   /// Ends the stream: a file gets its index written and is closed. Throws like push(). Idempotent.
   virtual void close() = 0;
+  /// Frames that entered the encoder so far. A file takes every frame pushed; a live stream fewer
+  /// when its encoder fell behind (or, RTSP, no client watched): the newest frame is worth more
+  /// than a queue of old ones.
+  virtual std::uint64_t frames_streamed() const = 0;
 };
 
 /// Checks, before anything runs, that this GStreamer has the elements the target needs (an

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <system_error>
 
+#include "common/stale_temporaries.hpp"
 #include "platform/host_port.hpp"
 
 namespace rtmot::outputs {
@@ -109,7 +110,7 @@ std::string prepare_video_file(const VideoTarget& target) {
   // The writer writes PATH.tmp-PID and renames it to PATH when the video is finished: that
   // temporary is created (and removed) now, so that what fails here fails before the run, and an
   // existing PATH is left as it is until a finished video replaces it.
-  const std::string temporary = target.path + ".tmp-" + std::to_string(::getpid());
+  const std::string temporary = temporary_path_for(target.path).string();
   const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
   if (fd < 0) return std::strerror(errno);
   ::close(fd);

@@ -9,6 +9,9 @@
 
 namespace rtmot::tracker {
 
+/// The Tracker's window of offsets: about 50 frames of a MOT15 scene's matches.
+inline constexpr int kBoxNoiseWindow = 512;
+
 class BoxNoise {
  public:
   /// Remembers the last `window` offsets; a window of 0 measures nothing.

@@ -21,8 +21,6 @@ constexpr int kTypicalSceneSize = 64;
 // The box noise is measured on matches about one nominal frame ahead: a live camera's timestamps
 // jitter, and two frames ahead the offset is mostly motion (the time-widened gate's business).
 constexpr double kOneFrameSlack = 0.5;
-// About 50 frames of a MOT15 scene's matches.
-constexpr int kBoxNoiseWindow = 512;
 
 const TrackerConfig& validated(const TrackerConfig& config) {
   if (const auto problem = config_problem(config))

@@ -2,7 +2,8 @@
 // The one table of the tracker's settings: name, doc, accepted range and setter. The YAML
 // `tracker:` section (runner/run_config.cpp), the command-line flags of `rtmot track` and `rtmot
 // run` (apps/tracker_flags.hpp), the study's configurations (study/study_plan.cpp) and --help all
-// read it, so a new knob is one line here.
+// read it, and the tests generate docs/config.md's tracker table from it (with each option's value
+// in the default preset, shown by `show`), so a new knob is one line here.
 #include <functional>
 #include <string>
 #include <string_view>
@@ -20,6 +21,10 @@ struct TrackerOption {
   /// Parses `text` into `config`; false (and `config` unchanged) when `text` is outside the
   /// option's range or not a value at all.
   std::function<bool(TrackerConfig& config, std::string_view text)> set;
+  /// The option's value in `config`, spelled as `set` accepts it: setting the text shown gives the
+  /// same value back (`kalman`, `0.3`, `true`; `none` for the lowest float, an absolute score
+  /// cut that cuts nothing).
+  std::function<std::string(const TrackerConfig& config)> show;
 };
 
 /// Every option, in the order they are applied: a later option may override what an earlier one

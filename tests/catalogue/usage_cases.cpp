@@ -95,6 +95,12 @@ std::vector<CatalogueCase> usage_cases() {
                  {"run", "--zzzzzz"},
                  "command line: unknown option '--zzzzzz' for 'rtmot run' (rtmot run --help "
                  "lists them)"),
+      usage_case("usage_track_frame_rate",
+                 "rtmot track --frame-rate 25 (each sequence's seqinfo.ini sets it; the flag "
+                 "changed nothing)",
+                 {"track", "--dataset", "{dir}", "--out", "{dir}/out", "--frame-rate", "25"},
+                 "command line: field '--frame-rate': rtmot track takes it from each sequence's "
+                 "seqinfo.ini"),
       usage_case("usage_flag_without_value", "rtmot run --detector-threads (value missing)",
                  {"run", "--detector-threads"},
                  "command line: --detector-threads: 1 required TEXT missing"),

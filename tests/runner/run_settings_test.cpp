@@ -4,12 +4,11 @@
 
 #include <gtest/gtest.h>
 
-#include <cstdlib>
-#include <fstream>
 #include <set>
 #include <sstream>
 
 #include "common/input_error.hpp"
+#include "docs_table.hpp"
 #include "runner/run_flags.hpp"
 #include "shared_data.hpp"
 #include "tracker/presets.hpp"
@@ -218,14 +217,9 @@ std::string markdown_table() {
   std::ostringstream text;
   text << "| key | flag | accepted | meaning |\n| --- | --- | --- | --- |\n";
   for (const auto& setting : run_settings()) {
-    std::string expected = setting.expected;
-    for (std::size_t at = expected.find('|'); at != std::string::npos;
-         at = expected.find('|', at + 2)) {
-      expected.replace(at, 1, "\\|");
-    }
     text << "| `" << setting.key << "` | "
-         << (setting.flag.empty() ? "–" : "`" + setting.flag + "`") << " | " << expected << " | "
-         << setting.doc << " |\n";
+         << (setting.flag.empty() ? "–" : "`" + setting.flag + "`") << " | "
+         << test::markdown_cell(setting.expected) << " | " << setting.doc << " |\n";
   }
   return text.str();
 }
@@ -237,29 +231,13 @@ constexpr const char* kEnd = "<!-- end settings-table -->\n";
 
 // docs/config.md cannot drift from the table: the test fails until the docs show it as it is.
 TEST(RunSettings, DocsShowTheTableAsItIs) {
-  const auto path = test::source_path("docs/config.md");
-  std::ifstream in(path);
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  std::string docs = buffer.str();
-  const std::size_t begin = docs.find(kBegin);
-  const std::size_t end = docs.find(kEnd);
-  ASSERT_NE(begin, std::string::npos) << "no settings table in " << path;
-  ASSERT_NE(end, std::string::npos) << "no end of the settings table in " << path;
-  const std::size_t body = begin + std::string(kBegin).size();
-  const std::string shown = docs.substr(body, end - body);
-  const std::string table = markdown_table();
-  if (shown != table && std::getenv("RTMOT_UPDATE_DOCS") != nullptr) {
-    docs.replace(body, end - body, table);
-    std::ofstream(path) << docs;
-    return;
-  }
-  EXPECT_EQ(shown, table) << "docs/config.md's settings table is out of date: run this test with "
-                             "RTMOT_UPDATE_DOCS=1";
+  const test::DocsText docs = test::check_generated_table(test::source_path("docs/config.md"),
+                                                          kBegin, kEnd, markdown_table());
+  ASSERT_TRUE(docs.found);
   // Every key also has its hand-written row (defaults, details) in its section's table.
   for (const auto& setting : run_settings()) {
     const std::string name = setting.key.substr(setting.key.rfind('.') + 1);
-    EXPECT_NE(docs.find("`" + name + "`", end), std::string::npos)
+    EXPECT_NE(docs.text.find("`" + name + "`", docs.table_end), std::string::npos)
         << setting.key << " has no row of its own below the reference table";
   }
 }

@@ -2,9 +2,12 @@
 // each setter keeps its range, and a value out of range leaves the configuration unchanged.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
 #include <set>
 #include <stdexcept>
 
+#include "tracker/presets.hpp"
 #include "tracker/tracker_options.hpp"
 
 namespace rtmot::tracker {
@@ -138,6 +141,61 @@ TEST(TrackerOptions, ValuesOutOfRangeAreRefusedAndChangeNothing) {
     EXPECT_DOUBLE_EQ(config.affinity_threshold, before.affinity_threshold);
     EXPECT_THROW(with_options(TrackerConfig{}, {{name, text}}), std::invalid_argument);
   }
+}
+
+// What `show` writes is what `set` reads: the shown values of one preset, set on another, give the
+// first back whole, to the last bit of every float (docs/config.md's defaults are these texts).
+TEST(TrackerOptions, ShownValuesReadBackAsTheSameConfig) {
+  for (const auto& from : tracker_presets()) {
+    for (const auto& onto : tracker_presets()) {
+      SCOPED_TRACE(std::string(from.name) + " onto " + std::string(onto.name));
+      const TrackerConfig want = from.make();
+      TrackerConfig got = onto.make();
+      for (const auto& option : tracker_options()) {
+        EXPECT_TRUE(option.set(got, option.show(want)))
+            << option.name << " = " << option.show(want);
+      }
+      for (const auto& option : tracker_options()) {
+        EXPECT_EQ(option.show(got), option.show(want)) << option.name;
+      }
+      EXPECT_EQ(got.detection_threshold, want.detection_threshold);
+      EXPECT_EQ(got.low_score, want.low_score);
+      EXPECT_EQ(got.affinity_threshold, want.affinity_threshold);
+      EXPECT_EQ(got.score_range_cap_below, want.score_range_cap_below);
+    }
+  }
+}
+
+TEST(TrackerOptions, ValuesAreShownInTheirShortestSpelling) {
+  const auto shown = [](const char* name, const TrackerConfig& config) {
+    const TrackerOption* option = find_tracker_option(name);
+    return option == nullptr ? std::string("no option") : option->show(config);
+  };
+  TrackerConfig config = TrackerConfig::sort_preset();
+  EXPECT_EQ(shown("predictor", config), "kalman");
+  EXPECT_EQ(shown("affinity_threshold", config), "0.3");
+  EXPECT_EQ(shown("detection_threshold", config), "none") << "the lowest float: no cut";
+  EXPECT_EQ(shown("low_score", config), "0.1") << "a float's 0.1, not 0.100000001";
+  EXPECT_EQ(shown("image_width", config), "1920");
+  EXPECT_EQ(shown("second_round", config), "false");
+  EXPECT_EQ(shown("max_age", config), "1");
+  config = with_options(config, {{"low_score", "0.123456789"},
+                                 {"frame_rate", "29.97"},
+                                 {"seed", "18446744073709551615"},
+                                 {"time_step", "elapsed"},
+                                 {"affinity", "linear"}});
+  EXPECT_EQ(shown("low_score", config), "0.12345679") << "as many digits as a float holds";
+  EXPECT_EQ(shown("frame_rate", config), "29.97");
+  EXPECT_EQ(shown("seed", config), "18446744073709551615");
+  EXPECT_EQ(shown("time_step", config), "elapsed");
+  EXPECT_EQ(shown("affinity_threshold", config), "10000");
+  // none turns an absolute cut off again (a preset's, say ByteTrack's 0.5).
+  config = with_options(*find_preset("bytetrack"), {{"detection_threshold", "none"}});
+  EXPECT_EQ(config.detection_threshold, std::numeric_limits<float>::lowest());
+  EXPECT_EQ(shown("detection_threshold", config), "none");
+  EXPECT_NE(find_tracker_option("birth_threshold")->expected.find("none"), std::string::npos);
+  EXPECT_THROW(with_options(config, {{"max_gate_margin", "none"}}), std::invalid_argument)
+      << "none only where the range is unbounded below";
 }
 
 TEST(TrackerOptions, ParticleStorageIsCheckedAsAWhole) {
