@@ -42,17 +42,22 @@ void RecentWindow::snapshot() {
                                                            kMinSnapshotGap, kMaxSnapshotGap));
 }
 
+// floor(quantile x size), at most the last: a quantile of 1 is the largest value, not one past it.
+std::size_t RecentWindow::rank_of(double quantile) const {
+  const double rank =
+      std::floor(std::clamp(quantile, 0.0, 1.0) * static_cast<double>(snapshot_size_));
+  return std::min(static_cast<std::size_t>(rank), snapshot_size_ - 1);
+}
+
 float RecentWindow::order_statistic(double quantile) {
   const auto end = scratch_.begin() + static_cast<std::ptrdiff_t>(snapshot_size_);
-  const auto k =
-      static_cast<std::ptrdiff_t>(std::floor(quantile * static_cast<double>(snapshot_size_)));
+  const auto k = static_cast<std::ptrdiff_t>(rank_of(quantile));
   std::nth_element(scratch_.begin(), scratch_.begin() + k, end);
   return scratch_[static_cast<std::size_t>(k)];
 }
 
 float RecentWindow::order_statistic_of_nonnegative(double quantile) const {
-  auto rank =
-      static_cast<std::uint32_t>(std::floor(quantile * static_cast<double>(snapshot_size_)));
+  auto rank = static_cast<std::uint32_t>(rank_of(quantile));
   // The rank-th smallest bit pattern, its bytes from the highest: each pass counts the values
   // that share the bytes found so far by their next byte, and finds the byte that holds the rank.
   std::uint32_t found = 0;

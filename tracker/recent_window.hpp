@@ -42,8 +42,8 @@ class RecentWindow {
   /// Copies the window for order_statistic() and schedules the next one.
   void snapshot();
 
-  /// The k-th smallest value of the last snapshot, k = floor(quantile x its size); partially
-  /// reorders the copy. Needs a snapshot of at least one value.
+  /// The k-th smallest value of the last snapshot, k = floor(quantile x its size) (quantile 1:
+  /// the largest); partially reorders the copy. Needs a snapshot of at least one value.
   float order_statistic(double quantile);
 
   /// order_statistic()'s value where every value of the snapshot is +0 or more (no -0, no NaN),
@@ -55,6 +55,7 @@ class RecentWindow {
   void reset();
 
  private:
+  std::size_t rank_of(double quantile) const;
   std::vector<float> values_;   // ring buffer
   std::vector<float> scratch_;  // the snapshot
   std::size_t filled_{0};

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 #include <vector>
 
@@ -30,15 +31,22 @@ TEST(RecentWindow, NonnegativeOrderStatisticsAreNthElements) {
     for (int round = 0; round < 50; ++round) {
       RecentWindow window(capacity);
       const int values = 1 + round * 7;
+      std::vector<float> window_values;  // the last `capacity` pushed
       for (int i = 0; i < values; ++i) {
         const int k = kind(random);
-        window.push(k == 0 ? 0.F : k == 1 ? 0.0125F : k == 2 ? 1e30F : noise(random));
+        const float value = k == 0 ? 0.F : k == 1 ? 0.0125F : k == 2 ? 1e30F : noise(random);
+        window.push(value);
+        window_values.push_back(value);
+        if (window_values.size() > capacity) window_values.erase(window_values.begin());
       }
       window.snapshot();
-      for (const double quantile : {0.0, 0.25, 0.5, 0.9, 0.999}) {
+      for (const double quantile : {0.0, 0.25, 0.5, 0.9, 0.999, 1.0}) {
         const float fast = window.order_statistic_of_nonnegative(quantile);
         ASSERT_EQ(fast, window.order_statistic(quantile)) << capacity << " " << round;
       }
+      // Quantile 1 is the largest value (it read one past the snapshot before).
+      ASSERT_EQ(window.order_statistic_of_nonnegative(1.0),
+                *std::max_element(window_values.begin(), window_values.end()));
     }
   }
 }
