@@ -73,7 +73,7 @@ int run(const RunCommand& command) {
         "no output configured: tracks go nowhere (--udp, --mqtt, --jsonl, --video-out, "
         "--mot-results)");
   }
-  auto detectors = runner::make_detectors(config);
+  auto detectors = runner::make_detectors(config, runner::source_infos(inputs));
   spdlog::info("detector: {}", detectors.front()->describe());
   pipeline::Pipeline pipeline(std::move(inputs), std::move(detectors), std::move(outputs.consumers),
                               runner::make_options(config));

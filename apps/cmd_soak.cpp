@@ -58,7 +58,9 @@ double ms(std::int64_t ns) {
 }
 
 pipeline::PipelineReport run_once(const runner::RunConfig& config, const std::atomic<bool>& stop) {
-  pipeline::Pipeline pipe(runner::make_inputs(config), runner::make_detectors(config),
+  auto inputs = runner::make_inputs(config);
+  auto detectors = runner::make_detectors(config, runner::source_infos(inputs));
+  pipeline::Pipeline pipe(std::move(inputs), std::move(detectors),
                           pipeline::as_consumers(runner::make_sinks(config)),
                           runner::make_options(config));
   return pipe.run(stop);

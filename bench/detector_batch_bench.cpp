@@ -11,12 +11,17 @@
 //
 // Run: detector_batch_bench [--backends cpu,xnnpack,cuda,cuda-fp16] [--batches 1,2,4,8]
 //                           [--threads 1,2] [--iterations N] [--model PATH] [--vary]
+//                           [--tiles off,3x2]
 // Backends default to every one this build has (cpu is OpenCV DNN; a backend the machine lacks is
 // reported and skipped); threads default to 1,2 (0: OpenCV's default and one XNNPACK worker per
 // core).
 // --vary: every other call one image short (batch, batch - 1, batch, ...), as a multi-source
 // pipeline's batches are when a camera is late: shows what OpenCV's re-planning on a change of
 // input shape costs.
+// --tiles: each frame seen whole and in that grid's tiles (detector/tiling_detector.hpp, as
+// `detector.tiles` in a run), the batch counting frames: the forward pass then takes batch x
+// (tiles + 1) images, and "img med" is the cost of a frame with its tiles (docs/tiling.md). With
+// RTMOT_BENCH_FRAMES=images://.../ADL-Rundle-6/img1 the frames are HD.
 // Frames: RTMOT_BENCH_FRAMES=URI (e.g. images://DIR), else ../shared/data/video/vtest.avi through
 // GStreamer.
 #include <algorithm>
@@ -33,6 +38,8 @@
 #include "bench_frames.hpp"
 #include "common/input_error.hpp"
 #include "detector/ssd_detector.hpp"
+#include "detector/tile_request.hpp"
+#include "detector/tiling_detector.hpp"
 #include "detector/xnnpack_network.hpp"
 
 namespace {
@@ -55,6 +62,7 @@ struct Options {
   std::vector<int> threads{1, 2};
   std::string model{RTMOT_MODEL_PATH};
   bool vary{false};
+  std::vector<rtmot::detector::TileRequest> tiles{{rtmot::detector::TileMode::off, 1, 1}};
 };
 
 std::vector<std::string> split(const std::string& text) {
@@ -86,10 +94,21 @@ Options parse(int argc, char** argv) {
       options.model = argv[++i];
     } else if (arg == "--vary") {
       options.vary = true;
+    } else if (arg == "--tiles" && has_value) {
+      options.tiles.clear();
+      for (const auto& t : split(argv[++i])) {
+        std::string problem;
+        const auto request = rtmot::detector::parse_tile_request(t, problem);
+        if (!request || request->mode == rtmot::detector::TileMode::automatic) {
+          std::cerr << "detector_batch_bench: --tiles " << t << ": off or a grid, e.g. 3x2\n";
+          std::exit(2);
+        }
+        options.tiles.push_back(*request);
+      }
     } else {
       std::cerr << "usage: detector_batch_bench [--backends cpu,xnnpack,cuda,cuda-fp16] "
                    "[--batches 1,2,4,8] [--threads 1,2] [--iterations N] [--model PATH] "
-                   "[--vary]\n";
+                   "[--vary] [--tiles off,3x2]\n";
       std::exit(2);
     }
   }
@@ -110,15 +129,16 @@ double minimum(const std::vector<double>& values) {
 
 struct Run {
   std::string backend;
-  std::unique_ptr<rtmot::detector::SsdDetector> detector;
+  std::unique_ptr<rtmot::detector::Detector> detector;
+  const rtmot::detector::SsdDetector* ssd;  // the detector, or the one its tiles go through
   std::vector<double> call_ms;
   std::vector<double> forward_ms;
   std::vector<double> preprocess_ms;
 };
 
-std::unique_ptr<rtmot::detector::SsdDetector> make_detector(const Options& options,
-                                                            const std::string& backend, int threads,
-                                                            int batch) {
+std::unique_ptr<rtmot::detector::SsdDetector> make_ssd(const Options& options,
+                                                       const std::string& backend, int threads,
+                                                       int batch) {
   rtmot::detector::SsdConfig config;
   config.model_path = options.model;
   config.backend = backend == "xnnpack" ? BackendRequest::xnnpack
@@ -128,6 +148,27 @@ std::unique_ptr<rtmot::detector::SsdDetector> make_detector(const Options& optio
   config.threads = threads;
   config.max_batch = batch;
   return std::make_unique<rtmot::detector::SsdDetector>(config);
+}
+
+// The SSD alone, or wrapped in the tiles of `tiles` for frames of `width` x `height` (its batch
+// then holds every tile of `batch` frames).
+Run make_run(const Options& options, const std::string& backend, int threads, int batch,
+             const rtmot::detector::TileRequest& tiles, int width, int height) {
+  if (tiles.mode == rtmot::detector::TileMode::off) {
+    auto ssd = make_ssd(options, backend, threads, batch);
+    const auto* raw = ssd.get();
+    return {backend, std::move(ssd), raw, {}, {}, {}};
+  }
+  rtmot::detector::TilingConfig tiling;
+  tiling.grid = {tiles.columns, tiles.rows, tiling.grid.overlap};
+  const auto passes = rtmot::detector::TilingDetector::plan_passes(width, height, tiling).size();
+  auto ssd =
+      make_ssd(options, backend, threads,
+               std::min<int>(batch * static_cast<int>(passes), rtmot::detector::kMaxBatchLimit));
+  const auto* raw = ssd.get();
+  return {backend, std::make_unique<rtmot::detector::TilingDetector>(std::move(ssd), tiling),
+          raw,     {},
+          {},      {}};
 }
 
 int main(int argc, char** argv) {
@@ -150,61 +191,66 @@ int main(int argc, char** argv) {
       "called in turn; OpenCV %s\n",
       frames.size(), rtmot::bench::bench_frames_uri().c_str(), frames[0].cols, frames[0].rows,
       options.iterations, CV_VERSION);
-  std::printf("%-10s %7s %5s | %9s %9s | %9s %9s | %9s %9s | %8s | %6s | %8s\n", "backend",
-              "threads", "batch", "call min", "call med", "fwd min", "fwd med", "img med",
+  std::printf("%-10s %7s %5s %5s | %9s %9s | %9s %9s | %9s %9s | %8s | %6s | %8s\n", "backend",
+              "threads", "batch", "tiles", "call min", "call med", "fwd min", "fwd med", "img med",
               "fwd/img", "images/s", "fwd x", "pre med");
   for (const int threads : options.threads) {
     for (const int batch : options.batches) {
-      std::vector<Run> runs;
-      for (const std::string& backend : options.backends) {
-        try {
-          runs.push_back({backend, make_detector(options, backend, threads, batch), {}, {}, {}});
-          std::printf("# %s\n", runs.back().detector->describe().c_str());
-        } catch (const rtmot::InputError& e) {
-          std::printf("%-10s %7d %5d | skipped: %s\n", backend.c_str(), threads, batch, e.what());
+      for (const auto& tiles : options.tiles) {
+        const std::string tiles_text = rtmot::detector::tile_request_text(tiles);
+        std::vector<Run> runs;
+        for (const std::string& backend : options.backends) {
+          try {
+            runs.push_back(
+                make_run(options, backend, threads, batch, tiles, frames[0].cols, frames[0].rows));
+            std::printf("# %s\n", runs.back().detector->describe().c_str());
+          } catch (const rtmot::InputError& e) {
+            std::printf("%-10s %7d %5d %5s | skipped: %s\n", backend.c_str(), threads, batch,
+                        tiles_text.c_str(), e.what());
+          }
         }
-      }
-      std::vector<const cv::Mat*> images(static_cast<std::size_t>(batch));
-      std::vector<std::int64_t> numbers(static_cast<std::size_t>(batch));
-      std::vector<std::vector<rtmot::tracker::Detection>> out;
-      std::size_t next = 0;
-      for (int i = -3; i < options.iterations; ++i) {
-        const int count = options.vary && batch > 1 && i % 2 != 0 ? batch - 1 : batch;
-        for (int k = 0; k < count; ++k) {  // different frames in every call and slot
-          images[static_cast<std::size_t>(k)] = &frames[next % frames.size()];
-          numbers[static_cast<std::size_t>(k)] = static_cast<std::int64_t>(next % frames.size());
-          ++next;
+        std::vector<const cv::Mat*> images(static_cast<std::size_t>(batch));
+        std::vector<std::int64_t> numbers(static_cast<std::size_t>(batch));
+        std::vector<std::vector<rtmot::tracker::Detection>> out;
+        std::size_t next = 0;
+        for (int i = -3; i < options.iterations; ++i) {
+          const int count = options.vary && batch > 1 && i % 2 != 0 ? batch - 1 : batch;
+          for (int k = 0; k < count; ++k) {  // different frames in every call and slot
+            images[static_cast<std::size_t>(k)] = &frames[next % frames.size()];
+            numbers[static_cast<std::size_t>(k)] = static_cast<std::int64_t>(next % frames.size());
+            ++next;
+          }
+          for (Run& run : runs) {  // the same images for every backend, in turn
+            const auto start = std::chrono::steady_clock::now();
+            run.detector->detect_batch(images.data(), numbers.data(), count, out);
+            const double ms =
+                std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+                    .count();
+            if (i < 0) continue;  // warm-up
+            run.call_ms.push_back(ms);
+            run.forward_ms.push_back(static_cast<double>(run.ssd->last_forward_ns()) * 1e-6);
+            run.preprocess_ms.push_back(static_cast<double>(run.ssd->last_preprocess_ns()) * 1e-6);
+          }
         }
-        for (Run& run : runs) {  // the same images for every backend, in turn
-          const auto start = std::chrono::steady_clock::now();
-          run.detector->detect_batch(images.data(), numbers.data(), count, out);
-          const double ms =
-              std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-                  .count();
-          if (i < 0) continue;  // warm-up
-          run.call_ms.push_back(ms);
-          run.forward_ms.push_back(static_cast<double>(run.detector->last_forward_ns()) * 1e-6);
-          run.preprocess_ms.push_back(static_cast<double>(run.detector->last_preprocess_ns()) *
-                                      1e-6);
+        // With --vary the calls hold batch - 0.5 images on average.
+        const bool varied = options.vary && batch > 1;
+        const double per_call = varied ? batch - 0.5 : batch;
+        const std::string label = varied ? std::to_string(batch) + "/" + std::to_string(batch - 1)
+                                         : std::to_string(batch);
+        const double baseline = runs.empty() ? 0.0 : median(runs.front().forward_ms);
+        for (const Run& run : runs) {
+          const double call_median = median(run.call_ms);
+          const double forward_median = median(run.forward_ms);
+          std::printf(
+              "%-10s %7d %5s %5s | %9.2f %9.2f | %9.2f %9.2f | %9.2f %9.2f | %8.1f | %6.2f | "
+              "%8.2f\n",
+              run.backend.c_str(), threads, label.c_str(), tiles_text.c_str(), minimum(run.call_ms),
+              call_median, minimum(run.forward_ms), forward_median, call_median / per_call,
+              forward_median / per_call, 1000.0 * per_call / call_median, baseline / forward_median,
+              median(run.preprocess_ms));
         }
+        std::fflush(stdout);
       }
-      // With --vary the calls hold batch - 0.5 images on average.
-      const bool varied = options.vary && batch > 1;
-      const double per_call = varied ? batch - 0.5 : batch;
-      const std::string label =
-          varied ? std::to_string(batch) + "/" + std::to_string(batch - 1) : std::to_string(batch);
-      const double baseline = runs.empty() ? 0.0 : median(runs.front().forward_ms);
-      for (const Run& run : runs) {
-        const double call_median = median(run.call_ms);
-        const double forward_median = median(run.forward_ms);
-        std::printf(
-            "%-10s %7d %5s | %9.2f %9.2f | %9.2f %9.2f | %9.2f %9.2f | %8.1f | %6.2f | %8.2f\n",
-            run.backend.c_str(), threads, label.c_str(), minimum(run.call_ms), call_median,
-            minimum(run.forward_ms), forward_median, call_median / per_call,
-            forward_median / per_call, 1000.0 * per_call / call_median, baseline / forward_median,
-            median(run.preprocess_ms));
-      }
-      std::fflush(stdout);
     }
   }
   return 0;

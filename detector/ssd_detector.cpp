@@ -71,7 +71,8 @@ SsdPostprocessConfig postprocess_config(const SsdConfig& config) {
                        ExitCode::usage);
     }
   }
-  return {config.score_threshold, config.nms_iou, config.max_detections, config.classes};
+  return {config.score_threshold, config.nms_iou, config.max_detections, config.classes,
+          config.plausible_shapes};
 }
 
 std::filesystem::path anchors_path_of(const SsdConfig& config) {

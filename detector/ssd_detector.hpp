@@ -27,6 +27,8 @@ struct SsdConfig {
   float nms_iou{kDefaultNmsIou};
   int max_detections{kDefaultMaxDetections};
   std::vector<int> classes{default_classes()};  // COCO ids; empty = all
+  /// Drop boxes of shapes their class does not have (box_plausibility.hpp).
+  bool plausible_shapes{true};
   BackendRequest backend{BackendRequest::automatic};
   Fp16Request fp16{Fp16Request::automatic};
   /// Worker threads: OpenCV's (process-wide: cv::setNumThreads; 0 = leave as is) and XNNPACK's

@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "detector/box_plausibility.hpp"
 #include "tracker/box_geometry.hpp"
 
 namespace rtmot::detector {
@@ -99,6 +100,9 @@ void SsdPostprocessor::collect(const float* box_encodings, const float* class_lo
         box.x2 = (xc + half_w) * width;
         box.y2 = (yc + half_h) * height;
         decoded = true;
+      }
+      if (config_.plausible_shapes && !plausible_shape(id, box.x2 - box.x1, box.y2 - box.y1)) {
+        continue;
       }
       box.score = score;
       box.class_id = id;

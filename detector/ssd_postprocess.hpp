@@ -16,6 +16,8 @@ struct SsdPostprocessConfig {
   float nms_iou{kDefaultNmsIou};
   int max_detections{kDefaultMaxDetections};  // per class and in total, as the TF pipeline
   std::vector<int> classes;                   // class ids to report; empty = all
+  /// Drop boxes of shapes their class does not have (box_plausibility.hpp) before NMS.
+  bool plausible_shapes{true};
 };
 
 class SsdPostprocessor {

@@ -8,6 +8,9 @@
 
 #include "detector/dnn_backend.hpp"
 #include "detector/ssd_defaults.hpp"
+#include "detector/tile_layout.hpp"
+#include "detector/tile_merge.hpp"
+#include "detector/tile_request.hpp"
 #include "events/events_yaml.hpp"
 #include "outputs/mqtt_uri.hpp"
 #include "outputs/overlay.hpp"
@@ -68,6 +71,13 @@ struct DetectorConfig {
   int in_flight{0};
   std::vector<int> classes{detector::default_classes()};  // COCO ids to keep; empty = all
   std::string det_file;                                   // replay: a MOTChallenge det.txt
+  /// ssd: the frame in overlapping tiles with the whole (docs/tiling.md); auto is decided in one
+  /// place: runner/tiling_choice.hpp.
+  detector::TileRequest tiles;
+  float tile_overlap{detector::TileGrid{}.overlap};
+  float tile_threshold{detector::TileMergeConfig{}.tile_score_threshold};
+  /// ssd: drop boxes of shapes their class does not have (detector/box_plausibility.hpp).
+  bool plausible_shapes{true};
 };
 
 struct OutputConfig {

@@ -9,6 +9,7 @@
 #include "common/frame_rate.hpp"
 #include "common/input_error.hpp"
 #include "detector/coco_labels.hpp"
+#include "detector/tile_request.hpp"
 #include "platform/video_uri.hpp"
 #include "runner/yaml_document.hpp"
 
@@ -269,6 +270,27 @@ std::vector<RunSetting> detector_settings() {
           },
           [](RunConfig& c) -> int& { return c.detector.in_flight; }),
       std::move(classes),
+      parsed<detector::TileRequest>(
+          "detector.tiles", "--tiles",
+          "ssd: a large frame seen in overlapping tiles near the network's input size, with the "
+          "whole frame, as one batch: off, auto (by frame size, playback mode and measured speed) "
+          "or a grid (docs/tiling.md)",
+          "off, auto or COLUMNSxROWS with 1.." + std::to_string(detector::kMaxTileSide) +
+              " of each (e.g. 3x2)",
+          [](const std::string& t, std::string& problem) {
+            return detector::parse_tile_request(t, problem);
+          },
+          [](RunConfig& c) -> detector::TileRequest& { return c.detector.tiles; }),
+      real<float>("detector.tile_overlap", "--tile-overlap",
+                  "ssd: the share of a tile that its neighbours also see", {0.0, 0.5},
+                  [](RunConfig& c) -> float& { return c.detector.tile_overlap; }),
+      real<float>("detector.tile_threshold", "--tile-threshold",
+                  "ssd: the score cut of the tiles' boxes (the whole frame's is score_threshold)",
+                  unit, [](RunConfig& c) -> float& { return c.detector.tile_threshold; }),
+      boolean("detector.plausible_shapes", "--plausible-shapes",
+              "ssd: drop boxes of shapes their class does not have, e.g. a person wider than tall "
+              "(docs/tiling.md)",
+              [](RunConfig& c) -> bool& { return c.detector.plausible_shapes; }),
       text("detector.det_file", "--det-file",
            "replay: a MOTChallenge det.txt (the flag also sets kind replay)",
            [](RunConfig& c) -> std::string& { return c.detector.det_file; }),

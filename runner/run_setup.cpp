@@ -4,6 +4,7 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <chrono>
 #include <filesystem>
 #include <opencv2/core/utility.hpp>
 
@@ -14,6 +15,7 @@
 #include "detector/model_checksum.hpp"
 #include "detector/replay_detector.hpp"
 #include "detector/ssd_detector.hpp"
+#include "detector/tiling_detector.hpp"
 #include "messages/binary_file_sink.hpp"
 #include "messages/jsonl_sink.hpp"
 #include "messages/udp_sink.hpp"
@@ -31,6 +33,7 @@
 #include "runner/mot_results_output.hpp"
 #include "runner/sequence_clock_source.hpp"
 #include "runner/source_factory.hpp"
+#include "runner/tiling_choice.hpp"
 #include "tracker/score_scale.hpp"
 
 namespace rtmot::runner {
@@ -101,7 +104,9 @@ void warn_on_score_scale(const DetectorConfig& detector, const tracker::TrackerC
 namespace {
 
 // `first`: the first of a run's detectors logs and warns; the lanes after it are alike.
-std::unique_ptr<detector::Detector> build_detector(const RunConfig& config, bool first) {
+// `images_per_pass`: the images one forward pass takes (the sources, times a frame's tiles).
+std::unique_ptr<detector::Detector> build_detector(const RunConfig& config, bool first,
+                                                   int images_per_pass) {
   const DetectorConfig& wanted = config.detector;
   if (wanted.kind == DetectorKind::replay) {
     auto replay =
@@ -117,6 +122,7 @@ std::unique_ptr<detector::Detector> build_detector(const RunConfig& config, bool
   ssd.classes = wanted.classes;
   ssd.backend = wanted.backend;
   ssd.fp16 = wanted.fp16;
+  ssd.plausible_shapes = wanted.plausible_shapes;
   // 0 ("automatic") is made explicit. Left to itself, a TBB build of OpenCV (Debian's, ours) runs
   // its DNN in TBB's automatic arena, sized by TBB: it ignores OpenCV's own OPENCV_FOR_THREADS_NUM
   // (measured) and, depending on the TBB version, a container's CPU quota (docker --cpus), so it
@@ -134,22 +140,104 @@ std::unique_ptr<detector::Detector> build_detector(const RunConfig& config, bool
     spdlog::info("detector threads: {}{}", threads,
                  wanted.threads > 0 ? "" : " (the CPUs this process may use)");
   }
-  // One forward pass takes one frame of every source (the detect stage batches them): without
-  // this the SSD would split each batch into single images again.
-  ssd.max_batch = static_cast<int>(
-      std::clamp<std::size_t>(source_list(config).size(), 1, detector::kMaxBatchLimit));
+  // One forward pass takes one frame of every source (the detect stage batches them), and with
+  // tiles every tile of those frames: without this the SSD would split each batch again.
+  ssd.max_batch = std::clamp(images_per_pass, 1, detector::kMaxBatchLimit);
   return std::make_unique<detector::SsdDetector>(ssd);
+}
+
+int source_count(const RunConfig& config) {
+  return static_cast<int>(
+      std::clamp<std::size_t>(source_list(config).size(), 1, detector::kMaxBatchLimit));
+}
+
+// The largest frame of the run's sources (by area), with its rate.
+FrameShape largest_frame(const std::vector<platform::SourceInfo>& sources) {
+  FrameShape frame;
+  for (const platform::SourceInfo& info : sources) {
+    if (static_cast<long long>(info.width) * info.height >
+        static_cast<long long>(frame.width) * frame.height) {
+      frame = {info.width, info.height, info.fps, info.live};
+    }
+  }
+  for (const platform::SourceInfo& info : sources) frame.live = frame.live || info.live;
+  return frame;
+}
+
+// The milliseconds of the middle of three calls (after one to warm up).
+template <typename Call>
+double median_ms(Call call) {
+  std::vector<double> ms;
+  call();
+  for (int i = 0; i < 3; ++i) {
+    const auto start = std::chrono::steady_clock::now();
+    call();
+    ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+                     .count());
+  }
+  std::sort(ms.begin(), ms.end());
+  return ms[1];
+}
+
+// What one frame of this shape costs `ssd`, alone and with its tiles in one batch, on a grey frame
+// (the network's work does not depend on the pixels).
+DetectorCost measure_cost(detector::Detector& ssd, const FrameShape& frame,
+                          const std::vector<detector::PixelRect>& passes) {
+  const cv::Mat grey(frame.height, frame.width, CV_8UC3, cv::Scalar::all(114));
+  std::vector<cv::Mat> views;
+  for (const detector::PixelRect& r : passes)
+    views.push_back(grey(cv::Rect(r.x, r.y, r.width, r.height)));
+  std::vector<const cv::Mat*> images;
+  for (const cv::Mat& view : views) images.push_back(&view);
+  const std::vector<std::int64_t> numbers(images.size(), 1);
+  std::vector<std::vector<tracker::Detection>> out;
+  DetectorCost cost;
+  cost.whole_ms = median_ms([&] { ssd.detect_batch(images.data(), numbers.data(), 1, out); });
+  cost.tiled_ms = median_ms([&] {
+    ssd.detect_batch(images.data(), numbers.data(), static_cast<int>(images.size()), out);
+  });
+  return cost;
 }
 
 }  // namespace
 
 std::unique_ptr<detector::Detector> make_detector(const RunConfig& config) {
-  return build_detector(config, true);
+  return build_detector(config, true, source_count(config));
 }
 
-std::vector<std::unique_ptr<detector::Detector>> make_detectors(const RunConfig& config) {
+std::vector<platform::SourceInfo> source_infos(const std::vector<pipeline::PipelineInput>& inputs) {
+  std::vector<platform::SourceInfo> infos;
+  for (const auto& input : inputs) infos.push_back(input.source->info());
+  return infos;
+}
+
+std::vector<std::unique_ptr<detector::Detector>> make_detectors(
+    const RunConfig& config, const std::vector<platform::SourceInfo>& sources) {
+  const DetectorConfig& wanted = config.detector;
+  const FrameShape frame = largest_frame(sources);
+  const detector::TilingConfig tiling = tiling_config(wanted);
+  // The passes of the largest frame if it is tiled: the SSD's batch is sized for them.
+  const std::size_t tiled_passes =
+      wanted.kind == DetectorKind::ssd && wanted.tiles.mode != detector::TileMode::off &&
+              frame.width > 0 && frame.height > 0
+          ? detector::TilingDetector::plan_passes(frame.width, frame.height, tiling).size()
+          : 1;
+  const int sources_per_pass = source_count(config);
   std::vector<std::unique_ptr<detector::Detector>> lanes;
-  lanes.push_back(build_detector(config, true));
+  lanes.push_back(build_detector(config, true, sources_per_pass * static_cast<int>(tiled_passes)));
+  std::optional<DetectorCost> cost;
+  if (tiled_passes > 1 && tiling_needs_measurement(wanted, config.playback.mode, frame)) {
+    cost = measure_cost(*lanes.front(), frame,
+                        detector::TilingDetector::plan_passes(frame.width, frame.height, tiling));
+  }
+  const TilingDecision decision = decide_tiling(wanted, config.playback.mode, frame, cost);
+  const bool tiled = decision.tiled && tiled_passes > 1;
+  spdlog::info("{}", decision.why);
+  if (!tiled && tiled_passes > 1) {
+    // Sized for tiles that will not be cut: its batch network would compute empty slots.
+    lanes.front() = build_detector(config, false, sources_per_pass);
+  }
+  const auto lane_images = sources_per_pass * (tiled ? static_cast<int>(tiled_passes) : 1);
   const auto* ssd = dynamic_cast<const detector::SsdDetector*>(lanes.front().get());
   const bool cuda = ssd != nullptr && ssd->backend().backend == cv::dnn::DNN_BACKEND_CUDA;
   // auto: on CUDA the GPU runs one batch while the host prepares and decodes the others. Measured
@@ -167,13 +255,20 @@ std::vector<std::unique_ptr<detector::Detector>> make_detectors(const RunConfig&
   // on fp16 as on fp32. Each lane holds its own networks and host thread. One on the CPU, where a
   // second lane only takes cores from the first's OpenCV threads (docs/gpu.md).
   const int automatic = cuda ? 3 : 1;
-  const int wanted = config.detector.in_flight > 0 ? config.detector.in_flight : automatic;
+  const int in_flight = wanted.in_flight > 0 ? wanted.in_flight : automatic;
   // One after another: each loads, warms up and (CUDA) captures its graphs alone.
-  while (static_cast<int>(lanes.size()) < wanted) lanes.push_back(build_detector(config, false));
-  spdlog::info("detector: {} batch{} in flight{}", wanted, wanted == 1 ? "" : "es",
+  while (static_cast<int>(lanes.size()) < in_flight) {
+    lanes.push_back(build_detector(config, false, lane_images));
+  }
+  spdlog::info("detector: {} batch{} in flight{}", in_flight, in_flight == 1 ? "" : "es",
                config.detector.in_flight > 0 ? ""
                : cuda                        ? " (auto: CUDA)"
                                              : " (auto: not CUDA)");
+  if (tiled) {
+    for (auto& lane : lanes) {
+      lane = std::make_unique<detector::TilingDetector>(std::move(lane), tiling);
+    }
+  }
   return lanes;
 }
 

@@ -23,8 +23,13 @@ std::unique_ptr<platform::VideoSource> make_source(const RunConfig& config);
 std::vector<pipeline::PipelineInput> make_inputs(const RunConfig& config);
 std::unique_ptr<detector::Detector> make_detector(const RunConfig& config);
 /// One detector per batch in flight (detector.in_flight; auto: 3 on CUDA, 1 otherwise), built one
-/// after another, for the detect stage's lanes.
-std::vector<std::unique_ptr<detector::Detector>> make_detectors(const RunConfig& config);
+/// after another, for the detect stage's lanes; each a TilingDetector around the SSD when
+/// detector.tiles asks for tiles, or auto chooses them for the largest of `sources`' frames
+/// (runner/tiling_choice.hpp; the choice and its reason are logged).
+std::vector<std::unique_ptr<detector::Detector>> make_detectors(
+    const RunConfig& config, const std::vector<platform::SourceInfo>& sources);
+/// The sources' information, for make_detectors.
+std::vector<platform::SourceInfo> source_infos(const std::vector<pipeline::PipelineInput>& inputs);
 /// What a run sends its tracks to, built from the output section.
 struct RunOutputs {
   /// For the sink stage, in order: UDP, binary file, MQTT, JSON lines as configured, the progress

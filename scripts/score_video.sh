@@ -1,0 +1,87 @@
+#!/usr/bin/env bash
+# The whole pipeline scored on real video with ground truth (docs/scoring.md, "The pipeline on real
+# video"): the SSD on the pixels, then the tracker, every frame or behind a simulated detector
+# latency with full-rate output, scored by `rtmot eval` at the full frame rate. Research tooling:
+# needs ../shared (ground truth); the product never runs it.
+#
+# Usage: scripts/score_video.sh OUT LABEL LATENCIES [rtmot run arguments...]
+#   OUT        folder for the runs and the table (OUT/LABEL/...; OUT/scores.tsv gains one line per run)
+#   LATENCIES  comma-separated: "every" (every frame, no skipping) and/or simulated detector
+#              latencies in ms (e.g. every,30,250)
+# Env: SEQUENCES (default "PETS09-S2L1 ADL-Rundle-6"), FRAMES (the first N frames only; default all),
+#      BUILD (default build).
+# vtest.avi is PETS09-S2L1, whose true rate is 7 fps while the file's header says 10: a latency L
+# at 7 fps is simulated as L x 10 / 7 on the file's clock (the same frames are skipped), and the
+# tracker is told 7 fps.
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+[[ $# -ge 3 ]] || { echo "usage: $0 OUT LABEL LATENCIES [rtmot run arguments...]" >&2; exit 2; }
+out="$1" label="$2" latencies="$3"
+shift 3
+build="${BUILD:-$root/build}"
+rtmot="$build/apps/rtmot"
+shared="$root/../shared/data"
+[[ -x $rtmot ]] || { echo "score_video.sh: $rtmot not built" >&2; exit 1; }
+
+source_of() {
+  case "$1" in
+    PETS09-S2L1) echo "$root/data/vtest.avi" ;;
+    ADL-Rundle-6) echo "images://$shared/video-gt/ADL-Rundle-6/img1?fps=30" ;;
+    *) echo "score_video.sh: unknown sequence $1" >&2; return 1 ;;
+  esac
+}
+gt_of() {
+  case "$1" in
+    PETS09-S2L1) echo "$shared/mot15-train/PETS09-S2L1" ;;
+    ADL-Rundle-6) echo "$shared/video-gt/ADL-Rundle-6" ;;
+  esac
+}
+
+mkdir -p "$out"
+table="$out/scores.tsv"
+[[ -s $table ]] || printf 'label\tsequence\tlatency_ms\tframes\tprocessed\tRcll\tPrcn\tMOTA\tIDF1\tHOTA\tDetA\tAssA\tIDs\tfps\n' >"$table"
+IFS=',' read -r -a latency_list <<<"$latencies"
+for sequence in ${SEQUENCES:-PETS09-S2L1 ADL-Rundle-6}; do
+  src="$(source_of "$sequence")"
+  gt="$(gt_of "$sequence")"
+  [[ -f $gt/gt/gt.txt ]] || { echo "score_video.sh: $gt/gt/gt.txt missing (../shared beside the project)" >&2; exit 1; }
+  length=$(sed -n 's/^seqLength=//p' "$gt/seqinfo.ini")
+  frames="${FRAMES:-$length}"
+  for latency in "${latency_list[@]}"; do
+    run="$out/$label/$sequence-$latency"
+    rm -rf "$run"
+    mkdir -p "$run/gt/$sequence/gt" "$run/results"
+    cp "$gt/seqinfo.ini" "$run/gt/$sequence/"
+    # The ground truth of the frames run (FRAMES): scoring stops where the run stopped.
+    awk -F, -v n="$frames" '$1 <= n' "$gt/gt/gt.txt" >"$run/gt/$sequence/gt/gt.txt"
+    args=(run --source "$src" --max-frames "$frames" --mot-results "$run/mot" --full-rate true)
+    if [[ $latency == every ]]; then
+      args+=(--playback every-frame)
+    else
+      sim="$latency"
+      [[ $sequence == PETS09-S2L1 ]] && sim=$(awk -v l="$latency" 'BEGIN { printf "%.3f", l * 10 / 7 }')
+      args+=(--playback simulated --latency-ms "$sim")
+    fi
+    [[ $sequence == PETS09-S2L1 ]] && args+=(--frame-rate 7)
+    if ! "$rtmot" "${args[@]}" "$@" >"$run/run.log" 2>&1; then
+      echo "score_video.sh: rtmot run failed for $sequence at $latency (log: $run/run.log):" >&2
+      tail -n 5 "$run/run.log" >&2
+      exit 1
+    fi
+    produced="$(ls "$run/mot"/*.txt)"
+    cp "$produced" "$run/results/$sequence.txt"
+    cp "${produced%.txt}.frames" "$run/results/$sequence.frames"
+    "$rtmot" eval --gt "$run/gt" --results "$run/results" --csv "$run/eval.csv" >"$run/eval.txt" 2>&1 || {
+      echo "score_video.sh: rtmot eval failed for $sequence at $latency (log: $run/eval.txt)" >&2; exit 1; }
+    processed=$(grep -vc '^#' "$run/results/$sequence.frames" || true)
+    fps=$(grep -o '[0-9.]* FPS' "$run/run.log" | tail -n 1 | cut -d' ' -f1)
+    python3 - "$run/eval.csv" "$sequence" "$label" "$latency" "$frames" "$processed" "${fps:-?}" >>"$table" <<'PY'
+import csv, sys
+path, seq, label, latency, frames, processed, fps = sys.argv[1:]
+row = next(r for r in csv.DictReader(open(path)) if r["sequence"] == seq)
+cols = ["Rcll", "Prcn", "MOTA", "IDF1", "HOTA", "DetA", "AssA", "IDs"]
+print("\t".join([label, seq, latency, frames, processed] + [row[c] for c in cols] + [fps]))
+PY
+    tail -n 1 "$table"
+  done
+done
