@@ -11,7 +11,8 @@
 //                    [--shapes on|off]
 //     merges one grid's passes as the product's TilingDetector does and prints MOTChallenge
 //     detection rows (frame,-1,x,y,w,h,score,-1,-1,-1) for `rtmot track`.
-//   tile_study draw --source URI --frame N --before DET.txt --after DET.txt --out PNG [--gt GT.txt]
+//   tile_study draw --source URI --frame N --before DET.txt --after DET.txt --out IMAGE [--gt GT.txt]
+//                   [--scale S]
 //     draws frame N with two merges' boxes: before in red, after in green (thicker), the ground
 //     truth in thin white: the picture of docs/tiling.md.
 // Dumping once and merging many times lets the merge settings be swept in seconds.
@@ -222,6 +223,8 @@ int draw(const std::map<std::string, std::string>& o) {
   for (const auto& r : boxes_of(get(o, "--after", ""), wanted, false)) {
     cv::rectangle(frame, r + cv::Point(thin, thin), cv::Scalar(0, 255, 0), 2 * thin);
   }
+  const double scale = std::stod(get(o, "--scale", "1"));
+  if (scale != 1.0) cv::resize(frame, frame, cv::Size(), scale, scale, cv::INTER_AREA);
   return cv::imwrite(get(o, "--out", "frame.png"), frame) ? 0 : 1;
 }
 
