@@ -6,7 +6,11 @@
 #   3. fuzzing: every libFuzzer target for FUZZ_SECONDS (default 10) each
 #   4. AddressSanitizer + UndefinedBehaviorSanitizer: the whole suite
 #   5. ThreadSanitizer: the pipeline's lock-free hand-offs and every threaded component
-#   6. aarch64: cross build in an isolated sysroot, the whole suite under qemu, tracks equal x86's
+#   6. aarch64: cross build in an isolated sysroot, the architecture-sensitive tests (CTest label
+#      `arch`) under qemu, tracks equal x86's
+# CI's budget: the whole of it within 60 minutes on 2 cores from a fresh clone (the hard limit is 90).
+# Each stage's time is printed when it ends and all of them again at the end, also when a stage
+# fails (the summary runs on exit and names the stage that failed).
 # Stages after 2 can be skipped for a quick local run: RTMOT_QUICK=1 scripts/test.sh
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -19,6 +23,8 @@ finish_stage() {
   if [[ -n $current ]]; then
     stage_names+=("$current")
     stage_seconds+=($((SECONDS - stage_started)))
+    # Also here, not only in the summary: a run killed at CI's limit still shows what each took.
+    echo "=== $current: $((SECONDS - stage_started)) s"
   fi
 }
 stage() {
@@ -29,13 +35,22 @@ stage() {
   echo "=== $* ($(date -u +%H:%M:%S))"
 }
 summary() {
+  local status=$? failed=$current
   finish_stage
   current=""
   echo
   echo "=== test.sh stage times"
   for i in "${!stage_names[@]}"; do printf '  %-34s %5d s\n' "${stage_names[$i]}" "${stage_seconds[$i]}"; done
+  printf '  %-34s %5d s\n' "total" "$SECONDS"
+  if ((status == 0)); then
+    echo "test.sh: OK"
+  else
+    echo "test.sh: FAILED (exit $status) in: $failed"
+  fi
 }
 trap summary EXIT
+# Every ctest of every stage (the scripts' own included) prints a failing test's whole output.
+export CTEST_OUTPUT_ON_FAILURE=1
 
 stage "dependencies, model, sample video"
 bash scripts/install_deps.sh
