@@ -58,7 +58,7 @@ std::string describe_pipeline(const VideoTarget& target, const VideoEncoder& enc
       "videoconvert ! video/x-raw,format=I420 ! {}",
       file ? "false" : "true", file ? "true" : "false",
       file ? 4 : std::max(4, keyframe_interval / 4), file ? "" : "leaky-type=downstream",
-      raw_caps(width, height, fps), encoder_padding(width, height));
+      raw_caps(width, height, fps), encoder_padding(encoder.codec, width, height));
   // Browsers play H.264 in MP4 with the index first (faststart) and `avc1` sample entries (what
   // h264parse gives mp4mux); H.265 goes in as `hvc1`.
   const std::string encode =
@@ -133,7 +133,7 @@ void GstVideoOutput::start(int width, int height) {
     }
   }
   if (!started.problem.empty()) fail(started.problem, started.code);
-  warn_if_padded(target_.text, width, height);
+  if (encoder_ != nullptr) warn_if_padded(target_.text, *encoder_, width, height);
 }
 
 GstVideoOutput::Started GstVideoOutput::launch(int width, int height) {
