@@ -1,9 +1,12 @@
 #include "events/events_yaml.hpp"
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <set>
 
 #include "common/input_error.hpp"
+#include "common/utf8.hpp"
 #include "common/yaml_section.hpp"
 
 namespace rtmot::events {
@@ -40,6 +43,15 @@ Units read_units(Section& section) {
 std::string read_name(Section& section, const YAML::Node& item, std::set<std::string>& names) {
   std::string name;
   if (!section.read("name", name) || name.empty()) section.fail(item, "name", "a name is required");
+  // A name becomes a Prometheus label value and a JSON string, which must be UTF-8: one raw
+  // Latin-1 byte made the whole metrics page unreadable to Prometheus.
+  if (const auto bad = first_invalid_utf8(name)) {
+    section.fail(
+        *section.find("name"), "name",
+        fmt::format("is not valid UTF-8 (byte {} of the name is 0x{:02X}): a name becomes a "
+                    "metrics label and a JSON string",
+                    *bad + 1, static_cast<unsigned char>(name[*bad])));
+  }
   if (!names.insert(name).second)
     section.fail(*section.find("name"), "name", "'" + name + "' is used twice");
   return name;
