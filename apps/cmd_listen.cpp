@@ -145,10 +145,16 @@ void print_summary(const messages::ListenerStats& stats, const InvalidJson& inva
           "skipped, sent with the tracks' predicted boxes)\n",
           id, stream.predicted);
     }
-    for (const auto& [kind_and_index, count] : stream.events) {
+    for (const auto& [kind_and_index, count] : stream.events.listed()) {
       fmt::print("  stream {}: events {} {}: {}\n", id,
                  events::kEventKindNames.name(static_cast<events::EventKind>(kind_and_index.first)),
                  kind_and_index.second, count);
+    }
+    if (stream.events.unlisted() > 0) {
+      fmt::print(
+          "  stream {}: {} more events of other kinds and indexes, not listed: at most {} "
+          "(kind, index) pairs are counted apart per stream\n",
+          id, stream.events.unlisted(), messages::EventTally::max_pairs);
     }
     if (seq.clashes() > 0) {
       fmt::print(

@@ -78,6 +78,7 @@ int run(const RunCommand& command) {
   pipeline::Pipeline pipeline(std::move(inputs), std::move(detectors), std::move(outputs.consumers),
                               runner::make_options(config));
   const pipeline::PipelineReport report = pipeline.run(signals.stop_flag());
+  if (outputs.metrics) outputs.metrics->sources_ended();
 
   // The final report is the run's result: shown whatever --log-level says (warn hid it).
   const auto level = spdlog::get_level();

@@ -66,10 +66,27 @@ pipeline::PipelineReport run_once(const runner::RunConfig& config, const std::at
   return pipe.run(stop);
 }
 
+// A pass runs the message outputs only (runner::make_sinks): the MOT results, report, video and
+// metrics endpoint are what one `rtmot run` produces, not something to rewrite every pass. They
+// were dropped without a word; now a configuration that asks for one is refused, naming it.
+void refuse_outputs_of_a_run(const runner::RunConfig& config) {
+  const runner::OutputConfig& output = config.output;
+  const auto refuse = [&](const char* field) {
+    throw InputError(config.file, 0, field,
+                     "soak writes message outputs only (udp, binary_file, jsonl_file, mqtt); "
+                     "remove it, or use rtmot run for it");
+  };
+  if (!output.mot_results.empty()) refuse("output.mot_results");
+  if (!output.report_file.empty()) refuse("output.report_file");
+  if (output.video) refuse("output.video_file");
+  if (output.metrics_port > 0) refuse("output.metrics_port");
+}
+
 int run_soak(const SoakOptions& options) {
   platform::StopSignals signals;  // first: threads started later inherit the blocked mask
   const runner::RunConfig config = runner::load_run_config(options.config_path);
   runner::validate(config);
+  refuse_outputs_of_a_run(config);
   runner::check_model_found(config);
 
   using Clock = std::chrono::steady_clock;

@@ -1,9 +1,12 @@
 #include "events/events_yaml.hpp"
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <set>
 
 #include "common/input_error.hpp"
+#include "common/utf8.hpp"
 #include "common/yaml_section.hpp"
 
 namespace rtmot::events {
@@ -11,6 +14,10 @@ namespace {
 
 // Every class id, time and size a user writes stays far from int and double limits.
 constexpr double kMaxSeconds = 1e7;
+// A zone is drawn by hand or traced from a map: hundreds of corners at most. Its check for
+// crossing edges compares every pair (is_simple_polygon): 1000 corners take milliseconds, the
+// 57,000 of a hostile file took 24 s before the run started.
+constexpr std::size_t kMaxZonePoints = 1000;
 
 Point read_point(Section& section, const YAML::Node& node, const std::string& key) {
   const bool pair =
@@ -40,6 +47,15 @@ Units read_units(Section& section) {
 std::string read_name(Section& section, const YAML::Node& item, std::set<std::string>& names) {
   std::string name;
   if (!section.read("name", name) || name.empty()) section.fail(item, "name", "a name is required");
+  // A name becomes a Prometheus label value and a JSON string, which must be UTF-8: one raw
+  // Latin-1 byte made the whole metrics page unreadable to Prometheus.
+  if (const auto bad = first_invalid_utf8(name)) {
+    section.fail(
+        *section.find("name"), "name",
+        fmt::format("is not valid UTF-8 (byte {} of the name is 0x{:02X}): a name becomes a "
+                    "metrics label and a JSON string",
+                    *bad + 1, static_cast<unsigned char>(name[*bad])));
+  }
   if (!names.insert(name).second)
     section.fail(*section.find("name"), "name", "'" + name + "' is used twice");
   return name;
@@ -76,6 +92,11 @@ void read_zone(const YAML::Node& item, const std::string& field, double default_
   const YAML::Node points = section.child("points");
   if (!points || !points.IsSequence())
     section.fail(points ? points : item, "points", "required: a list of points [x, y]");
+  if (points.size() > kMaxZonePoints) {
+    section.fail(points, "points",
+                 "a zone has at most " + std::to_string(kMaxZonePoints) + " points, got " +
+                     std::to_string(points.size()));
+  }
   for (std::size_t i = 0; i < points.size(); ++i)
     zone.polygon.push_back(read_point(section, points[i], "points[" + std::to_string(i) + "]"));
   if (zone.polygon.size() < 3) {

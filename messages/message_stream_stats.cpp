@@ -111,6 +111,24 @@ Arrival SequenceAccounting::record(std::uint64_t sequence, std::int64_t pts_ns,
   return Arrival::late;
 }
 
+void EventTally::add(std::uint8_t kind, std::uint16_t index) {
+  const Pair pair{kind, index};
+  const auto known = listed_.find(pair);
+  if (known != listed_.end()) {
+    ++known->second;
+  } else if (listed_.size() < max_pairs) {
+    listed_.emplace(pair, 1);
+  } else {
+    ++unlisted_;
+  }
+}
+
+std::uint64_t EventTally::total() const {
+  std::uint64_t sum = unlisted_;
+  for (const auto& entry : listed_) sum += entry.second;
+  return sum;
+}
+
 ListenerStats::ListenerStats(std::size_t max_streams)
     : max_streams_(std::max<std::size_t>(max_streams, 1)) {}
 
@@ -140,7 +158,7 @@ Arrival ListenerStats::record(const DecodedMessage& message) {
   const Arrival arrival = stream.sequences.record(frame.sequence, frame.pts_ns, frame.run_id);
   if (arrival == Arrival::duplicate || arrival == Arrival::clash) return arrival;
   for (const auto& event : frame.events)
-    ++stream.events[{static_cast<std::uint8_t>(event.kind), event.index}];
+    stream.events.add(static_cast<std::uint8_t>(event.kind), event.index);
   const bool first = stream.messages == 0;
   ++stream.messages;
   const std::int64_t latency = message.latency_ns();

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <list>
 #include <map>
+#include <utility>
 
 #include "messages/message_format.hpp"
 
@@ -68,6 +69,26 @@ class SequenceAccounting {
   std::bitset<window> seen_;  // seen_[s % window] for s in the last `window` sequences of the epoch
 };
 
+/// Events received on one stream (docs/events.md), by kind and line/zone index. A message may
+/// name any of 256 x 65536 (kind, index) pairs; a spoofed stream naming millions of them made a
+/// line of the summary and a map node each. So at most `max_pairs` pairs are counted apart, the
+/// first ones seen (a configuration's own lines and zones come long before): an event of a pair
+/// first seen after that is counted in `unlisted()` only.
+class EventTally {
+ public:
+  static constexpr std::size_t max_pairs = 256;
+  using Pair = std::pair<std::uint8_t, std::uint16_t>;  // {kind, index}
+
+  void add(std::uint8_t kind, std::uint16_t index);
+  const std::map<Pair, std::uint64_t>& listed() const { return listed_; }
+  std::uint64_t unlisted() const { return unlisted_; }  // events of pairs beyond max_pairs
+  std::uint64_t total() const;                          // every event added
+
+ private:
+  std::map<Pair, std::uint64_t> listed_;
+  std::uint64_t unlisted_{0};
+};
+
 struct StreamStats {
   SequenceAccounting sequences;
   std::uint64_t messages{0};   // received without duplicates: what the figures below cover
@@ -78,8 +99,7 @@ struct StreamStats {
   std::int64_t latency_max_ns{0};
   double latency_sum_ns{0.0};
   std::uint32_t last_frames_dropped{0};  // the sender's own count of frames it could not process
-  /// Events received (docs/events.md), by kind and line/zone index: {kind, index} -> count.
-  std::map<std::pair<std::uint8_t, std::uint16_t>, std::uint64_t> events;
+  EventTally events;                     // events received, by kind and line/zone index (bounded)
 
   double latency_mean_ns() const {
     return messages > 0 ? latency_sum_ns / static_cast<double>(messages) : 0.0;
@@ -87,7 +107,8 @@ struct StreamStats {
 };
 
 /// Everything `rtmot listen` counts: per stream id, and corrupt messages (which name no stream we
-/// could trust) by reason. At most `max_streams` streams are kept (each costs ~0.7 KB): a message
+/// could trust) by reason. At most `max_streams` streams are kept (each costs ~0.7 KB, and its
+/// event tally at most EventTally::max_pairs map nodes, ~16 KB): a message
 /// of a new stream beyond that evicts the stream heard from least recently, and the evictions are
 /// counted, so spoofed stream ids cannot grow memory or the summary without bound.
 class ListenerStats {

@@ -5,14 +5,19 @@
 #include <algorithm>
 #include <iterator>
 
+#include "common/utf8.hpp"
+
 namespace rtmot::outputs {
 namespace {
 
 constexpr auto relaxed = std::memory_order_relaxed;
 constexpr std::size_t kZoneFields = 4;  // enter, exit, lost inside, dwell
 
-// A label value as the text format wants it: backslash, double quote and newline escaped.
-std::string label_value(const std::string& text) {
+// A label value as the text format wants it: UTF-8 (names are checked where they are read,
+// events/events_yaml.cpp; a name made another way gets U+FFFD for a byte that is not), backslash,
+// double quote and newline escaped.
+std::string label_value(const std::string& name) {
+  const std::string text = replace_invalid_utf8(name);
   std::string out;
   for (const char c : text) {
     if (c == '\\' || c == '"') out += '\\';

@@ -42,23 +42,33 @@ ExitCode code_of(const GError* error) {
                                                                  : ExitCode::encoder_failed;
 }
 
+bool is_file(const VideoTarget& target) {
+  return target.kind == VideoTargetKind::mp4_file || target.kind == VideoTargetKind::mkv_file;
+}
+
+// Frames a file's appsrc holds before push() waits for the encoder: a few frames of room.
+constexpr std::uint64_t kFileQueueFrames = 4;
+// How often push() looks at the bus while it waits for room.
+constexpr GstClockTime bus_poll = 20 * GST_MSECOND;
+
 }  // namespace
 
 std::string describe_pipeline(const VideoTarget& target, const VideoEncoder& encoder,
                               int bitrate_kbps, int width, int height, double fps) {
   const int keyframe_interval = std::max(1, static_cast<int>(std::lround(fps * 2.0)));
-  // A file waits for the encoder (block=true, a few frames of room): every frame is written. A
-  // stream never holds the sink stage: once half a second of frames waits for the encoder (its
+  // A file waits for the encoder: every frame is written. It waits in push() (wait_for_room),
+  // not in appsrc (block=true), whose push waits for ever once an error has stopped the
+  // pipeline; so its appsrc's queue is unbounded (max-buffers=0) and push() bounds it. A stream
+  // never holds the sink stage: once half a second of frames waits for the encoder (its
   // start-up, or an encoder slower than the source), a new frame is dropped
   // (leaky-type=downstream) rather than let latency grow.
-  const bool file =
-      target.kind == VideoTargetKind::mp4_file || target.kind == VideoTargetKind::mkv_file;
+  const bool file = is_file(target);
   const std::string source = fmt::format(
-      "appsrc name=src format=time is-live={} block={} max-buffers={} {} caps=\"{}\" ! "
+      "appsrc name=src format=time is-live={} block=false max-buffers={} {} caps=\"{}\" ! "
       "videoconvert ! video/x-raw,format=I420 ! {}",
-      file ? "false" : "true", file ? "true" : "false",
-      file ? 4 : std::max(4, keyframe_interval / 4), file ? "" : "leaky-type=downstream",
-      raw_caps(width, height, fps), encoder_padding(width, height));
+      file ? "false" : "true", file ? 0 : std::max(4, keyframe_interval / 4),
+      file ? "" : "leaky-type=downstream", raw_caps(width, height, fps),
+      encoder_padding(encoder.codec, width, height));
   // Browsers play H.264 in MP4 with the index first (faststart) and `avc1` sample entries (what
   // h264parse gives mp4mux); H.265 goes in as `hvc1`.
   const std::string encode =
@@ -133,7 +143,7 @@ void GstVideoOutput::start(int width, int height) {
     }
   }
   if (!started.problem.empty()) fail(started.problem, started.code);
-  warn_if_padded(target_.text, width, height);
+  if (encoder_ != nullptr) warn_if_padded(target_.text, *encoder_, width, height);
 }
 
 GstVideoOutput::Started GstVideoOutput::launch(int width, int height) {
@@ -193,22 +203,41 @@ GstPadProbeReturn GstVideoOutput::on_frame_streamed(GstPad*, GstPadProbeInfo*, g
   return GST_PAD_PROBE_OK;
 }
 
+void GstVideoOutput::fail_with(GstMessage* error_message, const std::string& what) {
+  GError* raw_error = nullptr;
+  gchar* raw_debug = nullptr;
+  gst_message_parse_error(error_message, &raw_error, &raw_debug);
+  const ErrorPtr error(raw_error);
+  const StringPtr debug(raw_debug);
+  fail(what + ": " + (error ? error->message : "unknown error"), code_of(error.get()));
+}
+
 void GstVideoOutput::throw_if_error() {
   if (!bus_) return;
   const MessagePtr message(gst_bus_pop_filtered(bus_.get(), GST_MESSAGE_ERROR));
-  if (!message) return;
-  GError* raw_error = nullptr;
-  gchar* raw_debug = nullptr;
-  gst_message_parse_error(message.get(), &raw_error, &raw_debug);
-  const ErrorPtr error(raw_error);
-  const StringPtr debug(raw_debug);
-  fail(std::string("writing the video failed: ") + (error ? error->message : "unknown error"),
-       code_of(error.get()));
+  if (message) fail_with(message.get(), "writing the video failed");
+}
+
+void GstVideoOutput::wait_for_room() {
+  if (!is_file(target_)) return;  // a stream's appsrc drops frames instead
+  std::uint64_t streamed = frames_streamed_.load(std::memory_order_relaxed);
+  GstClockTime waited = 0;  // since the encoder last took a frame
+  while (frames_ - streamed >= kFileQueueFrames) {
+    const MessagePtr message(gst_bus_timed_pop_filtered(bus_.get(), bus_poll, GST_MESSAGE_ERROR));
+    if (message) fail_with(message.get(), "writing the video failed");
+    const std::uint64_t now = frames_streamed_.load(std::memory_order_relaxed);
+    waited = now == streamed ? waited + bus_poll : 0;
+    streamed = now;
+    if (waited >= close_timeout) {
+      fail("the encoder took no frame for 60 s", ExitCode::encoder_failed);
+    }
+  }
 }
 
 void GstVideoOutput::push(const cv::Mat& bgr) {
   if (closed_ || bgr.empty()) return;
   if (!pipeline_) start(bgr.cols, bgr.rows);
+  wait_for_room();
   GstBuffer* buffer = copy_to_gst_buffer(bgr);
   // Constant frame rate: frame n at n / fps, so the file lasts as long as the source.
   const GstClockTime duration = static_cast<GstClockTime>(std::llround(1e9 / fps_));
@@ -233,11 +262,7 @@ void GstVideoOutput::close() {
   const MessagePtr message(gst_bus_timed_pop_filtered(
       bus_.get(), close_timeout, static_cast<GstMessageType>(GST_MESSAGE_EOS | GST_MESSAGE_ERROR)));
   if (message && GST_MESSAGE_TYPE(message.get()) == GST_MESSAGE_ERROR) {
-    GError* raw_error = nullptr;
-    gst_message_parse_error(message.get(), &raw_error, nullptr);
-    const ErrorPtr error(raw_error);
-    fail(std::string("finishing the video failed: ") + (error ? error->message : "unknown error"),
-         code_of(error.get()));
+    fail_with(message.get(), "finishing the video failed");
   }
   gst_element_set_state(pipeline_.get(), GST_STATE_NULL);
   if (!message) fail("the encoder did not finish within 60 s", ExitCode::encoder_failed);

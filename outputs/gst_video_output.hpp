@@ -49,7 +49,14 @@ class GstVideoOutput final : public VideoStream {
   /// Stops the pipeline, removes an unfinished file and throws: `code` io_error for a failed
   /// write (disk full), encoder_failed for what the encoder refused.
   [[noreturn]] void fail(const std::string& problem, ExitCode code);
+  /// fail() with the error a GStreamer ERROR message carries, after `what`.
+  [[noreturn]] void fail_with(GstMessage* error_message, const std::string& what);
   void throw_if_error();
+  /// A file: waits until the appsrc holds fewer than a few frames, reading the bus meanwhile, so
+  /// that an error that stopped the pipeline (a full disk) ends the wait (appsrc's own blocking
+  /// push waited for ever: the run hung with no error line, and a stop signal did not end it).
+  /// An encoder that takes no frame for 60 s is an encoder failure.
+  void wait_for_room();
 
   VideoTarget target_;
   double fps_;
@@ -59,7 +66,7 @@ class GstVideoOutput final : public VideoStream {
   platform::gst::ObjectPtr<GstElement> source_;
   platform::gst::ObjectPtr<GstBus> bus_;
   std::string written_path_;  // files: PATH.tmp-PID until close() renames it to PATH
-  std::uint64_t frames_{0};
+  std::uint64_t frames_{0};   // pushed into the appsrc
   // Written by the pipeline's streaming thread, read by anyone: a statistic that publishes no
   // other memory, so relaxed order is enough. The probe lives as long as the pipeline, which is
   // stopped before this object goes.

@@ -45,6 +45,10 @@ PipelineMetrics::PipelineMetrics(std::vector<OutputProbe> outputs,
       stream_ids_(std::move(streams)),
       streams_(stream_ids_.size()) {}
 
+void PipelineMetrics::sources_ended() {
+  for (auto& stream : streams_) stream.up.store(false, relaxed);
+}
+
 void PipelineMetrics::observe(const messages::FrameResult& result) {
   const messages::FrameTimes& t = result.times;
   // A few sources at most: a linear search allocates nothing and takes no lock.
@@ -113,7 +117,8 @@ std::string PipelineMetrics::render() const {
              "Frames captured but not processed (the detector was busy).",
              [](const StreamCounters& s) { return s.frames_skipped.load(relaxed); });
   per_stream("rtmot_source_up", "gauge",
-             "1 while the source delivers pictures; 0 before its first frame and while it is down.",
+             "1 while the source delivers pictures; 0 before its first frame, while it is down and "
+             "after the run (lingering with the final values).",
              [](const StreamCounters& s) { return s.up.load(relaxed) ? 1 : 0; });
   per_stream("rtmot_source_outages_total", "counter", "Times the live source went down.",
              [](const StreamCounters& s) { return s.outages.load(relaxed); });

@@ -74,6 +74,10 @@ class PipelineMetrics {
 
   /// Sink stage: one processed frame.
   void observe(const messages::FrameResult& result);
+  /// The run is over (its sources ended, failed or were stopped): every source is down. The
+  /// endpoint may linger with the final values (output.metrics_linger_s); it showed
+  /// rtmot_source_up 1 there after a source had failed.
+  void sources_ended();
   /// Any thread: the Prometheus text exposition (version 0.0.4).
   std::string render() const;
   /// The events' series (outputs/event_metrics.hpp), rendered after these; set before the run.

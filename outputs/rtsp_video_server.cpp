@@ -17,7 +17,8 @@ namespace rtmot::outputs {
 RtspVideoServer::RtspVideoServer(VideoTarget target, double fps, const VideoEncoding& encoding)
     : target_(std::move(target)), fps_(fps > 0.0 ? fps : 30.0) {
   platform::gst::ensure_initialized();
-  const VideoEncoder& encoder = open_encoder(target_.text, encoding);
+  encoder_ = &open_encoder(target_.text, encoding);
+  const VideoEncoder& encoder = *encoder_;
   context_ = g_main_context_new();
   loop_ = g_main_loop_new(context_, FALSE);
   server_ = gst_rtsp_server_new();
@@ -146,10 +147,10 @@ void RtspVideoServer::push(const cv::Mat& bgr) {
         "video/x-raw", "format", G_TYPE_STRING, "BGR", "width", G_TYPE_INT, bgr.cols, "height",
         G_TYPE_INT, bgr.rows, "framerate", GST_TYPE_FRACTION, numerator, denominator, nullptr));
     // Before the first buffer: the videobox is sized before the encoder's caps are negotiated.
-    if (padding_ != nullptr) set_encoder_padding(padding_, bgr.cols, bgr.rows);
+    if (padding_ != nullptr) set_encoder_padding(padding_, encoder_->codec, bgr.cols, bgr.rows);
     gst_app_src_set_caps(GST_APP_SRC(appsrc_), caps.get());
     caps_set_ = true;
-    if (!padding_warned_) warn_if_padded(target_.text, bgr.cols, bgr.rows);
+    if (!padding_warned_) warn_if_padded(target_.text, *encoder_, bgr.cols, bgr.rows);
     padding_warned_ = true;
   }
   GstBuffer* buffer = copy_to_gst_buffer(bgr);

@@ -1,7 +1,7 @@
 #pragma once
 // rtsp://ADDRESS:PORT/NAME: an RTSP server (gst-rtsp-server) that clients pull the annotated video
-// from. One shared media for every client: appsrc -> videobox (padding to a size x264 takes,
-// outputs/encoder_padding.hpp) -> x264enc (zero latency) -> rtph264pay. The
+// from. One shared media for every client: appsrc -> videobox (padding to a size the encoder takes,
+// outputs/encoder_padding.hpp) -> the encoder (zero latency) -> rtph26Xpay. The
 // server runs its own GLib main loop on a thread (it handles RTSP requests there); frames are only
 // encoded while at least one client watches.
 #include <gst/gst.h>
@@ -50,6 +50,7 @@ class RtspVideoServer final : public VideoStream {
 
   VideoTarget target_;
   double fps_;
+  const VideoEncoder* encoder_{nullptr};  // chosen in the constructor, for the padding
   GMainContext* context_{nullptr};
   GMainLoop* loop_{nullptr};
   GstRTSPServer* server_{nullptr};

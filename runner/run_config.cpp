@@ -263,6 +263,15 @@ bool is_live_uri(const std::string& uri) {
 
 }  // namespace
 
+std::optional<std::string> flip_problem(const SourceConfig& source) {
+  if (source.flip == platform::Orientation::none || !is_sequence_uri(source.uri)) {
+    return std::nullopt;
+  }
+  return "a mot-seq:// source has no frames to turn: its boxes are the det file's, as the "
+         "sequence was recorded ('" +
+         source.uri + "')";
+}
+
 void validate(const RunConfig& config) {
   const auto missing = [&](const std::string& field, const std::string& problem) {
     throw InputError(config.file, 0, field, problem);
@@ -294,6 +303,12 @@ void validate(const RunConfig& config) {
     if (source.loop != 0 && (is_sequence_uri(source.uri) || is_live_uri(source.uri))) {
       missing(config.sources.empty() ? "source.loop" : "sources[" + std::to_string(i) + "].loop",
               "loops a file, not '" + source.uri + "' (a live source or a mot-seq:// sequence)");
+    }
+  }
+  for (std::size_t i = 0; i < sources.size(); ++i) {
+    if (const auto problem = flip_problem(sources[i])) {
+      missing(config.sources.empty() ? "source.flip" : "sources[" + std::to_string(i) + "].flip",
+              *problem);
     }
   }
   for (const SourceConfig& source : sources) {

@@ -133,6 +133,12 @@ RunConfig parse_run_config(const std::string& yaml_text, const std::string& file
 /// What the preset does not fix (frame rate, image size) stays "from the source" (0).
 bool apply_preset(std::string_view name, tracker::TrackerConfig& config);
 
+/// Why `source` cannot be turned as its `flip` asks, or nullopt when it can (or asks nothing):
+/// a mot-seq:// sequence has no frames, only the det file's boxes in the sequence's own
+/// orientation; turning its size alone put every box and every event shape off its frame.
+/// validate() refuses it from a file (exit 3), RunFlags from --input-flip (exit 2).
+std::optional<std::string> flip_problem(const SourceConfig& source);
+
 /// Checks what only the complete configuration (file plus command-line overrides) can tell: a
 /// source is given, the detector has its model or det file, outputs are consistent. Throws
 /// InputError.

@@ -69,6 +69,11 @@ void RunFlags::apply(RunConfig& config) const {
         source = scratch.source;
       }
     }
+    if (settings[i].key == "source.flip") {
+      for (const SourceConfig& source : source_list(config)) {
+        if (const auto problem = flip_problem(source)) refuse(settings[i].flag, *problem);
+      }
+    }
     // --model names the SSD's model: it means the SSD, whatever the file's detector.kind.
     if (settings[i].key == "detector.model") config.detector.kind = DetectorKind::ssd;
     // --det-file names replayed detections: it means the replay detector, the same way.

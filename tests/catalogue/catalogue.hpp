@@ -43,5 +43,8 @@ std::vector<CatalogueCase> settings_cases();
 std::vector<CatalogueCase> detector_file_cases();
 /// Issue 22: command-line and configuration typos, one line each with the nearest valid name.
 std::vector<CatalogueCase> usage_cases();
+/// Round four (issue 32), the streams' classes: video on a full disk, H.265 at small sizes, the
+/// listener's event counts, event names, --input-flip on a sequence, and the arguable ones.
+std::vector<CatalogueCase> round_four_streams_cases();
 
 }  // namespace rtmot::test

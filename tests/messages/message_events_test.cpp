@@ -279,8 +279,45 @@ TEST(ListenerStats, CountsEventsPerKindAndIndex) {
     sent += frame.events.size();
   }
   std::uint64_t counted = 0;
-  for (const auto& entry : stats.streams().begin()->second.events) counted += entry.second;
+  const EventTally& events = stats.streams().begin()->second.events;
+  for (const auto& entry : events.listed()) counted += entry.second;
   EXPECT_EQ(counted, sent);
+  EXPECT_EQ(events.unlisted(), 0U);
+}
+
+// A spoofed stream may name any of 16.7 M (kind, index) pairs: the first EventTally::max_pairs
+// are listed, the events of later pairs counted together, none lost.
+TEST(ListenerStats, EventPairsOfOneStreamAreBoundedAndTheRestCounted) {
+  ListenerStats stats;
+  DecodedMessage message;
+  message.frame.stream_id = 9;
+  const std::size_t pairs = 3 * EventTally::max_pairs;
+  std::uint64_t sent = 0;
+  for (std::size_t m = 0; m < pairs / 64; ++m) {
+    message.frame.sequence = m;
+    message.frame.pts_ns = static_cast<std::int64_t>(m) * 40'000'000;
+    message.frame.events.clear();
+    for (std::size_t e = 0; e < 64; ++e) {
+      events::Event event;
+      const std::size_t pair = m * 64 + e;
+      event.kind = static_cast<events::EventKind>(pair % 5);
+      event.index = static_cast<std::uint16_t>(pair / 5);
+      message.frame.events.push_back(event);
+    }
+    stats.record(message);
+    sent += 64;
+  }
+  // Again the first pair: still counted apart.
+  message.frame.sequence = pairs / 64;
+  message.frame.pts_ns = static_cast<std::int64_t>(pairs / 64) * 40'000'000;
+  message.frame.events.assign(1, events::Event{});
+  stats.record(message);
+  ++sent;
+  const EventTally& events = stats.streams().at(9).events;
+  EXPECT_EQ(events.listed().size(), EventTally::max_pairs);
+  EXPECT_EQ(events.listed().at({0, 0}), 2U);
+  EXPECT_EQ(events.unlisted(), pairs - EventTally::max_pairs);
+  EXPECT_EQ(events.total(), sent);
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include <regex>
 #include <string>
 
+#include "common/utf8.hpp"
 #include "events/event_counter.hpp"
 #include "messages/json_line_decoder.hpp"
 #include "messages/jsonl_sink.hpp"
@@ -98,6 +99,23 @@ TEST(EventMetrics, SeriesEqualTheEventsSentAndTheCountersTotals) {
   EXPECT_GT(zone("dwell"), 0.0);
   EXPECT_EQ(value_of(text, R"(rtmot_zone_occupancy{stream="3",zone="left"})"),
             counter.zone_counts()[0].occupancy);
+}
+
+// A name made without the YAML reader's UTF-8 check (a caller of its own) cannot break the page:
+// a byte that is not UTF-8 becomes U+FFFD, so Prometheus still reads every series.
+TEST(EventMetrics, ANameThatIsNotUtf8BecomesAReplacementCharacter) {
+  EventMetrics event_metrics({{3,
+                               {"Entr\xE9"
+                                "e"},
+                               {"caf\xC3"}}});
+  std::string text;
+  event_metrics.render(text);
+  EXPECT_EQ(first_invalid_utf8(text), std::nullopt) << text;
+  EXPECT_NE(text.find("line=\"Entr\xEF\xBF\xBD"
+                      "e\""),
+            std::string::npos)
+      << text;
+  EXPECT_NE(text.find("zone=\"caf\xEF\xBF\xBD\""), std::string::npos) << text;
 }
 
 }  // namespace

@@ -5,11 +5,16 @@
 #include <netinet/in.h>
 #include <sys/socket.h>
 #include <sys/time.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
+#include <csignal>
+#include <filesystem>
 #include <regex>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "child_process.hpp"
@@ -18,6 +23,7 @@
 #include "metrics_scrape.hpp"
 #include "outputs/metrics_server.hpp"
 #include "outputs/pipeline_metrics.hpp"
+#include "shared_data.hpp"
 
 namespace rtmot::outputs {
 namespace {
@@ -197,6 +203,38 @@ TEST(Metrics, PortInUseIsANetworkError) {
   } catch (const InputError& error) {
     EXPECT_EQ(error.exit_code(), ExitCode::network);
   }
+}
+
+// After the run the endpoint may linger with the final values (metrics_linger_s): a source that
+// failed showed rtmot_source_up 1 there. rtmot itself, a test:// source that fails after 15
+// frames, the replay detector; scraped while it lingers.
+TEST(Metrics, SourceIsDownWhileTheEndpointLingersAfterTheSourceFailed) {
+  const auto det = test::shared_path("data/mot15-train/TUD-Campus/det/det.txt");
+  RTMOT_REQUIRE_FILE(det);
+  const auto folder = std::filesystem::temp_directory_path() /
+                      ("rtmot-metrics-linger-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(folder);
+  const unsigned short port = test::free_tcp_port();
+  test::ChildProcess rtmot(
+      {RTMOT_BINARY, "run", "--source", "test://ball?num-buffers=100&error-after=15", "--det-file",
+       det.string(), "--metrics-port", std::to_string(port), "--metrics-linger", "300",
+       "--stats-interval", "0"},
+      folder / "out.txt", folder / "err.txt");
+  // Generous: a loaded machine or qemu takes seconds to start the run.
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+  while (test::read_text(folder / "err.txt").find("metrics: the final values served") ==
+             std::string::npos &&
+         std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  const std::string text = http_get(port, "/metrics");
+  const int status = rtmot.stop(SIGTERM, std::chrono::seconds(30));
+  const std::string err = test::read_text(folder / "err.txt");
+  EXPECT_NE(err.find("the source failed"), std::string::npos) << err;
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 5) << status << "\n" << err;
+  EXPECT_EQ(value_of(text, R"(rtmot_frames_processed_total{stream="0"})"), 15.0) << text;
+  EXPECT_EQ(value_of(text, R"(rtmot_source_up{stream="0"})"), 0.0) << text;
+  std::filesystem::remove_all(folder);
 }
 
 }  // namespace

@@ -15,6 +15,7 @@
 #include "child_process.hpp"
 #include "common/input_error.hpp"
 #include "gst_read_back.hpp"
+#include "outputs/encoder_padding.hpp"
 #include "outputs/gst_video_output.hpp"
 #include "outputs/overlay.hpp"
 #include "outputs/rtsp_video_server.hpp"
@@ -439,6 +440,49 @@ TEST_F(VideoOutputs, H265FilesHaveEveryFrame) {
       const std::string bytes((std::istreambuf_iterator<char>(file)),
                               std::istreambuf_iterator<char>());
       EXPECT_NE(bytes.find("hvc1"), std::string::npos);
+    }
+  }
+}
+
+// x265 wants a picture of at least one coding tree unit: below it, x265 3.5 shrank its CTU and
+// wrote past its buffers (34x18: SIGABRT "free(): invalid next size"). Small frames are padded to
+// 64 a side for H.265 (16 for H.264): every frame is in the file, at the padded size, the
+// picture at its top left and black on the right and bottom.
+TEST_F(VideoOutputs, SmallFramesArePaddedToWhatTheCodecTakes) {
+  EXPECT_EQ(min_encoder_side(VideoCodec::h264), 16);
+  EXPECT_EQ(min_encoder_side(VideoCodec::h265), 64);
+  const struct {
+    VideoCodec codec;
+    cv::Size frame;
+    cv::Size padded;
+  } sizes[] = {{VideoCodec::h265, {34, 18}, {64, 64}},
+               {VideoCodec::h265, {40, 18}, {64, 64}},
+               {VideoCodec::h265, {33, 17}, {64, 64}},
+               {VideoCodec::h265, {62, 100}, {64, 100}},
+               {VideoCodec::h264, {33, 17}, {34, 18}}};
+  for (const auto& size : sizes) {
+    VideoEncoding encoding;
+    encoding.codec = size.codec;
+    const auto path =
+        folder_ / (std::to_string(size.frame.width) + "x" + std::to_string(size.frame.height) +
+                   "-" + std::string(codec_title(size.codec)) + ".mkv");
+    auto stream = open_video_stream(target_of(path.string()), 30.0, encoding);
+    const cv::Mat grey(size.frame, CV_8UC3, cv::Scalar(128, 128, 128));
+    for (int i = 0; i < 10; ++i) stream->push(grey);
+    stream->close();
+    const std::string parse = size.codec == VideoCodec::h265 ? "h265" : "h264";
+    const ReadBack back =
+        read_back("filesrc location=" + path.string() + " ! matroskademux ! video/x-" + parse +
+                      " ! avdec_" + parse + to_bgr_sink,
+                  9, 10000, 60s);
+    EXPECT_EQ(back.frames, 10) << path;
+    ASSERT_EQ(back.saved.size(), size.padded) << path;
+    const cv::Vec3b inside = back.saved.at<cv::Vec3b>(size.frame.height / 2, size.frame.width / 2);
+    const cv::Vec3b corner =
+        back.saved.at<cv::Vec3b>(size.padded.height - 1, size.padded.width - 1);
+    EXPECT_NEAR(inside[1], 128, 20) << path;
+    if (size.padded != size.frame) {
+      EXPECT_LT(corner[1], 40) << path;
     }
   }
 }
