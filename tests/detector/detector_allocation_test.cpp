@@ -10,6 +10,7 @@
 #include "detector/replay_detector.hpp"
 #include "detector/ssd_detector.hpp"
 #include "detector/ssd_postprocess.hpp"
+#include "detector/tiling_detector.hpp"
 #include "shared_data.hpp"
 #include "vtest_frames.hpp"
 
@@ -49,6 +50,34 @@ TEST(DetectorAllocation, PostprocessingAllocatesNothingInSteadyState) {
   ASSERT_FALSE(out.empty());
   const test::CountingScope counting;
   for (int i = 0; i < 10; ++i) post.run(boxes.data(), logits.data(), 640, 480, out);
+  EXPECT_EQ(counting.allocations(), 0);
+}
+
+// Two boxes in every image it is given: one at its centre, one against its right edge (cut, in a
+// tile), so that the merge joins, suppresses and keeps.
+class TwoBoxes : public Detector {
+ public:
+  void detect(const cv::Mat& image, std::int64_t, std::vector<tracker::Detection>& out) override {
+    const auto w = static_cast<float>(image.cols);
+    const auto h = static_cast<float>(image.rows);
+    out.clear();
+    out.push_back({{w / 2.F - 20.F, h / 2.F - 40.F, 40.F, 80.F}, 0.9F, 1});
+    out.push_back({{w - 30.F, h / 4.F, 30.F, 90.F}, 0.6F, 1});
+  }
+  std::string describe() const override { return "two boxes"; }
+};
+
+TEST(DetectorAllocation, TilingAllocatesNothingInSteadyState) {
+  TilingConfig config;
+  config.grid = {4, 2, 0.2F};
+  TilingDetector tiling(std::make_unique<TwoBoxes>(), config);
+  const cv::Mat frame(1080, 1920, CV_8UC3, cv::Scalar::all(0));
+  std::vector<tracker::Detection> out;
+  tiling.detect(frame, 1, out);  // plans the size's tiles, grows the buffers
+  tiling.detect(frame, 2, out);
+  ASSERT_GE(out.size(), 9U);
+  const test::CountingScope counting;
+  for (int i = 0; i < 10; ++i) tiling.detect(frame, 3 + i, out);
   EXPECT_EQ(counting.allocations(), 0);
 }
 
