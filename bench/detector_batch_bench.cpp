@@ -213,6 +213,10 @@ int main(int argc, char** argv) {
             forward_median / per_call, 1000.0 * per_call / call_median, baseline / forward_median,
             median(run.preprocess_ms));
       }
+      for (const Run& run : runs) {
+        const std::string pool = run.detector->xnnpack_pool_use();
+        if (!pool.empty()) std::printf("# %s pool: %s\n", run.backend.c_str(), pool.c_str());
+      }
       std::fflush(stdout);
     }
   }

@@ -88,8 +88,7 @@ BackendChoice checked_backend(const SsdConfig& config) {
         std::to_string(config.max_batch) + " is outside 1.." + std::to_string(kMaxBatchLimit),
         ExitCode::usage);
   }
-  BackendChoice choice =
-      choose_backend(config.backend, config.fp16, probe_backend_capabilities(), config.threads);
+  BackendChoice choice = choose_backend(config.backend, config.fp16, probe_backend_capabilities());
   if (config.verify_checksums) {
     require_readable_file(config.model_path, "model");
     verify_model_checksums(checksum_path_of(config.model_path), config.model_path,
@@ -129,7 +128,11 @@ SsdDetector::SsdDetector(SsdConfig config)
     resized_.emplace_back(kInputSize, kInputSize, CV_8UC3);
     normalized_.emplace_back(kInputSize, kInputSize, CV_32FC3);
   }
-  if (backend_.engine != Engine::xnnpack || !start_xnnpack()) start_opencv();
+  if (backend_.engine != Engine::xnnpack || !start_xnnpack()) {
+    start_opencv();
+  } else if (backend_.measure) {
+    keep_the_faster_engine();
+  }
   running_ = true;
   // The choice and its reason are logged by whoever builds the pipeline (describe()), once.
 }
@@ -177,6 +180,57 @@ void SsdDetector::fall_back_to_opencv(const std::string& why) {
                why);
   backend_ = {Engine::opencv, cv::dnn::DNN_BACKEND_OPENCV, cv::dnn::DNN_TARGET_CPU, "cpu",
               "xnnpack cannot run the model (" + why + ")"};
+}
+
+// Both engines are started (loaded, warmed up) and timed in turn, pass by pass, on the start-up
+// input, so that a load that comes and goes hits both alike; the slower is released.
+void SsdDetector::keep_the_faster_engine() {
+  std::unique_ptr<XnnpackNetwork> xnn = std::move(xnn_);  // start_opencv() runs without it
+  std::vector<cv::Mat> xnn_inputs = std::move(xnn_inputs_);
+  start_opencv();
+  std::vector<double> xnn_ms;
+  std::vector<double> opencv_ms;
+  for (int pass = 0; pass < kMeasuredPasses; ++pass) {
+    const auto start = std::chrono::steady_clock::now();
+    xnn->run(1);
+    xnn_ms.push_back(
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+            .count());
+    forward(1);
+    opencv_ms.push_back(static_cast<double>(last_forward_ns_) * 1e-6);
+  }
+  const auto median = [](std::vector<double> ms) {
+    std::nth_element(ms.begin(), ms.begin() + static_cast<std::ptrdiff_t>(ms.size() / 2), ms.end());
+    return ms[ms.size() / 2];
+  };
+  const double xnn_median = median(xnn_ms);
+  const double opencv_median = median(opencv_ms);
+  const bool xnnpack = xnn_median <= opencv_median;
+  std::ostringstream why;
+  why.precision(3);
+  why << backend_.reason.substr(0, backend_.reason.find(';')) << "; measured at start on "
+      << (config_.threads > 0 ? std::to_string(config_.threads) + " thread(s)"
+                              : std::string("one thread per CPU"))
+      << ", forward median of " << kMeasuredPasses << " passes each: xnnpack " << xnn_median
+      << " ms, OpenCV cpu " << opencv_median << " ms: " << (xnnpack ? "xnnpack" : "OpenCV cpu")
+      << " is faster here";
+  if (xnnpack) {
+    backend_ = {Engine::xnnpack, 0, 0, "xnnpack", why.str()};
+    xnn_ = std::move(xnn);
+    xnn_inputs_ = std::move(xnn_inputs);
+    net_ = cv::dnn::Net();
+    batch_net_ = cv::dnn::Net();
+    outputs_.clear();
+    planes_.clear();
+    single_view_.release();
+    batch_view_.release();
+    blob_.release();
+    boxes_ = xnn_->boxes();
+    logits_ = xnn_->logits();
+  } else {
+    backend_ = {Engine::opencv, cv::dnn::DNN_BACKEND_OPENCV, cv::dnn::DNN_TARGET_CPU, "cpu",
+                why.str()};
+  }
 }
 
 void SsdDetector::start_opencv() {

@@ -5,16 +5,19 @@
 #include <xnnpack.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <limits>
 #include <map>
+#include <opencv2/core/utility.hpp>
 #include <set>
 #include <sstream>
 #include <vector>
 
 #include "common/input_error.hpp"
 #include "detector/model_files.hpp"
+#include "detector/pool_governor.hpp"
 
 namespace rtmot::detector {
 
@@ -632,8 +635,14 @@ struct XnnpackNetwork::Impl {
   std::vector<Piece> pieces;
   JoinedOutput boxes;
   JoinedOutput logits;
-  RuntimePtr single;
-  RuntimePtr batched;
+  // Each batch size twice: on the pool and on the caller's thread alone (no pool), the governor
+  // choosing per pass (detector/pool_governor.hpp). Without a pool only the inline ones exist.
+  RuntimePtr single_pooled;
+  RuntimePtr single_inline;
+  RuntimePtr batched_pooled;
+  RuntimePtr batched_inline;
+  PoolGovernor single_governor;
+  PoolGovernor batched_governor;
   std::string summary;
 };
 
@@ -667,21 +676,28 @@ XnnpackNetwork::XnnpackNetwork(const XnnpackNetworkConfig& config)
   const auto input_size = static_cast<std::size_t>(config.input_size);
   const std::size_t image_floats = input_size * input_size * 3;
   impl.input.assign(max_batch * image_floats + XNN_EXTRA_BYTES / sizeof(float), 0.F);
-  if (config.threads != 1) {
-    impl.pool.reset(pthreadpool_create(static_cast<std::size_t>(std::max(0, config.threads))));
+  // Never more workers than the CPUs this process may use (affinity mask, cpuset, CPU quota: as
+  // OpenCV counts them): a pool larger than that spins on every operator for a worker that has no
+  // core (measured: 2 threads on one core, 675 ms a forward against 39 ms for OpenCV).
+  const int cpus = std::max(1, cv::getNumberOfCPUs());
+  const int threads = config.threads > 0 ? std::min(config.threads, cpus) : cpus;
+  if (threads > 1) {
+    impl.pool.reset(pthreadpool_create(static_cast<std::size_t>(threads)));
     if (!impl.pool) throw model_error("cannot start XNNPACK's thread pool");
   }
 
   std::map<uint32_t, std::size_t> piece_sizes;  // floats per image of each external output
-  const auto make_runtime = [&](std::size_t batch, std::map<std::string, Value>& outputs) {
+  const auto make_runtime = [&](std::size_t batch, std::map<std::string, Value>& outputs,
+                                pthreadpool_t pool) {
     SubgraphBuilder builder(path, graph, impl.weights, external_ids, batch, input_size);
     SubgraphPtr subgraph = builder.build(outputs, piece_sizes);
     xnn_runtime_t raw = nullptr;
     // Workers sleep once a forward is done instead of spinning until the next frame arrives: the
     // pipeline's capture and track threads share these cores between forwards (measured on 2 idle
-    // cores: the forward's median and the every-frame FPS unchanged).
+    // cores: the forward's median and the every-frame FPS unchanged). Between operators they still
+    // spin (the flag reaches the last operator only): hence the governor.
     const xnn_status status =
-        xnn_create_runtime_v2(subgraph.get(), impl.pool.get(), XNN_FLAG_YIELD_WORKERS, &raw);
+        xnn_create_runtime_v2(subgraph.get(), pool, pool ? XNN_FLAG_YIELD_WORKERS : 0, &raw);
     if (status != xnn_status_success) {
       throw model_error("XNNPACK cannot plan the network (status " +
                         std::to_string(static_cast<int>(status)) + ")");
@@ -691,7 +707,8 @@ XnnpackNetwork::XnnpackNetwork(const XnnpackNetworkConfig& config)
 
   // Batch 1 first: it names the outputs' pieces and sizes their buffers.
   std::map<std::string, Value> outputs;
-  impl.single = make_runtime(1, outputs);
+  impl.single_inline = make_runtime(1, outputs, nullptr);
+  if (impl.pool) impl.single_pooled = make_runtime(1, outputs, impl.pool.get());
   std::map<uint32_t, std::size_t> piece_of;
   const auto join = [&](const std::string& name, JoinedOutput& joined) {
     const auto found = outputs.find(name);
@@ -719,7 +736,10 @@ XnnpackNetwork::XnnpackNetwork(const XnnpackNetworkConfig& config)
                         config.logit_output + "'");
     }
   }
-  impl.batched = max_batch > 1 ? make_runtime(max_batch, outputs) : nullptr;
+  if (max_batch > 1) {
+    impl.batched_inline = make_runtime(max_batch, outputs, nullptr);
+    if (impl.pool) impl.batched_pooled = make_runtime(max_batch, outputs, impl.pool.get());
+  }
   for (Piece& piece : impl.pieces) {
     piece.per_image = piece_sizes.at(piece.id);
     piece.data.assign(max_batch * piece.per_image, 0.F);
@@ -732,7 +752,8 @@ XnnpackNetwork::XnnpackNetwork(const XnnpackNetworkConfig& config)
   // The buffers never move: set up once, each run only invokes.
   std::vector<xnn_external_value> externals{{kInputExternalId, impl.input.data()}};
   for (Piece& piece : impl.pieces) externals.push_back({piece.id, piece.data.data()});
-  for (xnn_runtime_t runtime : {impl.single.get(), impl.batched.get()}) {
+  for (xnn_runtime_t runtime : {impl.single_pooled.get(), impl.single_inline.get(),
+                                impl.batched_pooled.get(), impl.batched_inline.get()}) {
     if (runtime &&
         xnn_setup_runtime(runtime, externals.size(), externals.data()) != xnn_status_success) {
       throw model_error("XNNPACK cannot set up the network's buffers");
@@ -748,7 +769,11 @@ XnnpackNetwork::XnnpackNetwork(const XnnpackNetworkConfig& config)
     first = false;
   }
   text << "), batch 1" << (max_batch > 1 ? " and " + std::to_string(max_batch) : std::string())
-       << ", " << (impl.pool ? pthreadpool_get_threads_count(impl.pool.get()) : 1) << " thread(s)";
+       << ", " << threads << " thread(s)"
+       << (config.threads > threads
+               ? " (" + std::to_string(config.threads) + " asked; the CPUs this process may use)"
+               : std::string())
+       << (impl.pool ? ", the pool used while faster than one thread (measured pass by pass)" : "");
   impl.summary = text.str();
 }
 
@@ -761,9 +786,19 @@ float* XnnpackNetwork::input(int slot) {
 
 void XnnpackNetwork::run(int count) {
   Impl& impl = *impl_;
-  xnn_runtime_t runtime = count == 1 || !impl.batched ? impl.single.get() : impl.batched.get();
+  const bool batched = count > 1 && impl.batched_inline;
+  PoolGovernor& governor = batched ? impl.batched_governor : impl.single_governor;
+  const bool pooled = impl.pool && governor.use_pool();
+  xnn_runtime_t runtime = batched ? (pooled ? impl.batched_pooled : impl.batched_inline).get()
+                                  : (pooled ? impl.single_pooled : impl.single_inline).get();
+  const auto start = std::chrono::steady_clock::now();
   if (xnn_invoke_runtime(runtime) != xnn_status_success) {
     throw std::runtime_error("XNNPACK failed to run the network");
+  }
+  if (impl.pool) {
+    governor.record(std::chrono::duration_cast<std::chrono::nanoseconds>(
+                        std::chrono::steady_clock::now() - start)
+                        .count());
   }
   // The concatenation the graph ends with, image by image.
   for (JoinedOutput* joined : {&impl.boxes, &impl.logits}) {
@@ -792,6 +827,21 @@ std::size_t XnnpackNetwork::classes() const {
 }
 std::string XnnpackNetwork::summary() const {
   return impl_->summary;
+}
+
+std::string XnnpackNetwork::pool_use() const {
+  if (!impl_->pool) return "";
+  std::ostringstream text;
+  text.precision(3);
+  for (const auto& [name, governor] : {std::pair{"batch 1", &impl_->single_governor},
+                                       std::pair{"batch", &impl_->batched_governor}}) {
+    if (governor->passes() == 0) continue;
+    text << (text.tellp() > 0 ? "; " : "") << name << ": " << governor->pooled_passes() << " of "
+         << governor->passes() << " passes on the pool (estimates: pool "
+         << static_cast<double>(governor->pooled_ns()) * 1e-6 << " ms, one thread "
+         << static_cast<double>(governor->inline_ns()) * 1e-6 << " ms)";
+  }
+  return text.str();
 }
 
 }  // namespace rtmot::detector

@@ -32,14 +32,24 @@ TEST(RunSetupDetector, XnnpackRunsOnTheDecidedThreadCount) {
   EXPECT_NE(one->describe().find(", 1 thread(s)]"), std::string::npos) << one->describe();
 }
 
-TEST(RunSetupDetector, AutoSeesOneDetectorThread) {
+// Auto measures both CPU engines at start on the count decided, and says so.
+TEST(RunSetupDetector, AutoMeasuresOnTheDecidedThreadCount) {
   if (!xnnpack_here()) GTEST_SKIP() << "no XNNPACK backend here";
   const auto caps = detector::probe_backend_capabilities();
   if (caps.opencv_has_cuda && caps.cuda_devices > 0) GTEST_SKIP() << "CUDA here: auto picks it";
   const auto built = make_detector(detector_config(detector::BackendRequest::automatic, 1));
   const auto* ssd = dynamic_cast<const detector::SsdDetector*>(built.get());
   ASSERT_NE(ssd, nullptr);
-  EXPECT_EQ(ssd->backend().engine, detector::Engine::xnnpack) << ssd->describe();
+  const std::string& reason = ssd->backend().reason;
+  EXPECT_NE(reason.find("measured at start on 1 thread(s)"), std::string::npos) << reason;
+  EXPECT_NE(reason.find("xnnpack "), std::string::npos) << reason;
+  EXPECT_NE(reason.find("OpenCV cpu "), std::string::npos) << reason;
+  // The engine kept is the one the line names as faster.
+  const bool xnnpack = ssd->backend().engine == detector::Engine::xnnpack;
+  EXPECT_NE(reason.find(xnnpack ? ": xnnpack is faster" : ": OpenCV cpu is faster"),
+            std::string::npos)
+      << reason;
+  EXPECT_EQ(ssd->backend().name, xnnpack ? "xnnpack" : "cpu");
 }
 
 }  // namespace
