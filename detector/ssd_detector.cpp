@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <new>
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 #include <sstream>
@@ -46,6 +47,29 @@ void require_readable_file(const std::filesystem::path& path, const char* what) 
   open_model_file(path, kMaxModelBytes, what);
 }
 
+// OpenCV's own message, on one line: e.msg spans lines (OpenCV's version, source file and line,
+// then the text); e.err is the text, which may itself hold line breaks.
+std::string one_line(const cv::Exception& e) {
+  std::string text;
+  for (const char c : e.err) {
+    if (c == '\n' || c == '\r') {
+      if (!text.empty() && text.back() != ' ') text += "; ";
+    } else {
+      text += c;
+    }
+  }
+  while (!text.empty() && (text.back() == ' ' || text.back() == ';')) text.pop_back();
+  return text;
+}
+
+// A model whose declared sizes ask for more memory than there is is a bad model, not an internal
+// error: the one message for both engines' start-up.
+InputError out_of_memory(const std::filesystem::path& path) {
+  return model_error(path,
+                     "the model asks for more memory than this machine gives (declared sizes "
+                     "too large: damaged model? run scripts/fetch_model.sh again)");
+}
+
 cv::dnn::Net load_network(const std::filesystem::path& path, const BackendChoice& backend) {
   require_readable_file(path, "model");
   cv::dnn::Net net;
@@ -55,7 +79,9 @@ cv::dnn::Net load_network(const std::filesystem::path& path, const BackendChoice
     throw model_error(path,
                       "cannot load the model (truncated or corrupt? run "
                       "scripts/fetch_model.sh again): " +
-                          e.msg);
+                          one_line(e));
+  } catch (const std::bad_alloc&) {
+    throw out_of_memory(path);
   }
   if (net.empty()) throw model_error(path, "the model holds no network");
   net.setPreferableBackend(backend.backend);
@@ -144,7 +170,11 @@ std::unique_ptr<XnnpackNetwork> SsdDetector::build_xnnpack() {
     xnn.input_size = kInputSize;
     xnn.max_batch = config_.max_batch;
     xnn.threads = config_.threads;
-    return std::make_unique<XnnpackNetwork>(xnn);
+    try {
+      return std::make_unique<XnnpackNetwork>(xnn);
+    } catch (const std::bad_alloc&) {
+      throw out_of_memory(config_.model_path);
+    }
   } catch (const InputError& e) {
     if (config_.backend != BackendRequest::automatic || e.exit_code() != ExitCode::bad_model) {
       throw;
@@ -269,7 +299,9 @@ void SsdDetector::warm_up(int count) {
   try {
     forward(count);
   } catch (const cv::Exception& e) {
-    throw model_error(config_.model_path, "the model does not run: " + e.msg);
+    throw model_error(config_.model_path, "the model does not run: " + one_line(e));
+  } catch (const std::bad_alloc&) {
+    throw out_of_memory(config_.model_path);
   } catch (const InputError&) {
     throw;  // already says what and where (a CUDA failure at run time)
   } catch (const std::runtime_error& e) {  // XNNPACK's

@@ -66,10 +66,29 @@ struct Value {
   std::vector<uint32_t> pieces;
 };
 
+// Every size the file declares (tensor dimensions, kernel sizes, pads, strides, dilations, groups)
+// is bounded before anything is computed or allocated from it, and so is every tensor the builder
+// defines: a damaged or hostile model fails naming its node or tensor (bad_model), never with
+// std::bad_alloc or an overflow (issue 32: huge pads exited 1). Far above what an SSD needs (its
+// largest dimension is 1280 channels, its largest feature map 2.2 M floats an image).
+constexpr std::int64_t kMaxDeclaredSize = std::int64_t{1} << 16;
+constexpr std::size_t kMaxTensorFloatsPerImage = std::size_t{1} << 26;  // 256 MB
+
+// Saturates at SIZE_MAX instead of wrapping, so that a product compared with a bound or a count
+// stays honest.
 std::size_t product(const std::vector<std::size_t>& dims, std::size_t from = 0) {
   std::size_t n = 1;
-  for (std::size_t i = from; i < dims.size(); ++i) n *= dims[i];
+  for (std::size_t i = from; i < dims.size(); ++i) {
+    if (dims[i] != 0 && n > std::numeric_limits<std::size_t>::max() / dims[i]) {
+      return std::numeric_limits<std::size_t>::max();
+    }
+    n *= dims[i];
+  }
   return n;
+}
+
+bool declared_size_ok(std::int64_t value, std::int64_t least) {
+  return value >= least && value <= kMaxDeclaredSize;
 }
 
 std::string shape_text(const std::vector<std::size_t>& dims) {
@@ -270,6 +289,13 @@ class SubgraphBuilder {
     } else {
       data.assign(tensor.float_data().begin(), tensor.float_data().end());
     }
+    for (const std::int64_t dim : tensor.dims()) {
+      if (!declared_size_ok(dim, 0)) {
+        throw error(node, "weight tensor '" + tensor.name() + "' declares a dimension of " +
+                              std::to_string(dim) + " (at most " +
+                              std::to_string(kMaxDeclaredSize) + ")");
+      }
+    }
     std::vector<std::size_t> dims(tensor.dims().begin(), tensor.dims().end());
     if (data.size() != product(dims)) {
       throw error(node, "weight tensor '" + tensor.name() + "' holds " +
@@ -314,6 +340,11 @@ class SubgraphBuilder {
 
   /// A computed tensor: an external output when it is (a piece of) a graph output.
   uint32_t define_computed(const std::string& name, const std::vector<std::size_t>& xnn_dims) {
+    if (xnn_dims.empty() || product(xnn_dims, 1) > kMaxTensorFloatsPerImage) {
+      throw model_error("the tensor '" + name + "' would be " + shape_text(xnn_dims) +
+                        " floats; at most " + std::to_string(kMaxTensorFloatsPerImage) +
+                        " an image (damaged model? run scripts/fetch_model.sh again)");
+    }
     uint32_t external = XNN_INVALID_VALUE_ID;
     uint32_t flags = 0;
     const auto found = external_ids_.find(name);
@@ -376,7 +407,12 @@ class SubgraphBuilder {
     const std::size_t group_in = w[1];
     const std::size_t kh = w[2];
     const std::size_t kw = w[3];
-    const auto groups = static_cast<std::size_t>(int_attribute(node, "group", 1));
+    const std::int64_t group_attribute = int_attribute(node, "group", 1);
+    if (!declared_size_ok(group_attribute, 1)) {
+      throw error(node, "group " + std::to_string(group_attribute) + " is outside 1.." +
+                            std::to_string(kMaxDeclaredSize));
+    }
+    const auto groups = static_cast<std::size_t>(group_attribute);
     const std::size_t in_channels = input.shape[1];
     if (groups == 0 || group_in * groups != in_channels || out_channels % groups != 0) {
       throw error(node, "weights " + shape_text(w) + " do not fit " + std::to_string(in_channels) +
@@ -390,11 +426,14 @@ class SubgraphBuilder {
     const auto strides = ints_attribute(node, "strides", {1, 1});
     const auto dilations = ints_attribute(node, "dilations", {1, 1});
     const auto pads = ints_attribute(node, "pads", {0, 0, 0, 0});  // top, left, bottom, right
+    const auto all_within = [](const std::vector<std::int64_t>& values, std::int64_t least) {
+      return std::all_of(values.begin(), values.end(),
+                         [least](std::int64_t v) { return declared_size_ok(v, least); });
+    };
     if (strides.size() != 2 || dilations.size() != 2 || pads.size() != 4 ||
-        std::any_of(strides.begin(), strides.end(), [](auto v) { return v < 1; }) ||
-        std::any_of(dilations.begin(), dilations.end(), [](auto v) { return v < 1; }) ||
-        std::any_of(pads.begin(), pads.end(), [](auto v) { return v < 0; })) {
-      throw error(node, "invalid strides, dilations or pads");
+        !all_within(strides, 1) || !all_within(dilations, 1) || !all_within(pads, 0)) {
+      throw error(node, "invalid strides, dilations or pads (each at most " +
+                            std::to_string(kMaxDeclaredSize) + ")");
     }
     const auto extent = [](std::size_t size, std::int64_t pad_a, std::int64_t pad_b,
                            std::size_t kernel, std::int64_t dilation, std::int64_t stride) {

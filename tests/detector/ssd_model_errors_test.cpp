@@ -53,6 +53,9 @@ class SsdModelErrors : public ::testing::Test {
     } catch (const InputError& e) {
       EXPECT_EQ(e.exit_code(), ExitCode::bad_model) << e.what();
       EXPECT_EQ(e.file(), named.string()) << e.what();
+      // One line (issue 32: OpenCV's message spanned three, its source file and line first).
+      EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << e.what();
+      EXPECT_EQ(std::string(e.what()).find(".cpp:"), std::string::npos) << e.what();
     }
   }
 
