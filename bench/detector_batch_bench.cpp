@@ -35,6 +35,7 @@
 #include "common/input_error.hpp"
 #include "detector/ssd_detector.hpp"
 #include "detector/xnnpack_network.hpp"
+#include "platform/log_setup.hpp"
 
 namespace {
 
@@ -139,6 +140,7 @@ std::unique_ptr<rtmot::detector::SsdDetector> make_detector(const Options& optio
 }
 
 int main(int argc, char** argv) {
+  rtmot::platform::configure_logging(rtmot::platform::LogFormat::text, "");  // stderr: the table
   const Options options = parse(argc, argv);
   for (const auto& backend : options.backends) {
     if (backend != "cpu" && backend != "xnnpack" && backend != "cuda" && backend != "cuda-fp16") {
