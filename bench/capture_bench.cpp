@@ -67,5 +67,3 @@ BENCHMARK(BM_ReadTestPattern)
     ->UseRealTime();
 
 }  // namespace
-
-BENCHMARK_MAIN();

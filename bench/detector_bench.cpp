@@ -76,5 +76,3 @@ BENCHMARK(BM_SsdDetect)
     ->UseRealTime();
 
 }  // namespace
-
-BENCHMARK_MAIN();

@@ -146,5 +146,3 @@ void BM_EventCounter(benchmark::State& state) {
 BENCHMARK(BM_EventCounter)->Arg(0)->Arg(5)->Arg(10)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
-
-BENCHMARK_MAIN();

@@ -75,5 +75,3 @@ void BM_JsonLine(benchmark::State& state) {
 BENCHMARK(BM_JsonLine)->Arg(20);
 
 }  // namespace
-
-BENCHMARK_MAIN();

@@ -59,5 +59,3 @@ void BM_ScoreFixture(benchmark::State& state) {
 BENCHMARK(BM_ScoreFixture)->Unit(benchmark::kMillisecond);
 
 }  // namespace
-
-BENCHMARK_MAIN();

@@ -274,5 +274,3 @@ BENCHMARK(BM_MultiSourceEveryFrame)
     ->UseRealTime();
 
 }  // namespace
-
-BENCHMARK_MAIN();

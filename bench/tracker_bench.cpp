@@ -190,5 +190,3 @@ void BM_LinearAssignment(benchmark::State& state) {
 BENCHMARK(BM_LinearAssignment)->Arg(8)->Arg(16)->Arg(64);
 
 }  // namespace
-
-BENCHMARK_MAIN();

@@ -30,7 +30,7 @@ BackendCapabilities probe_backend_capabilities() {
 }
 
 BackendChoice choose_backend(BackendRequest backend, Fp16Request fp16,
-                             const BackendCapabilities& caps, int threads) {
+                             const BackendCapabilities& caps) {
   const bool cuda_possible = caps.opencv_has_cuda && caps.cuda_devices > 0;
   const std::string why_not_cuda = !caps.opencv_has_cuda
                                        ? "this OpenCV was built without the CUDA DNN backend"
@@ -61,18 +61,17 @@ BackendChoice choose_backend(BackendRequest backend, Fp16Request fp16,
     if (backend == BackendRequest::xnnpack) {
       return {Engine::xnnpack, 0, 0, "xnnpack", "xnnpack requested"};
     }
-    if (backend == BackendRequest::automatic && caps.xnnpack_built && threads == 1) {
-      return {Engine::xnnpack, 0, 0, "xnnpack",
-              why_not_cuda + "; xnnpack is the fastest CPU backend built in, on one thread"};
+    if (backend == BackendRequest::automatic && caps.xnnpack_built) {
+      return {Engine::xnnpack,
+              0,
+              0,
+              "xnnpack",
+              why_not_cuda + "; xnnpack and OpenCV's cpu path to be measured at start",
+              true};
     }
-    const std::string reason =
-        backend == BackendRequest::cpu ? "cpu requested"
-        : caps.xnnpack_built
-            ? why_not_cuda +
-                  "; xnnpack is built in but automatic only on one thread (its pool "
-                  "spin-waits on shared cores: backend: xnnpack to use it, "
-                  "docs/cpu-detector.md)"
-            : why_not_cuda + "; no xnnpack in this build";
+    const std::string reason = backend == BackendRequest::cpu
+                                   ? "cpu requested"
+                                   : why_not_cuda + "; no xnnpack in this build";
     return {Engine::opencv, cv::dnn::DNN_BACKEND_OPENCV, cv::dnn::DNN_TARGET_CPU, "cpu", reason};
   }
   const std::string origin = backend == BackendRequest::cuda ? "cuda requested" : "cuda available";

@@ -36,6 +36,10 @@ struct BackendChoice {
   int target{0};       // cv::dnn::Target
   std::string name;    // "cpu", "cuda", "cuda-fp16", "xnnpack"
   std::string reason;  // why, for the log
+  /// Backend auto on the CPU with XNNPACK built: which CPU engine is faster depends on the
+  /// processor and on what else runs on its cores, so SsdDetector times both at start (a few
+  /// passes each) and keeps the faster; engine is xnnpack until then.
+  bool measure{false};
 };
 
 /// What this machine offers that the SSD can use.
@@ -48,17 +52,12 @@ struct BackendCapabilities {
 
 BackendCapabilities probe_backend_capabilities();
 
-/// CUDA when asked or (automatic) when available; else (automatic) XNNPACK when built in and the
-/// detector runs on one thread (the fastest CPU engine there, docs/cpu-detector.md), else OpenCV's
-/// CPU path. FP16 on CUDA when asked or
+/// CUDA when asked or (automatic) when available; else (automatic) both CPU engines measured at
+/// start when XNNPACK is built in (`measure`), else OpenCV's CPU path. FP16 on CUDA when asked or
 /// (automatic) on Jetson boards, where it roughly doubles throughput at no measurable accuracy
 /// cost; discrete GPUs without tensor-core paths in OpenCV gain little. Throws rtmot::InputError
 /// (ExitCode::usage) when CUDA or XNNPACK is forced but impossible, or FP16 is forced on the CPU.
-/// `threads`: the detector's thread count (SsdConfig::threads; 0 = every core). Automatic picks
-/// XNNPACK only for one thread: its thread pool (pthreadpool) spin-waits between operators, and
-/// where its cores are shared (the pipeline's other stages, other processes) a forward pass takes
-/// 5 to 35 times longer (measured, docs/cpu-detector.md), where OpenCV's pool degrades gently.
 BackendChoice choose_backend(BackendRequest backend, Fp16Request fp16,
-                             const BackendCapabilities& capabilities, int threads = 0);
+                             const BackendCapabilities& capabilities);
 
 }  // namespace rtmot::detector

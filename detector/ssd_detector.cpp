@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <new>
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 #include <sstream>
@@ -46,6 +47,29 @@ void require_readable_file(const std::filesystem::path& path, const char* what) 
   open_model_file(path, kMaxModelBytes, what);
 }
 
+// OpenCV's own message, on one line: e.msg spans lines (OpenCV's version, source file and line,
+// then the text); e.err is the text, which may itself hold line breaks.
+std::string one_line(const cv::Exception& e) {
+  std::string text;
+  for (const char c : e.err) {
+    if (c == '\n' || c == '\r') {
+      if (!text.empty() && text.back() != ' ') text += "; ";
+    } else {
+      text += c;
+    }
+  }
+  while (!text.empty() && (text.back() == ' ' || text.back() == ';')) text.pop_back();
+  return text;
+}
+
+// A model whose declared sizes ask for more memory than there is is a bad model, not an internal
+// error: the one message for both engines' start-up.
+InputError out_of_memory(const std::filesystem::path& path) {
+  return model_error(path,
+                     "the model asks for more memory than this machine gives (declared sizes "
+                     "too large: damaged model? run scripts/fetch_model.sh again)");
+}
+
 cv::dnn::Net load_network(const std::filesystem::path& path, const BackendChoice& backend) {
   require_readable_file(path, "model");
   cv::dnn::Net net;
@@ -55,7 +79,9 @@ cv::dnn::Net load_network(const std::filesystem::path& path, const BackendChoice
     throw model_error(path,
                       "cannot load the model (truncated or corrupt? run "
                       "scripts/fetch_model.sh again): " +
-                          e.msg);
+                          one_line(e));
+  } catch (const std::bad_alloc&) {
+    throw out_of_memory(path);
   }
   if (net.empty()) throw model_error(path, "the model holds no network");
   net.setPreferableBackend(backend.backend);
@@ -89,8 +115,7 @@ BackendChoice checked_backend(const SsdConfig& config) {
         std::to_string(config.max_batch) + " is outside 1.." + std::to_string(kMaxBatchLimit),
         ExitCode::usage);
   }
-  BackendChoice choice =
-      choose_backend(config.backend, config.fp16, probe_backend_capabilities(), config.threads);
+  BackendChoice choice = choose_backend(config.backend, config.fp16, probe_backend_capabilities());
   if (config.verify_checksums) {
     require_readable_file(config.model_path, "model");
     verify_model_checksums(checksum_path_of(config.model_path), config.model_path,
@@ -130,7 +155,11 @@ SsdDetector::SsdDetector(SsdConfig config)
     resized_.emplace_back(kInputSize, kInputSize, CV_8UC3);
     normalized_.emplace_back(kInputSize, kInputSize, CV_32FC3);
   }
-  if (backend_.engine != Engine::xnnpack || !start_xnnpack()) start_opencv();
+  if (backend_.engine != Engine::xnnpack || !start_xnnpack()) {
+    start_opencv();
+  } else if (backend_.measure) {
+    keep_the_faster_engine();
+  }
   running_ = true;
   // The choice and its reason are logged by whoever builds the pipeline (describe()), once.
 }
@@ -142,7 +171,11 @@ std::unique_ptr<XnnpackNetwork> SsdDetector::build_xnnpack() {
     xnn.input_size = kInputSize;
     xnn.max_batch = config_.max_batch;
     xnn.threads = config_.threads;
-    return std::make_unique<XnnpackNetwork>(xnn);
+    try {
+      return std::make_unique<XnnpackNetwork>(xnn);
+    } catch (const std::bad_alloc&) {
+      throw out_of_memory(config_.model_path);
+    }
   } catch (const InputError& e) {
     if (config_.backend != BackendRequest::automatic || e.exit_code() != ExitCode::bad_model) {
       throw;
@@ -178,6 +211,57 @@ void SsdDetector::fall_back_to_opencv(const std::string& why) {
                why);
   backend_ = {Engine::opencv, cv::dnn::DNN_BACKEND_OPENCV, cv::dnn::DNN_TARGET_CPU, "cpu",
               "xnnpack cannot run the model (" + why + ")"};
+}
+
+// Both engines are started (loaded, warmed up) and timed in turn, pass by pass, on the start-up
+// input, so that a load that comes and goes hits both alike; the slower is released.
+void SsdDetector::keep_the_faster_engine() {
+  std::unique_ptr<XnnpackNetwork> xnn = std::move(xnn_);  // start_opencv() runs without it
+  std::vector<cv::Mat> xnn_inputs = std::move(xnn_inputs_);
+  start_opencv();
+  std::vector<double> xnn_ms;
+  std::vector<double> opencv_ms;
+  for (int pass = 0; pass < kMeasuredPasses; ++pass) {
+    const auto start = std::chrono::steady_clock::now();
+    xnn->run(1);
+    xnn_ms.push_back(
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+            .count());
+    forward(1);
+    opencv_ms.push_back(static_cast<double>(last_forward_ns_) * 1e-6);
+  }
+  const auto median = [](std::vector<double> ms) {
+    std::nth_element(ms.begin(), ms.begin() + static_cast<std::ptrdiff_t>(ms.size() / 2), ms.end());
+    return ms[ms.size() / 2];
+  };
+  const double xnn_median = median(xnn_ms);
+  const double opencv_median = median(opencv_ms);
+  const bool xnnpack = xnn_median <= opencv_median;
+  std::ostringstream why;
+  why.precision(3);
+  why << backend_.reason.substr(0, backend_.reason.find(';')) << "; measured at start on "
+      << (config_.threads > 0 ? std::to_string(config_.threads) + " thread(s)"
+                              : std::string("one thread per CPU"))
+      << ", forward median of " << kMeasuredPasses << " passes each: xnnpack " << xnn_median
+      << " ms, OpenCV cpu " << opencv_median << " ms: " << (xnnpack ? "xnnpack" : "OpenCV cpu")
+      << " is faster here";
+  if (xnnpack) {
+    backend_ = {Engine::xnnpack, 0, 0, "xnnpack", why.str()};
+    xnn_ = std::move(xnn);
+    xnn_inputs_ = std::move(xnn_inputs);
+    net_ = cv::dnn::Net();
+    batch_net_ = cv::dnn::Net();
+    outputs_.clear();
+    planes_.clear();
+    single_view_.release();
+    batch_view_.release();
+    blob_.release();
+    boxes_ = xnn_->boxes();
+    logits_ = xnn_->logits();
+  } else {
+    backend_ = {Engine::opencv, cv::dnn::DNN_BACKEND_OPENCV, cv::dnn::DNN_TARGET_CPU, "cpu",
+                why.str()};
+  }
 }
 
 void SsdDetector::start_opencv() {
@@ -216,7 +300,9 @@ void SsdDetector::warm_up(int count) {
   try {
     forward(count);
   } catch (const cv::Exception& e) {
-    throw model_error(config_.model_path, "the model does not run: " + e.msg);
+    throw model_error(config_.model_path, "the model does not run: " + one_line(e));
+  } catch (const std::bad_alloc&) {
+    throw out_of_memory(config_.model_path);
   } catch (const InputError&) {
     throw;  // already says what and where (a CUDA failure at run time)
   } catch (const std::runtime_error& e) {  // XNNPACK's

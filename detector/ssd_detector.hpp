@@ -32,7 +32,7 @@ struct SsdConfig {
   BackendRequest backend{BackendRequest::automatic};
   Fp16Request fp16{Fp16Request::automatic};
   /// Worker threads: OpenCV's (process-wide: cv::setNumThreads; 0 = leave as is) and XNNPACK's
-  /// own pool (0 = one per core).
+  /// own pool (0 = one per CPU this process may use). `rtmot run` passes the count it decided.
   int threads{0};
   /// The most images one forward pass takes (detect_batch); 1..kMaxBatchLimit. Above 1 the model
   /// must have a batch dimension (scripts/fetch_model.sh exports one since model format 2).
@@ -87,6 +87,8 @@ class SsdDetector : public Detector {
   std::string describe() const override;
 
   const BackendChoice& backend() const { return backend_; }
+  /// On XNNPACK with a pool: how its passes ran (pool or caller's thread), for benchmarks.
+  std::string xnnpack_pool_use() const { return xnn_ ? xnn_->pool_use() : std::string(); }
 
  private:
   void preprocess(const cv::Mat& bgr_image, int slot);
@@ -103,6 +105,11 @@ class SsdDetector : public Detector {
   /// Its start-up passes; false (and the same switch) when auto chose it and they fail.
   bool start_xnnpack();
   void start_opencv();
+  /// Backend auto on the CPU (BackendChoice::measure): with XNNPACK started, starts OpenCV too,
+  /// times kMeasuredPasses forward passes of each in turn, keeps the engine of the lower median
+  /// and says so in backend_.reason (the start-up log's line).
+  void keep_the_faster_engine();
+  static constexpr int kMeasuredPasses = 5;
   void fall_back_to_opencv(const std::string& why);
 
   SsdConfig config_;

@@ -49,5 +49,8 @@ std::size_t XnnpackNetwork::classes() const {
 std::string XnnpackNetwork::summary() const {
   return {};
 }
+std::string XnnpackNetwork::pool_use() const {
+  return {};
+}
 
 }  // namespace rtmot::detector

@@ -5,16 +5,19 @@
 #include <xnnpack.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <limits>
 #include <map>
+#include <opencv2/core/utility.hpp>
 #include <set>
 #include <sstream>
 #include <vector>
 
 #include "common/input_error.hpp"
 #include "detector/model_files.hpp"
+#include "detector/pool_governor.hpp"
 
 namespace rtmot::detector {
 
@@ -63,10 +66,29 @@ struct Value {
   std::vector<uint32_t> pieces;
 };
 
+// Every size the file declares (tensor dimensions, kernel sizes, pads, strides, dilations, groups)
+// is bounded before anything is computed or allocated from it, and so is every tensor the builder
+// defines: a damaged or hostile model fails naming its node or tensor (bad_model), never with
+// std::bad_alloc or an overflow (issue 32: huge pads exited 1). Far above what an SSD needs (its
+// largest dimension is 1280 channels, its largest feature map 2.2 M floats an image).
+constexpr std::int64_t kMaxDeclaredSize = std::int64_t{1} << 16;
+constexpr std::size_t kMaxTensorFloatsPerImage = std::size_t{1} << 26;  // 256 MB
+
+// Saturates at SIZE_MAX instead of wrapping, so that a product compared with a bound or a count
+// stays honest.
 std::size_t product(const std::vector<std::size_t>& dims, std::size_t from = 0) {
   std::size_t n = 1;
-  for (std::size_t i = from; i < dims.size(); ++i) n *= dims[i];
+  for (std::size_t i = from; i < dims.size(); ++i) {
+    if (dims[i] != 0 && n > std::numeric_limits<std::size_t>::max() / dims[i]) {
+      return std::numeric_limits<std::size_t>::max();
+    }
+    n *= dims[i];
+  }
   return n;
+}
+
+bool declared_size_ok(std::int64_t value, std::int64_t least) {
+  return value >= least && value <= kMaxDeclaredSize;
 }
 
 std::string shape_text(const std::vector<std::size_t>& dims) {
@@ -267,6 +289,13 @@ class SubgraphBuilder {
     } else {
       data.assign(tensor.float_data().begin(), tensor.float_data().end());
     }
+    for (const std::int64_t dim : tensor.dims()) {
+      if (!declared_size_ok(dim, 0)) {
+        throw error(node, "weight tensor '" + tensor.name() + "' declares a dimension of " +
+                              std::to_string(dim) + " (at most " +
+                              std::to_string(kMaxDeclaredSize) + ")");
+      }
+    }
     std::vector<std::size_t> dims(tensor.dims().begin(), tensor.dims().end());
     if (data.size() != product(dims)) {
       throw error(node, "weight tensor '" + tensor.name() + "' holds " +
@@ -311,6 +340,11 @@ class SubgraphBuilder {
 
   /// A computed tensor: an external output when it is (a piece of) a graph output.
   uint32_t define_computed(const std::string& name, const std::vector<std::size_t>& xnn_dims) {
+    if (xnn_dims.empty() || product(xnn_dims, 1) > kMaxTensorFloatsPerImage) {
+      throw model_error("the tensor '" + name + "' would be " + shape_text(xnn_dims) +
+                        " floats; at most " + std::to_string(kMaxTensorFloatsPerImage) +
+                        " an image (damaged model? run scripts/fetch_model.sh again)");
+    }
     uint32_t external = XNN_INVALID_VALUE_ID;
     uint32_t flags = 0;
     const auto found = external_ids_.find(name);
@@ -373,7 +407,12 @@ class SubgraphBuilder {
     const std::size_t group_in = w[1];
     const std::size_t kh = w[2];
     const std::size_t kw = w[3];
-    const auto groups = static_cast<std::size_t>(int_attribute(node, "group", 1));
+    const std::int64_t group_attribute = int_attribute(node, "group", 1);
+    if (!declared_size_ok(group_attribute, 1)) {
+      throw error(node, "group " + std::to_string(group_attribute) + " is outside 1.." +
+                            std::to_string(kMaxDeclaredSize));
+    }
+    const auto groups = static_cast<std::size_t>(group_attribute);
     const std::size_t in_channels = input.shape[1];
     if (groups == 0 || group_in * groups != in_channels || out_channels % groups != 0) {
       throw error(node, "weights " + shape_text(w) + " do not fit " + std::to_string(in_channels) +
@@ -387,11 +426,14 @@ class SubgraphBuilder {
     const auto strides = ints_attribute(node, "strides", {1, 1});
     const auto dilations = ints_attribute(node, "dilations", {1, 1});
     const auto pads = ints_attribute(node, "pads", {0, 0, 0, 0});  // top, left, bottom, right
+    const auto all_within = [](const std::vector<std::int64_t>& values, std::int64_t least) {
+      return std::all_of(values.begin(), values.end(),
+                         [least](std::int64_t v) { return declared_size_ok(v, least); });
+    };
     if (strides.size() != 2 || dilations.size() != 2 || pads.size() != 4 ||
-        std::any_of(strides.begin(), strides.end(), [](auto v) { return v < 1; }) ||
-        std::any_of(dilations.begin(), dilations.end(), [](auto v) { return v < 1; }) ||
-        std::any_of(pads.begin(), pads.end(), [](auto v) { return v < 0; })) {
-      throw error(node, "invalid strides, dilations or pads");
+        !all_within(strides, 1) || !all_within(dilations, 1) || !all_within(pads, 0)) {
+      throw error(node, "invalid strides, dilations or pads (each at most " +
+                            std::to_string(kMaxDeclaredSize) + ")");
     }
     const auto extent = [](std::size_t size, std::int64_t pad_a, std::int64_t pad_b,
                            std::size_t kernel, std::int64_t dilation, std::int64_t stride) {
@@ -632,8 +674,14 @@ struct XnnpackNetwork::Impl {
   std::vector<Piece> pieces;
   JoinedOutput boxes;
   JoinedOutput logits;
-  RuntimePtr single;
-  RuntimePtr batched;
+  // Each batch size twice: on the pool and on the caller's thread alone (no pool), the governor
+  // choosing per pass (detector/pool_governor.hpp). Without a pool only the inline ones exist.
+  RuntimePtr single_pooled;
+  RuntimePtr single_inline;
+  RuntimePtr batched_pooled;
+  RuntimePtr batched_inline;
+  PoolGovernor single_governor;
+  PoolGovernor batched_governor;
   std::string summary;
 };
 
@@ -667,21 +715,28 @@ XnnpackNetwork::XnnpackNetwork(const XnnpackNetworkConfig& config)
   const auto input_size = static_cast<std::size_t>(config.input_size);
   const std::size_t image_floats = input_size * input_size * 3;
   impl.input.assign(max_batch * image_floats + XNN_EXTRA_BYTES / sizeof(float), 0.F);
-  if (config.threads != 1) {
-    impl.pool.reset(pthreadpool_create(static_cast<std::size_t>(std::max(0, config.threads))));
+  // Never more workers than the CPUs this process may use (affinity mask, cpuset, CPU quota: as
+  // OpenCV counts them): a pool larger than that spins on every operator for a worker that has no
+  // core (measured: 2 threads on one core, 675 ms a forward against 39 ms for OpenCV).
+  const int cpus = std::max(1, cv::getNumberOfCPUs());
+  const int threads = config.threads > 0 ? std::min(config.threads, cpus) : cpus;
+  if (threads > 1) {
+    impl.pool.reset(pthreadpool_create(static_cast<std::size_t>(threads)));
     if (!impl.pool) throw model_error("cannot start XNNPACK's thread pool");
   }
 
   std::map<uint32_t, std::size_t> piece_sizes;  // floats per image of each external output
-  const auto make_runtime = [&](std::size_t batch, std::map<std::string, Value>& outputs) {
+  const auto make_runtime = [&](std::size_t batch, std::map<std::string, Value>& outputs,
+                                pthreadpool_t pool) {
     SubgraphBuilder builder(path, graph, impl.weights, external_ids, batch, input_size);
     SubgraphPtr subgraph = builder.build(outputs, piece_sizes);
     xnn_runtime_t raw = nullptr;
     // Workers sleep once a forward is done instead of spinning until the next frame arrives: the
     // pipeline's capture and track threads share these cores between forwards (measured on 2 idle
-    // cores: the forward's median and the every-frame FPS unchanged).
+    // cores: the forward's median and the every-frame FPS unchanged). Between operators they still
+    // spin (the flag reaches the last operator only): hence the governor.
     const xnn_status status =
-        xnn_create_runtime_v2(subgraph.get(), impl.pool.get(), XNN_FLAG_YIELD_WORKERS, &raw);
+        xnn_create_runtime_v2(subgraph.get(), pool, pool ? XNN_FLAG_YIELD_WORKERS : 0, &raw);
     if (status != xnn_status_success) {
       throw model_error("XNNPACK cannot plan the network (status " +
                         std::to_string(static_cast<int>(status)) + ")");
@@ -691,7 +746,8 @@ XnnpackNetwork::XnnpackNetwork(const XnnpackNetworkConfig& config)
 
   // Batch 1 first: it names the outputs' pieces and sizes their buffers.
   std::map<std::string, Value> outputs;
-  impl.single = make_runtime(1, outputs);
+  impl.single_inline = make_runtime(1, outputs, nullptr);
+  if (impl.pool) impl.single_pooled = make_runtime(1, outputs, impl.pool.get());
   std::map<uint32_t, std::size_t> piece_of;
   const auto join = [&](const std::string& name, JoinedOutput& joined) {
     const auto found = outputs.find(name);
@@ -719,7 +775,10 @@ XnnpackNetwork::XnnpackNetwork(const XnnpackNetworkConfig& config)
                         config.logit_output + "'");
     }
   }
-  impl.batched = max_batch > 1 ? make_runtime(max_batch, outputs) : nullptr;
+  if (max_batch > 1) {
+    impl.batched_inline = make_runtime(max_batch, outputs, nullptr);
+    if (impl.pool) impl.batched_pooled = make_runtime(max_batch, outputs, impl.pool.get());
+  }
   for (Piece& piece : impl.pieces) {
     piece.per_image = piece_sizes.at(piece.id);
     piece.data.assign(max_batch * piece.per_image, 0.F);
@@ -732,7 +791,8 @@ XnnpackNetwork::XnnpackNetwork(const XnnpackNetworkConfig& config)
   // The buffers never move: set up once, each run only invokes.
   std::vector<xnn_external_value> externals{{kInputExternalId, impl.input.data()}};
   for (Piece& piece : impl.pieces) externals.push_back({piece.id, piece.data.data()});
-  for (xnn_runtime_t runtime : {impl.single.get(), impl.batched.get()}) {
+  for (xnn_runtime_t runtime : {impl.single_pooled.get(), impl.single_inline.get(),
+                                impl.batched_pooled.get(), impl.batched_inline.get()}) {
     if (runtime &&
         xnn_setup_runtime(runtime, externals.size(), externals.data()) != xnn_status_success) {
       throw model_error("XNNPACK cannot set up the network's buffers");
@@ -748,7 +808,11 @@ XnnpackNetwork::XnnpackNetwork(const XnnpackNetworkConfig& config)
     first = false;
   }
   text << "), batch 1" << (max_batch > 1 ? " and " + std::to_string(max_batch) : std::string())
-       << ", " << (impl.pool ? pthreadpool_get_threads_count(impl.pool.get()) : 1) << " thread(s)";
+       << ", " << threads << " thread(s)"
+       << (config.threads > threads
+               ? " (" + std::to_string(config.threads) + " asked; the CPUs this process may use)"
+               : std::string())
+       << (impl.pool ? ", the pool used while faster than one thread (measured pass by pass)" : "");
   impl.summary = text.str();
 }
 
@@ -761,9 +825,19 @@ float* XnnpackNetwork::input(int slot) {
 
 void XnnpackNetwork::run(int count) {
   Impl& impl = *impl_;
-  xnn_runtime_t runtime = count == 1 || !impl.batched ? impl.single.get() : impl.batched.get();
+  const bool batched = count > 1 && impl.batched_inline;
+  PoolGovernor& governor = batched ? impl.batched_governor : impl.single_governor;
+  const bool pooled = impl.pool && governor.use_pool();
+  xnn_runtime_t runtime = batched ? (pooled ? impl.batched_pooled : impl.batched_inline).get()
+                                  : (pooled ? impl.single_pooled : impl.single_inline).get();
+  const auto start = std::chrono::steady_clock::now();
   if (xnn_invoke_runtime(runtime) != xnn_status_success) {
     throw std::runtime_error("XNNPACK failed to run the network");
+  }
+  if (impl.pool) {
+    governor.record(std::chrono::duration_cast<std::chrono::nanoseconds>(
+                        std::chrono::steady_clock::now() - start)
+                        .count());
   }
   // The concatenation the graph ends with, image by image.
   for (JoinedOutput* joined : {&impl.boxes, &impl.logits}) {
@@ -792,6 +866,21 @@ std::size_t XnnpackNetwork::classes() const {
 }
 std::string XnnpackNetwork::summary() const {
   return impl_->summary;
+}
+
+std::string XnnpackNetwork::pool_use() const {
+  if (!impl_->pool) return "";
+  std::ostringstream text;
+  text.precision(3);
+  for (const auto& [name, governor] : {std::pair{"batch 1", &impl_->single_governor},
+                                       std::pair{"batch", &impl_->batched_governor}}) {
+    if (governor->passes() == 0) continue;
+    text << (text.tellp() > 0 ? "; " : "") << name << ": " << governor->pooled_passes() << " of "
+         << governor->passes() << " passes on the pool (estimates: pool "
+         << static_cast<double>(governor->pooled_ns()) * 1e-6 << " ms, one thread "
+         << static_cast<double>(governor->inline_ns()) * 1e-6 << " ms)";
+  }
+  return text.str();
 }
 
 }  // namespace rtmot::detector

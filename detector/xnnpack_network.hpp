@@ -23,7 +23,9 @@ struct XnnpackNetworkConfig {
   std::filesystem::path model_path;
   int input_size{300};  // the square input the detector feeds (3 channels)
   int max_batch{1};
-  /// Worker threads (pthreadpool); 1 runs on the caller's thread; 0 = one per core.
+  /// Worker threads (pthreadpool); 1 runs on the caller's thread; 0 = one per CPU this process may
+  /// use, which also caps a larger count. With a pool, each pass runs on it or on the caller's
+  /// thread alone, whichever is faster as measured (detector/pool_governor.hpp).
   int threads{0};
   std::string box_output{"box_encodings"};
   std::string logit_output{"class_logits"};
@@ -55,6 +57,9 @@ class XnnpackNetwork {
   std::size_t classes() const;
   /// What was built, for the log: operators and runtimes.
   std::string summary() const;
+  /// How the passes so far ran (on the pool or on the caller's thread, and each way's current
+  /// estimate), for benchmarks; empty without a pool.
+  std::string pool_use() const;
 
  private:
   struct Impl;

@@ -131,11 +131,12 @@ std::unique_ptr<detector::Detector> build_detector(const RunConfig& config, bool
   // machine without either both give the same count (measured: no difference on the 2-core CI
   // machine).
   // This is the one place that decides detector.threads, and the setting is process-wide
-  // (cv::setNumThreads): made here, in the open, not inside the detector's constructor (which
-  // gets 0, "leave as is").
+  // (cv::setNumThreads): made here, in the open. The detector gets the number decided, not 0:
+  // its XNNPACK pool and backend auto's choice are sized by it (issue 32: handed 0, auto never
+  // saw one thread).
   const int threads = wanted.threads > 0 ? wanted.threads : std::max(1, cv::getNumberOfCPUs());
   cv::setNumThreads(threads);
-  ssd.threads = 0;
+  ssd.threads = threads;
   if (first) {
     spdlog::info("detector threads: {}{}", threads,
                  wanted.threads > 0 ? "" : " (the CPUs this process may use)");

@@ -42,7 +42,7 @@ die() {
 }
 shared="$repo/../shared"
 model="$repo/models/ssdlite_mobilenet_v2_coco.onnx"
-[[ -f $model ]] || die "$model: not found (scripts/fetch_model.sh fetches it)"
+[[ -f $model ]] || die "$model: not found: run scripts/fetch_model.sh first (a fresh clone has no model; docs/gpu.md §3)"
 for f in data/reference/ssdlite-coco-vtest-detections.csv data/video/vtest.avi \
   data/mot15-train/TUD-Campus/det/det.txt; do
   [[ -f $shared/$f ]] || die "$shared/$f: not found (../shared, see its README)"

@@ -9,6 +9,8 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <string>
+#include <vector>
 
 #include "common/input_error.hpp"
 #include "detector/ssd_detector.hpp"
@@ -63,6 +65,13 @@ class XnnpackModelErrors : public ::testing::Test {
       if (node.op_type() == op) return node;
     }
     throw std::logic_error("no " + op);
+  }
+
+  static bool attribute_named(const onnx::NodeProto& node, const std::string& name) {
+    for (const auto& attribute : node.attribute()) {
+      if (attribute.name() == name) return true;
+    }
+    return false;
   }
 
   onnx::ModelProto model_;
@@ -156,6 +165,95 @@ TEST_F(XnnpackModelErrors, UnsupportedAttributeIsNamed) {
   EXPECT_EQ(e.exit_code(), ExitCode::bad_model);
   EXPECT_NE(std::string(e.what()).find(transpose.name()), std::string::npos) << e.what();
   EXPECT_NE(std::string(e.what()).find("perm"), std::string::npos) << e.what();
+}
+
+// Sizes the file declares are bounded before anything is allocated from them (issue 32: pads of
+// 2^30 made the build throw std::bad_alloc, exit 1). Each case: bad_model, one line, naming the
+// file and the node or tensor.
+void expect_bad_model(const InputError& e, const std::string& names, const std::string& what) {
+  const std::string text = e.what();
+  EXPECT_EQ(e.exit_code(), ExitCode::bad_model) << text;
+  EXPECT_NE(text.find("changed.onnx"), std::string::npos) << text;
+  EXPECT_NE(text.find(names), std::string::npos) << text;
+  EXPECT_NE(text.find(what), std::string::npos) << text;
+  EXPECT_EQ(text.find('\n'), std::string::npos) << text;
+}
+
+void set_ints(onnx::NodeProto& node, const std::string& name, std::vector<std::int64_t> values) {
+  for (auto& attribute : *node.mutable_attribute()) {
+    if (attribute.name() != name) continue;
+    attribute.clear_ints();
+    for (const auto v : values) attribute.add_ints(v);
+    return;
+  }
+  auto* attribute = node.add_attribute();
+  attribute->set_name(name);
+  attribute->set_type(onnx::AttributeProto::INTS);
+  for (const auto v : values) attribute->add_ints(v);
+}
+
+TEST_F(XnnpackModelErrors, HugePadsAreABadModel) {
+  if (!xnnpack_built()) GTEST_SKIP() << "this build has no XNNPACK backend";
+  if (!xnnpack_runs_here()) GTEST_SKIP() << "XNNPACK does not initialize on this processor";
+  for (const std::int64_t pad : {std::int64_t{1} << 30, std::int64_t{1} << 62}) {
+    onnx::NodeProto& conv = first_node("Conv");
+    set_ints(conv, "pads", {pad, pad, pad, pad});
+    expect_bad_model(expect_error(write(BackendRequest::xnnpack)), conv.name(), "pads");
+  }
+}
+
+// Pads within the bound on each side, but a feature map of 60300 x 60300 x 32 floats.
+TEST_F(XnnpackModelErrors, AHugeFeatureMapIsABadModel) {
+  if (!xnnpack_built()) GTEST_SKIP() << "this build has no XNNPACK backend";
+  if (!xnnpack_runs_here()) GTEST_SKIP() << "XNNPACK does not initialize on this processor";
+  set_ints(first_node("Conv"), "pads", {60000, 60000, 60000, 60000});
+  expect_bad_model(expect_error(write(BackendRequest::xnnpack)), "' would be 1x",
+                   "floats; at most");
+}
+
+TEST_F(XnnpackModelErrors, HugeStridesDilationsAndGroupsAreABadModel) {
+  if (!xnnpack_built()) GTEST_SKIP() << "this build has no XNNPACK backend";
+  if (!xnnpack_runs_here()) GTEST_SKIP() << "XNNPACK does not initialize on this processor";
+  const std::int64_t huge = std::int64_t{1} << 40;
+  {
+    onnx::NodeProto& conv = first_node("Conv");
+    set_ints(conv, "dilations", {huge, huge});
+    expect_bad_model(expect_error(write(BackendRequest::xnnpack)), conv.name(), "dilations");
+    set_ints(conv, "dilations", {1, 1});
+    set_ints(conv, "strides", {huge, 1});
+    expect_bad_model(expect_error(write(BackendRequest::xnnpack)), conv.name(), "strides");
+    set_ints(conv, "strides", {2, 2});
+  }
+  onnx::NodeProto& conv = first_node("Conv");
+  for (auto& attribute : *conv.mutable_attribute()) {
+    if (attribute.name() == "group") attribute.set_i(huge);
+  }
+  if (!attribute_named(conv, "group")) {
+    auto* group = conv.add_attribute();
+    group->set_name("group");
+    group->set_type(onnx::AttributeProto::INT);
+    group->set_i(huge);
+  }
+  expect_bad_model(expect_error(write(BackendRequest::xnnpack)), conv.name(), "group");
+}
+
+// A weight tensor declaring 2^40 output channels and a zero dimension holds no values and so
+// matches its (empty) data: the declared size itself must be refused before the bias is sized.
+TEST_F(XnnpackModelErrors, AHugeDeclaredWeightDimensionIsABadModel) {
+  if (!xnnpack_built()) GTEST_SKIP() << "this build has no XNNPACK backend";
+  if (!xnnpack_runs_here()) GTEST_SKIP() << "XNNPACK does not initialize on this processor";
+  const std::string weights = first_node("Conv").input(1);
+  for (auto& tensor : *model_.mutable_graph()->mutable_initializer()) {
+    if (tensor.name() != weights) continue;
+    tensor.clear_dims();
+    for (const std::int64_t dim :
+         {std::int64_t{1} << 40, std::int64_t{0}, std::int64_t{3}, std::int64_t{3}}) {
+      tensor.add_dims(dim);
+    }
+    tensor.clear_raw_data();
+  }
+  expect_bad_model(expect_error(write(BackendRequest::xnnpack)), "'" + weights + "'",
+                   "declares a dimension of 1099511627776");
 }
 
 }  // namespace
