@@ -201,9 +201,9 @@ int main(int argc, char** argv) {
       "called in turn; OpenCV %s\n",
       frames.size(), rtmot::bench::bench_frames_uri().c_str(), frames[0].cols, frames[0].rows,
       options.iterations, CV_VERSION);
-  std::printf("%-10s %7s %5s %5s | %9s %9s | %9s %9s %9s | %9s %9s | %8s | %6s | %8s\n",
-              "backend", "threads", "batch", "tiles", "call min", "call med", "fwd min", "fwd med",
-              "fwd p99", "img med", "fwd/img", "images/s", "fwd x", "pre med");
+  std::printf("%-10s %7s %5s %5s | %9s %9s | %9s %9s %9s | %9s %9s | %8s | %6s | %8s\n", "backend",
+              "threads", "batch", "tiles", "call min", "call med", "fwd min", "fwd med", "fwd p99",
+              "img med", "fwd/img", "images/s", "fwd x", "pre med");
   for (const int threads : options.threads) {
     for (const int batch : options.batches) {
       for (const auto& tiles : options.tiles) {

@@ -11,7 +11,8 @@
 //                    [--shapes on|off]
 //     merges one grid's passes as the product's TilingDetector does and prints MOTChallenge
 //     detection rows (frame,-1,x,y,w,h,score,-1,-1,-1) for `rtmot track`.
-//   tile_study draw --source URI --frame N --before DET.txt --after DET.txt --out IMAGE [--gt GT.txt]
+//   tile_study draw --source URI --frame N --before DET.txt --after DET.txt --out IMAGE [--gt
+//   GT.txt]
 //                   [--scale S]
 //     draws frame N with two merges' boxes: before in red, after in green (thicker), the ground
 //     truth in thin white: the picture of docs/tiling.md.
