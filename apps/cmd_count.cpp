@@ -9,17 +9,24 @@
 #include <cstdlib>
 #include <filesystem>
 #include <memory>
+#include <optional>
+#include <set>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "apps/number_checks.hpp"
 #include "apps/subcommand.hpp"
 #include "common/exit_codes.hpp"
 #include "common/input_error.hpp"
 #include "common/input_file.hpp"
+#include "common/yaml_section.hpp"
 #include "events/events_yaml.hpp"
 #include "events/offline_count.hpp"
 #include "motio/mot_files.hpp"
 #include "motio/sequence_folders.hpp"
+#include "platform/log_setup.hpp"
+#include "runner/yaml_document.hpp"
 
 namespace rtmot::app {
 namespace {
@@ -34,13 +41,24 @@ struct CountCommandOptions {
   bool reference{false};
 };
 
-YAML::Node load_yaml(const std::string& file) {
-  try {
-    // Through the one input reader (a FIFO or /dev/zero named here would hang or fill memory).
-    constexpr std::uint64_t kMaxLinesFileBytes = 1 << 20;
-    return YAML::Load(read_text_file(file, kMaxLinesFileBytes));
-  } catch (const YAML::ParserException& error) {
-    throw InputError(file, error.mark.line + 1, "", error.msg);
+// As strictly as a run configuration: one document (runner/yaml_document.hpp), through the one
+// input reader (a FIFO or /dev/zero named here would hang or fill memory).
+YAML::Node load_lines_file(const std::string& file) {
+  constexpr std::uint64_t kMaxLinesFileBytes = 1 << 20;
+  return runner::load_one_document(read_text_file(file, kMaxLinesFileBytes), file, "a lines file");
+}
+
+// An id twice in one frame of the tracks counted: two boxes of one track at one time, which no
+// tracker writes; `rtmot eval` refuses it too (mot/prepared_sequence.cpp).
+void require_one_box_per_id_and_frame(const std::vector<events::FrameTrack>& tracks,
+                                      const std::string& file) {
+  std::set<std::pair<std::int64_t, int>> seen;
+  for (const auto& track : tracks) {
+    if (!seen.emplace(track.frame, track.report.id).second) {
+      throw InputError(file, 0, "id",
+                       "id " + std::to_string(track.report.id) + " appears twice in frame " +
+                           std::to_string(track.frame));
+    }
   }
 }
 
@@ -68,18 +86,33 @@ std::string percent(long part, long whole) {
 }
 
 int run_count(const CountCommandOptions& options) {
-  const YAML::Node root = load_yaml(options.lines_file);
-  if (!root.IsMap() || !root["sequences"] || !root["sequences"].IsMap())
+  const YAML::Node document = load_lines_file(options.lines_file);
+  if (!document.IsMap())
+    throw InputError(options.lines_file, 1, "", "expected a mapping with the key sequences");
+  // A key given twice (a sequence twice: one was silently ignored) or unknown is refused, as in a
+  // run configuration (common/yaml_section.hpp).
+  Section root(document, options.lines_file, "");
+  const YAML::Node lines = root.child("sequences");
+  root.reject_unknown();
+  if (!lines.IsMap())
     throw InputError(options.lines_file, 1, "sequences", "expected a mapping of sequence names");
+  const Section by_sequence(lines, options.lines_file, "sequences");
   const auto sequences = motio::find_sequences(options.dataset);
+  std::vector<NamedFile> inputs = motio::sequence_inputs(
+      sequences, {"gt/gt.txt"},
+      options.tracks_dir.empty() ? std::vector<fs::path>{}
+                                 : std::vector<fs::path>{options.tracks_dir});
+  inputs.push_back({options.lines_file, "--lines"});
+  platform::check_files_and_open_log(inputs, {});  // writes nothing but stdout and the log
 
   fmt::print("{:<16} {:<10} {:>6} {:>6}{}\n", "sequence", "line", "in", "out",
              options.reference ? fmt::format(" {:>6} {:>6}", "ref_in", "ref_out") : "");
   long total_error = 0;
   long total_reference = 0;
   for (const auto& sequence : sequences) {
-    const YAML::Node section = root["sequences"][sequence.info.name];
-    if (!section) {
+    const std::optional<YAML::Node> found = by_sequence.find(sequence.info.name);
+    const YAML::Node section = found.value_or(YAML::Node(YAML::NodeType::Undefined));
+    if (!found) {
       throw InputError(options.lines_file, 0, "sequences." + sequence.info.name,
                        "no lines for this sequence of the dataset");
     }
@@ -87,11 +120,12 @@ int run_count(const CountCommandOptions& options) {
         events::read_events_spec(section, options.lines_file, "sequences." + sequence.info.name),
         sequence.info.width, sequence.info.height);
     const bool counting_truth = options.tracks_dir.empty();
+    const fs::path tracks_file =
+        counting_truth ? sequence.dir / "gt" / "gt.txt"
+                       : motio::sequence_file(options.tracks_dir, sequence.info.name, ".txt");
     const auto tracks =
-        counting_truth
-            ? ground_truth(sequence)
-            : results(motio::sequence_file(options.tracks_dir, sequence.info.name, ".txt"),
-                      sequence.info);
+        counting_truth ? ground_truth(sequence) : results(tracks_file, sequence.info);
+    require_one_box_per_id_and_frame(tracks, tracks_file.string());
     // The ground truth's boxes do not jitter like a detector's: it is counted with the fixed
     // minimum band, so that neither the reference nor the floor (the truth kept at frames 1,
     // 1 + N, ...: a perfect tracker that skips frames) moves with a measure taken on itself.

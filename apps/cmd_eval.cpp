@@ -14,6 +14,7 @@
 #include "mot/metrics_report.hpp"
 #include "motio/mot_files.hpp"
 #include "motio/sequence_folders.hpp"
+#include "platform/log_setup.hpp"
 #include "platform/signals.hpp"
 
 namespace rtmot::app {
@@ -49,9 +50,9 @@ void warn_if_sampled(const mot::EvaluationReport& report) {
 
 int run_eval(const EvalOptions& options) {
   platform::StopSignals signals;  // a stop ends scoring before the next sequence
-  check_distinct_files(motio::sequence_inputs(motio::find_sequences(options.gt_dir), {"gt/gt.txt"},
-                                              {options.results_dir}),
-                       {{options.csv_path, "--csv"}, {options.json_path, "--json"}});
+  platform::check_files_and_open_log(motio::sequence_inputs(motio::find_sequences(options.gt_dir),
+                                                            {"gt/gt.txt"}, {options.results_dir}),
+                                     {{options.csv_path, "--csv"}, {options.json_path, "--json"}});
   const mot::EvaluationReport report =
       mot::evaluate(options.gt_dir, options.results_dir,
                     mot::EvaluationScope{options.interval, options.processed_frames},

@@ -13,7 +13,6 @@
 
 #include "apps/number_checks.hpp"
 #include "apps/subcommand.hpp"
-#include "common/distinct_files.hpp"
 #include "common/input_error.hpp"
 #include "detector/coco_labels.hpp"
 #include "messages/json_line_decoder.hpp"
@@ -25,6 +24,7 @@
 #include "outputs/mqtt_uri.hpp"
 #include "platform/clock.hpp"
 #include "platform/host_port.hpp"
+#include "platform/log_setup.hpp"
 #include "platform/signals.hpp"
 #include "platform/udp_socket.hpp"
 
@@ -380,12 +380,12 @@ Subcommand add_listen_command(CLI::App& parent) {
     if (port->count() == 0 && read->count() == 0 && mqtt->count() == 0)
       throw CLI::RequiredError("--port (or --read FILE, or --mqtt URI)");
   });
-  return {
-      cli, [options] {
-        check_distinct_files({{options->read_path, "--read"}}, {{options->jsonl_path, "--jsonl"}});
-        if (!options->mqtt_uri.empty()) return listen_mqtt(*options);
-        return options->read_path.empty() ? listen_udp(*options) : read_file(*options);
-      }};
+  return {cli, [options] {
+            platform::check_files_and_open_log({{options->read_path, "--read"}},
+                                               {{options->jsonl_path, "--jsonl"}});
+            if (!options->mqtt_uri.empty()) return listen_mqtt(*options);
+            return options->read_path.empty() ? listen_udp(*options) : read_file(*options);
+          }};
 }
 
 }  // namespace rtmot::app

@@ -18,7 +18,9 @@
 #include "common/input_error.hpp"
 #include "common/output_file.hpp"
 #include "motio/mot_files.hpp"
+#include "motio/sequence_folders.hpp"
 #include "platform/cpu_share.hpp"
+#include "platform/log_setup.hpp"
 #include "platform/signals.hpp"
 #include "study/detector_cut.hpp"
 #include "study/latency_sweep.hpp"
@@ -129,6 +131,10 @@ int run_study_command(const StudyCommandOptions& options) {
   const auto start = Clock::now();
   const platform::CpuSample cpu_start = platform::sample_cpu();
   const platform::StopSignals signals;
+  // The tables are written under --out, which holds no input; the log file may not name one.
+  platform::check_files_and_open_log(
+      motio::sequence_inputs(motio::find_sequences(options.dataset), {"det/det.txt", "gt/gt.txt"}),
+      {});
   if (options.latency) return run_latency_sweep(options, signals);
   if (options.detector_cut) return run_detector_cut(options);
   // Ascending and unique: rows and plot axes follow the interval.

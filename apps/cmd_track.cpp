@@ -18,6 +18,7 @@
 #include "motio/results_writer.hpp"
 #include "motio/sequence_folders.hpp"
 #include "motio/track_runner.hpp"
+#include "platform/log_setup.hpp"
 #include "platform/signals.hpp"
 #include "runner/run_config.hpp"
 #include "runner/tracker_flags.hpp"
@@ -74,9 +75,12 @@ int run_track(const TrackCommandOptions& options) {
   track_options.stop = &signals.stop_flag();
   const auto sequences = motio::find_sequences(options.dataset);
   std::vector<NamedFile> outputs;
-  for (const auto& sequence : sequences)
+  for (const auto& sequence : sequences) {
     outputs.push_back({motio::sequence_file(options.out_dir, sequence.info.name, ".txt"), "--out"});
-  check_distinct_files(motio::sequence_inputs(sequences, {options.detections}), outputs);
+    outputs.push_back({motio::processed_frames_file(options.out_dir, sequence.info.name), "--out"});
+  }
+  platform::check_files_and_open_log(motio::sequence_inputs(sequences, {options.detections}),
+                                     outputs);
   std::error_code error;
   fs::create_directories(options.out_dir, error);
   if (error) throw InputError(options.out_dir, 0, "--out", "cannot create: " + error.message());
@@ -105,10 +109,12 @@ int run_track(const TrackCommandOptions& options) {
           run.most_detections, track_options.config.max_detections);
     }
     const fs::path out_file = motio::sequence_file(options.out_dir, run.info.name, ".txt");
-    motio::write_results(out_file, run.tracks);
-    // Which frames were processed, for `rtmot eval --processed-frames`.
-    motio::write_processed_frames(motio::processed_frames_file(options.out_dir, run.info.name),
-                                  run.processed_frames);
+    motio::ResultsWriter results(out_file);
+    for (const auto& row : run.tracks) results.write(row);
+    // With the frames processed, for `rtmot eval --processed-frames`: both or neither.
+    motio::publish_results_and_frames(results,
+                                      motio::processed_frames_file(options.out_dir, run.info.name),
+                                      run.processed_frames);
     ++written;
     fmt::print("{:<16} {:>6} frames {:>7} boxes  tracker {:>9.0f} Hz  -> {}\n", run.info.name,
                run.frames_processed, run.tracks.size(),

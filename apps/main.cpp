@@ -10,6 +10,7 @@
 #include <exception>
 #include <opencv2/core/utils/logger.hpp>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "apps/cli_error.hpp"
@@ -84,6 +85,20 @@ void unblock_stop_signals() {
   pthread_sigmask(SIG_UNBLOCK, &stop_signals, nullptr);
 }
 
+// --log-format json as the command line asks for it, read before CLI11 parses it: a command-line
+// error (found by that parse) must be a JSON line too when a log shipper reads stderr.
+bool asks_for_json_log(int argc, char** argv) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string_view arg = argv[i];
+    if (arg == "--") break;
+    if (arg == "--log-format=json" ||
+        (arg == "--log-format" && i + 1 < argc && std::string_view(argv[i + 1]) == "json")) {
+      return true;
+    }
+  }
+  return false;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -117,6 +132,9 @@ int main(int argc, char** argv) {
       add_soak_command(app),  add_study_command(app), add_track_command(app),
   };
 
+  if (asks_for_json_log(argc, argv)) {
+    rtmot::platform::configure_logging(rtmot::platform::LogFormat::json, "");
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
@@ -144,7 +162,15 @@ int main(int argc, char** argv) {
   for (const auto& subcommand : subcommands) {
     if (!subcommand.cli->parsed()) continue;
     if (!subcommand.stops_on_signals) unblock_stop_signals();
-    return run_reporting_errors(subcommand.run);
+    int code = run_reporting_errors(subcommand.run);
+    // A log that could not be written (a full disk) does not stop a command, but a command that
+    // succeeded says so at the end instead of exiting 0 with its log cut short.
+    if (const std::string failure = rtmot::platform::log_file_failure();
+        !failure.empty() && code == 0) {
+      spdlog::error("{} (the log lines after it are lost)", failure);
+      code = rtmot::to_int(rtmot::ExitCode::io_error);
+    }
+    return code;
   }
   return rtmot::to_int(rtmot::ExitCode::usage);
 }

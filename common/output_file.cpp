@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "common/input_error.hpp"
+#include "common/output_open.hpp"
 #include "common/stale_temporaries.hpp"
 
 namespace rtmot {
@@ -37,18 +38,20 @@ OutputFile::OutputFile(std::filesystem::path path, Publish publish, std::size_t 
       publish_(effective_publish(path_, publish)),
       buffer_(std::max<std::size_t>(buffer_bytes, 1)) {
   record_ends_.reserve(1024);
-  if (publish_ == Publish::on_close) remove_stale_temporaries(path_);
-  written_path_ = publish_ == Publish::on_close ? temporary_path_for(path_) : path_;
-  fd_ = ::open(written_path_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
-  if (fd_ < 0) {
-    const int error = errno;
-    throw InputError(path_.string(), 0, "", std::string("cannot create: ") + std::strerror(error));
+  if (publish_ == Publish::on_close) {
+    fd_ = create_temporary(path_);
+    written_path_ = temporary_path_for(path_);
+  } else {
+    fd_ = open_output_in_place(
+        path_, publish_ == Publish::appended ? OutputMode::append : OutputMode::truncate);
+    written_path_ = path_;
   }
 }
 
 OutputFile::~OutputFile() {
-  if (fd_ < 0) return;  // closed or moved from
-  if (publish_ == Publish::as_written) {
+  if (unpublished_) ::unlink(written_path_.c_str());  // finished, never published
+  if (fd_ < 0) return;                                // closed or moved from
+  if (publish_ != Publish::on_close) {
     try {
       flush();
     } catch (...) {  // NOLINT(bugprone-empty-catch): a destructor cannot report; close() does
@@ -64,7 +67,7 @@ OutputFile::OutputFile(OutputFile&& other) noexcept
       written_path_(std::move(other.written_path_)),
       publish_(other.publish_),
       fd_(std::exchange(other.fd_, -1)),
-      whole_bytes_(other.whole_bytes_),
+      unpublished_(std::exchange(other.unpublished_, false)),
       buffer_(std::move(other.buffer_)),
       used_(std::exchange(other.used_, 0)),
       record_ends_(std::move(other.record_ends_)) {}
@@ -102,22 +105,22 @@ void OutputFile::write_out(const char* data, std::size_t size,
     if (wrote < 0 && errno == EINTR) continue;
     if (wrote <= 0) {
       const int error = wrote < 0 ? errno : ENOSPC;
-      // Cut back to the end of the last whole record, so that what stays readable is whole.
+      // Cut back to the end of the last whole record, so that what stays readable is whole. The
+      // file's offset is where `done` ended (appended files too: others may have written before).
       const auto whole = std::upper_bound(record_ends.begin(), record_ends.end(), done);
-      const std::uint64_t keep =
-          whole_bytes_ + (whole == record_ends.begin() ? 0 : *std::prev(whole));
-      if (::ftruncate(fd_, static_cast<off_t>(keep)) == 0) {
-        ::lseek(fd_, static_cast<off_t>(keep), SEEK_SET);
-        whole_bytes_ = keep;
+      const std::size_t torn = done - (whole == record_ends.begin() ? 0 : *std::prev(whole));
+      const off_t end = ::lseek(fd_, 0, SEEK_CUR);
+      if (end >= static_cast<off_t>(torn) &&
+          ::ftruncate(fd_, end - static_cast<off_t>(torn)) == 0) {
+        ::lseek(fd_, end - static_cast<off_t>(torn), SEEK_SET);
       }
       fail("cannot write", error);
     }
     done += static_cast<std::size_t>(wrote);
   }
-  whole_bytes_ += size;
 }
 
-void OutputFile::close() {
+void OutputFile::finish_writing() {
   if (fd_ < 0) return;
   flush();
   // A published file must be on the disk before its name is: a crash after the rename must not
@@ -130,7 +133,13 @@ void OutputFile::close() {
     throw InputError(path_.string(), 0, "", std::string("cannot write: ") + std::strerror(error),
                      ExitCode::io_error);
   }
-  if (publish_ == Publish::on_close && ::rename(written_path_.c_str(), path_.c_str()) != 0) {
+  unpublished_ = publish_ == Publish::on_close;
+}
+
+void OutputFile::publish() {
+  if (!unpublished_) return;
+  unpublished_ = false;
+  if (::rename(written_path_.c_str(), path_.c_str()) != 0) {
     const int error = errno;
     ::unlink(written_path_.c_str());
     throw InputError(path_.string(), 0, "", std::string("cannot rename: ") + std::strerror(error),
@@ -147,6 +156,13 @@ void write_whole_file(const std::filesystem::path& path, std::string_view text) 
   OutputFile file(path, OutputFile::Publish::on_close, 0);
   file.write(text);
   file.close();
+}
+
+void publish_together(OutputFile& first, OutputFile& second) {
+  first.finish_writing();
+  second.finish_writing();
+  first.publish();
+  second.publish();
 }
 
 }  // namespace rtmot

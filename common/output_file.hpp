@@ -21,12 +21,16 @@ namespace rtmot {
 class OutputFile {
  public:
   enum class Publish {
-    as_written,  // PATH itself, created or truncated now (streams: messages, JSON lines)
+    as_written,  // PATH itself, created or truncated now (streams: messages, JSON lines),
+                 // locked while written (common/output_open.hpp)
+    appended,    // PATH itself, written after what it holds (a log), not locked
     on_close,    // PATH appears at close(), whole; until then PATH.tmp-<pid>; temporaries of
                  // writers that no longer run are removed first (common/stale_temporaries.hpp)
   };
 
-  /// Throws InputError (bad_input) naming `path` if it cannot be created.
+  /// Throws InputError (bad_input) naming `path` if it cannot be created, or is a FIFO no process
+  /// reads, a folder, socket or block device, or a file another process is writing
+  /// (common/output_open.hpp: where every output is opened).
   explicit OutputFile(std::filesystem::path path, Publish publish = Publish::as_written,
                       std::size_t buffer_bytes = 64 * 1024);
   /// Without close(): an `as_written` file gets its whole buffered records and is closed (errors
@@ -45,7 +49,14 @@ class OutputFile {
   /// Hands every buffered record to the kernel; throws as write().
   void flush();
   /// Flushes, closes and (on_close) publishes PATH; throws as write(). Idempotent.
-  void close();
+  void close() {
+    finish_writing();
+    publish();
+  }
+  /// close() in two steps, for files published together (publish_together()): everything that
+  /// can fail for the disk (flush, fsync, close), then the rename. Both idempotent.
+  void finish_writing();
+  void publish();
 
   const std::filesystem::path& path() const { return path_; }
 
@@ -59,7 +70,7 @@ class OutputFile {
   std::filesystem::path written_path_;  // path_, or the temporary
   Publish publish_;
   int fd_{-1};
-  std::uint64_t whole_bytes_{0};  // bytes on disk, all whole records
+  bool unpublished_{false};  // finish_writing() done, publish() not yet (on_close)
   std::vector<char> buffer_;
   std::size_t used_{0};
   std::vector<std::size_t> record_ends_;  // in buffer_: where each buffered record ends
@@ -67,5 +78,10 @@ class OutputFile {
 
 /// Writes `text` to `path` as one record, published on close (never a partial file).
 void write_whole_file(const std::filesystem::path& path, std::string_view text);
+
+/// Publishes files that belong together (a results file and its list of processed frames) both
+/// or neither: each is finished (a full disk fails here, before any is renamed), then each is
+/// published. Throws as close(); what was not published is removed by its destructor.
+void publish_together(OutputFile& first, OutputFile& second);
 
 }  // namespace rtmot

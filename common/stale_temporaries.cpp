@@ -50,7 +50,12 @@ std::size_t remove_stale_temporaries(const std::filesystem::path& path) {
     const pid_t writer = writer_of(candidate.filename().string(), stem);
     if (writer == 0 || writer == ::getpid() || runs(writer)) continue;
     std::error_code ignored;
-    if (!entries->is_regular_file(ignored) || !std::filesystem::remove(candidate, ignored)) {
+    // A link is removed, never followed (remove() unlinks the name): a dangling or planted one
+    // too. A folder under that name is nobody's temporary: left alone.
+    const auto kind = entries->symlink_status(ignored).type();
+    if ((kind != std::filesystem::file_type::regular &&
+         kind != std::filesystem::file_type::symlink) ||
+        !std::filesystem::remove(candidate, ignored)) {
       continue;
     }
     spdlog::warn("{}: removed {}, the unfinished output of process {}, which no longer runs",

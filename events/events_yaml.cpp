@@ -5,6 +5,7 @@
 #include <cmath>
 #include <set>
 
+#include "common/checked_number.hpp"
 #include "common/input_error.hpp"
 #include "common/utf8.hpp"
 #include "common/yaml_section.hpp"
@@ -177,12 +178,12 @@ EventsConfig resolve_events(const EventsSpec& spec, int width, int height) {
       if (point.x < 0.0 || point.x > 1.0 || point.y < 0.0 || point.y > 1.0) {
         throw InputError(spec.file, line, field,
                          "a point in fractions of the frame must lie in [0, 1], got [" +
-                             std::to_string(point.x) + ", " + std::to_string(point.y) + "]");
+                             number_text(point.x) + ", " + number_text(point.y) + "]");
       }
       point = {point.x * width, point.y * height};
     } else if (point.x < 0.0 || point.x > width || point.y < 0.0 || point.y > height) {
       throw InputError(spec.file, line, field,
-                       "point [" + std::to_string(point.x) + ", " + std::to_string(point.y) +
+                       "point [" + number_text(point.x) + ", " + number_text(point.y) +
                            "] lies outside the " + std::to_string(width) + "x" +
                            std::to_string(height) + " frame");
     }

@@ -7,6 +7,7 @@
 #include "common/input_error.hpp"
 #include "common/input_file.hpp"
 #include "common/output_file.hpp"
+#include "motio/results_writer.hpp"
 #include "motio/sequence_folders.hpp"
 
 namespace rtmot::motio {
@@ -16,13 +17,28 @@ std::filesystem::path processed_frames_file(const std::filesystem::path& dir,
   return sequence_file(dir, sequence_name, ".frames");
 }
 
-void write_processed_frames(const std::filesystem::path& path, const std::vector<int>& frames) {
+namespace {
+
+std::string frames_text(const std::vector<int>& frames) {
   std::string text = "# frames processed, one per line (rtmot eval --processed-frames)\n";
   for (const int frame : frames) {
     text += std::to_string(frame);
     text += '\n';
   }
-  write_whole_file(path, text);
+  return text;
+}
+
+}  // namespace
+
+void write_processed_frames(const std::filesystem::path& path, const std::vector<int>& frames) {
+  write_whole_file(path, frames_text(frames));
+}
+
+void publish_results_and_frames(ResultsWriter& results, const std::filesystem::path& frames_file,
+                                const std::vector<int>& frames) {
+  OutputFile list(frames_file, OutputFile::Publish::on_close, 0);
+  list.write(frames_text(frames));
+  publish_together(results.file(), list);
 }
 
 std::vector<int> read_processed_frames(const std::filesystem::path& path, int sequence_length) {
@@ -50,6 +66,12 @@ std::vector<int> read_processed_frames(const std::filesystem::path& path, int se
                            std::to_string(frames.back()) + ": frames must ascend");
     }
     frames.push_back(static_cast<int>(*frame));
+  }
+  // Empty, the list would read as "no list" (every frame scored): a run that processed nothing
+  // scored at the full rate. There is nothing to score.
+  if (frames.empty()) {
+    throw InputError(path.string(), 0, "frame",
+                     "lists no frame: the run processed none, there is nothing to score");
   }
   return frames;
 }

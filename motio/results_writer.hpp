@@ -22,6 +22,8 @@ class ResultsWriter {
   /// Publishes the file, throwing InputError on any write error. Without close() (an exception, a
   /// stop) the file is not written at all.
   void close();
+  /// The file, for publishing it with another (motio/processed_frames.hpp).
+  OutputFile& file() { return file_; }
 
  private:
   void write_row(int frame, int id, const tracker::Box& box, float score);

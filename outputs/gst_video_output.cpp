@@ -13,6 +13,7 @@
 #include <cstring>
 
 #include "common/input_error.hpp"
+#include "common/output_open.hpp"
 #include "common/stale_temporaries.hpp"
 #include "outputs/bgr_buffer.hpp"
 #include "outputs/encoder_padding.hpp"
@@ -166,11 +167,18 @@ GstVideoOutput::Started GstVideoOutput::launch(int width, int height) {
   }
   if (const ObjectPtr<GstElement> sink{gst_bin_get_by_name(GST_BIN(pipeline_.get()), "sink")}) {
     // Published by rename, as common/output_file does: right for a regular file or a new one;
-    // a device or FIFO there (/dev/full, a pipe to a player) is written in place.
+    // a character device there (/dev/full, /dev/null) is written in place (anything else was
+    // refused by prepare_video_file). The temporary is created here, exclusively and not through
+    // a link (common/output_open.hpp); filesink then opens that file of ours by its name.
     struct stat status {};
     const bool special = ::stat(target_.path.c_str(), &status) == 0 && !S_ISREG(status.st_mode);
     if (!special) {
-      remove_stale_temporaries(target_.path);
+      try {
+        ::close(create_temporary(target_.path));
+      } catch (const InputError& error) {
+        pipeline_.reset();
+        return {"cannot write the video: " + std::string(error.what()), error.exit_code()};
+      }
       written_path_ = temporary_path_for(target_.path).string();
     }
     g_object_set(sink.get(), "location", special ? target_.path.c_str() : written_path_.c_str(),

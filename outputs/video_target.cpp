@@ -1,6 +1,6 @@
 #include "outputs/video_target.hpp"
 
-#include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -8,6 +8,8 @@
 #include <filesystem>
 #include <system_error>
 
+#include "common/input_error.hpp"
+#include "common/output_open.hpp"
 #include "common/stale_temporaries.hpp"
 #include "platform/host_port.hpp"
 
@@ -107,14 +109,24 @@ std::string prepare_video_file(const VideoTarget& target) {
       return "cannot create folder " + path.parent_path().string() + ": " + error.message();
   }
   if (std::filesystem::is_directory(path, error)) return "is a directory";
+  // A muxer seeks back into its file (mp4's index, mkv's cues and duration): a FIFO, socket or
+  // block device cannot be one (a FIFO with no reader blocked filesink's open() for ever). A
+  // character device (/dev/null, /dev/full) is written in place.
+  struct stat status {};
+  if (::stat(path.c_str(), &status) == 0 && !S_ISREG(status.st_mode) && !S_ISCHR(status.st_mode)) {
+    return std::string(S_ISFIFO(status.st_mode) ? "is a FIFO" : "is not a regular file") +
+           ": a video file is seeked back into as it is finished (stream it with rtp:// or "
+           "rtsp:// instead)";
+  }
   // The writer writes PATH.tmp-PID and renames it to PATH when the video is finished: that
   // temporary is created (and removed) now, so that what fails here fails before the run, and an
   // existing PATH is left as it is until a finished video replaces it.
-  const std::string temporary = temporary_path_for(target.path).string();
-  const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd < 0) return std::strerror(errno);
-  ::close(fd);
-  ::unlink(temporary.c_str());
+  try {
+    ::close(create_temporary(path));
+  } catch (const InputError& refused) {
+    return refused.problem();
+  }
+  ::unlink(temporary_path_for(path).c_str());
   return "";
 }
 

@@ -3,7 +3,9 @@
 // for log shippers (--log-format json), and optionally also a file (--log-file).
 #include <string>
 #include <string_view>
+#include <vector>
 
+#include "common/distinct_files.hpp"
 #include "tracker/enum_names.hpp"
 
 namespace rtmot::platform {
@@ -28,7 +30,21 @@ void set_log_level(LogLevel level);
 
 /// Replaces the default logger "rtmot": stderr, plus `file` (appended) when not empty, in
 /// `format`. JSON lines: {"time":"...Z","level":"info","thread":N,"message":"..."}, the message
-/// escaped. Throws InputError (io_error) naming the file if it cannot be opened.
+/// escaped (platform/json_log_text.hpp). The file is not opened here: it is an output like any
+/// other, and may not name an input (appending to the configuration broke the next run) until
+/// the command has checked it (check_files_and_open_log). Until then its lines are held in
+/// memory (at most 1 MiB) and written when it opens; a command that fails before that point has
+/// its error on stderr only.
 void configure_logging(LogFormat format, const std::string& file);
+
+/// What every command calls before it writes anything: check_distinct_files(inputs, outputs and
+/// the --log-file), then opens the log file (common/output_open.hpp: a FIFO no process reads is
+/// refused, not waited for) and writes the lines held so far. Throws InputError (bad_input).
+void check_files_and_open_log(std::vector<NamedFile> inputs, std::vector<NamedFile> outputs);
+
+/// The first failure to write the log file ("PATH: cannot write: No space left on device"), or ""
+/// if none: the lines after it are lost, and main() ends a command that succeeded with io_error
+/// and this line. A failed write is cut back to the last whole line.
+std::string log_file_failure();
 
 }  // namespace rtmot::platform

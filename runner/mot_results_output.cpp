@@ -135,8 +135,7 @@ void MotResultsOutput::finish() {
   std::exception_ptr first;
   for (Stream& stream : streams_) {
     try {
-      stream.results.close();
-      motio::write_processed_frames(stream.frames_file, stream.frames);
+      motio::publish_results_and_frames(stream.results, stream.frames_file, stream.frames);
     } catch (...) {
       if (!first) first = std::current_exception();
     }

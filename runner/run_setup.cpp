@@ -8,7 +8,6 @@
 #include <filesystem>
 #include <opencv2/core/utility.hpp>
 
-#include "common/distinct_files.hpp"
 #include "common/input_error.hpp"
 #include "detector/coco_labels.hpp"
 #include "detector/dnn_backend.hpp"
@@ -27,6 +26,7 @@
 #include "outputs/video_stream.hpp"
 #include "outputs/video_target.hpp"
 #include "platform/host_port.hpp"
+#include "platform/log_setup.hpp"
 #include "platform/looping_source.hpp"
 #include "platform/oriented_source.hpp"
 #include "platform/video_uri.hpp"
@@ -461,7 +461,7 @@ void check_run_files(const RunConfig& config) {
       outputs.push_back({mot_frames_file(output.mot_results, target.name), "output.mot_results"});
     }
   }
-  check_distinct_files(inputs, outputs);
+  platform::check_files_and_open_log(inputs, outputs);
 }
 
 }  // namespace

@@ -50,7 +50,8 @@ class DocumentStarts final : public YAML::EventHandler {
 
 }  // namespace
 
-YAML::Node load_one_document(const std::string& yaml_text, const std::string& file_name) {
+YAML::Node load_one_document(const std::string& yaml_text, const std::string& file_name,
+                             const std::string& what) {
   YAML::Node first;
   try {
     first = YAML::Load(yaml_text);
@@ -62,13 +63,15 @@ YAML::Node load_one_document(const std::string& yaml_text, const std::string& fi
     DocumentStarts starts;
     if (parser.HandleNextDocument(starts) && parser.HandleNextDocument(starts) && !first.IsNull()) {
       throw InputError(file_name, starts.content_start().line + 1, "",
-                       "a second YAML document: a run configuration is one document (remove "
-                       "the '---' and what follows, or merge it into the first)");
+                       "a second YAML document: " + what +
+                           " is one document (remove the '---' and what follows, or merge it "
+                           "into the first)");
     }
   } catch (const YAML::ParserException& error) {
     throw InputError(file_name, error.mark.line + 1, "", "not valid YAML: " + error.msg);
   }
-  if (first.IsNull()) throw InputError(file_name, 0, "", "the configuration is empty");
+  if (first.IsNull())
+    throw InputError(file_name, 0, "", "the file is empty: " + what + " is expected");
   return first;
 }
 

@@ -158,3 +158,72 @@ TEST(OutputFile, AWriteThatFailsMidRecordLeavesWholeRecords) {
 
 }  // namespace
 }  // namespace rtmot
+
+namespace rtmot {
+namespace {
+
+// A results file and its frames list are published both or neither: the list failing on a full
+// disk leaves the results unpublished too (the old file kept, no temporary left).
+TEST(OutputFile, FilesPublishedTogetherAppearBothOrNeither) {
+  if (!fs::is_character_file("/dev/full")) GTEST_SKIP() << "no /dev/full device";
+  Scratch scratch;
+  const auto results = scratch.path("TUD-Campus.txt");
+  std::ofstream(results) << "yesterday's\n";
+  {
+    OutputFile first(results, OutputFile::Publish::on_close);
+    first.write("1,1,10,10,20,40,1,-1,-1,-1\n");
+    OutputFile second("/dev/full", OutputFile::Publish::on_close);  // written in place: fails
+    second.write("1\n");
+    EXPECT_EQ(code_of([&] { publish_together(first, second); }), ExitCode::io_error);
+  }
+  EXPECT_EQ(slurp(results), "yesterday's\n");
+  EXPECT_EQ(std::distance(fs::directory_iterator(scratch.path("")), fs::directory_iterator()), 1);
+
+  OutputFile first(results, OutputFile::Publish::on_close);
+  first.write("new\n");
+  OutputFile second(scratch.path("TUD-Campus.frames"), OutputFile::Publish::on_close);
+  second.write("1\n");
+  publish_together(first, second);
+  EXPECT_EQ(slurp(results), "new\n");
+  EXPECT_EQ(slurp(scratch.path("TUD-Campus.frames")), "1\n");
+}
+
+// A FIFO that no process reads is refused at once (open() used to wait for a reader for ever); a
+// folder is refused with its kind.
+TEST(OutputFile, AFifoWithoutReaderIsRefusedWithoutBlocking) {
+  Scratch scratch;
+  ASSERT_EQ(::mkfifo(scratch.path("fifo").c_str(), 0600), 0);
+  for (const auto publish : {OutputFile::Publish::as_written, OutputFile::Publish::on_close,
+                             OutputFile::Publish::appended}) {
+    std::string message;
+    EXPECT_EQ(code_of([&] { OutputFile file(scratch.path("fifo"), publish); }, &message),
+              ExitCode::bad_input);
+    EXPECT_NE(message.find("FIFO with no reader"), std::string::npos) << message;
+  }
+  std::string message;
+  EXPECT_EQ(code_of([&] { OutputFile file(scratch.path(""), OutputFile::Publish::as_written); },
+                    &message),
+            ExitCode::bad_input);
+  EXPECT_NE(message.find("folder"), std::string::npos) << message;
+}
+
+// A file emptied for writing is locked: a second writer is refused and empties nothing.
+TEST(OutputFile, ASecondWriterOfOneFileIsRefused) {
+  Scratch scratch;
+  const auto path = scratch.path("tracks.jsonl");
+  OutputFile first(path);
+  first.write("{\"a\":1}\n");
+  first.flush();
+  std::string message;
+  EXPECT_EQ(code_of([&] { OutputFile second(path); }, &message), ExitCode::bad_input);
+  EXPECT_NE(message.find("another process"), std::string::npos) << message;
+  EXPECT_EQ(slurp(path), "{\"a\":1}\n");
+  OutputFile log(path, OutputFile::Publish::appended);  // appending takes no lock
+  log.write("line\n");
+  log.close();
+  first.close();
+  EXPECT_EQ(slurp(path), "{\"a\":1}\nline\n");
+}
+
+}  // namespace
+}  // namespace rtmot
