@@ -117,6 +117,16 @@ int dump(const std::map<std::string, std::string>& o) {
   return out ? 0 : 1;
 }
 
+// A comma-separated line of numbers (the dump's rows, MOTChallenge rows). Research input written
+// by this tool or the benchmark: a malformed one stops the tool (std::stof throws).
+std::vector<float> numbers_of(const std::string& line) {
+  std::stringstream fields(line);
+  std::string field;
+  std::vector<float> numbers;
+  while (std::getline(fields, field, ',')) numbers.push_back(std::stof(field));
+  return numbers;
+}
+
 struct RawRow {
   PixelRect pass;
   Detection detection;
@@ -140,10 +150,7 @@ int merge(const std::map<std::string, std::string>& o) {
   std::ifstream in(get(o, "--raw", "raw.csv"));
   std::string line;
   while (std::getline(in, line)) {
-    std::stringstream fields(line);
-    std::string f;
-    std::vector<float> v;
-    while (std::getline(fields, f, ',')) v.push_back(std::stof(f));
+    const std::vector<float> v = numbers_of(line);
     RawRow row{{static_cast<int>(v[1]), static_cast<int>(v[2]), static_cast<int>(v[3]),
                 static_cast<int>(v[4])},
                {{v[7], v[8], v[9], v[10]}, v[6], static_cast<int>(v[5])}};
@@ -190,10 +197,7 @@ std::vector<cv::Rect> boxes_of(const std::string& path, int number, bool ground_
   std::ifstream in(path);
   std::string line;
   while (std::getline(in, line)) {
-    std::stringstream fields(line);
-    std::string f;
-    std::vector<float> v;
-    while (std::getline(fields, f, ',')) v.push_back(std::stof(f));
+    const std::vector<float> v = numbers_of(line);
     if (static_cast<int>(v[0]) != number || (ground_truth && v[6] == 0.F)) continue;
     boxes.emplace_back(static_cast<int>(v[2]), static_cast<int>(v[3]), static_cast<int>(v[4]),
                        static_cast<int>(v[5]));
