@@ -90,7 +90,8 @@ int create_temporary(const std::filesystem::path& path) {
     if (fd >= 0) return fd;
     const int error = errno;
     if (error == EINTR) continue;
-    if (error != EEXIST || attempt > 0) refuse_errno(temporary, "cannot create", error);
+    // Named by the user's PATH: the temporary is ours (a missing folder, no permission).
+    if (error != EEXIST || attempt > 0) refuse_errno(path, "cannot create", error);
     struct stat status {};
     if (::lstat(temporary.c_str(), &status) != 0) continue;  // gone meanwhile: try again
     if (S_ISDIR(status.st_mode)) {

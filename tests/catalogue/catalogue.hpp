@@ -30,6 +30,10 @@ struct CatalogueCase {
   long max_rss_mb{0};
   /// Optional (empty: unchecked): the error line's exact text after "[error] ".
   std::string message{};
+  /// Optional: shell commands run just before rtmot in the same process (`sh -c 'COMMANDS; exec
+  /// rtmot ARGS'`), so that they can name rtmot's process id as $$ (a link planted at its
+  /// temporary's name) or leave it a file descriptor (a lock another writer holds). {vars} ok.
+  std::string shell_before{};
 };
 
 const std::vector<CatalogueCase>& catalogue();
@@ -41,6 +45,9 @@ std::vector<CatalogueCase> round_three_cases();
 std::vector<CatalogueCase> settings_cases();
 /// Round three (issue 23, class 1): the detector's files through common/input_file.
 std::vector<CatalogueCase> detector_file_cases();
+/// Round four (issue 32): outputs' temporaries, FIFOs, locks and the log file; frames lists,
+/// `count`'s lines file.
+std::vector<CatalogueCase> round_four_files_cases();
 /// Issue 22: command-line and configuration typos, one line each with the nearest valid name.
 std::vector<CatalogueCase> usage_cases();
 /// Round four (issue 32), the streams' classes: video on a full disk, H.265 at small sizes, the

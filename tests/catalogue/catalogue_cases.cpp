@@ -68,6 +68,7 @@ const std::vector<CatalogueCase>& catalogue() {
     for (auto& c : hostile_cases()) all.push_back(std::move(c));
     for (auto& c : round_three_cases()) all.push_back(std::move(c));
     for (auto& c : settings_cases()) all.push_back(std::move(c));
+    for (auto& c : round_four_files_cases()) all.push_back(std::move(c));
     for (auto& c : detector_file_cases()) all.push_back(std::move(c));
     for (auto& c : usage_cases()) all.push_back(std::move(c));
     for (auto& c : round_four_streams_cases()) all.push_back(std::move(c));

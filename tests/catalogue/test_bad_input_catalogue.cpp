@@ -53,6 +53,9 @@ TEST_P(Catalogue, FailsCleanlyWithTheDocumentedExitCode) {
   c.setup(ws, vars);
 
   std::vector<std::string> argv{rtmot_binary()};
+  if (!c.shell_before.empty()) {
+    argv = {"/bin/sh", "-c", fill(c.shell_before, vars) + "; exec \"$0\" \"$@\"", rtmot_binary()};
+  }
   for (const auto& arg : c.args) argv.push_back(fill(arg, vars));
   const ProcessResult run = run_process(argv, ws.dir(), c.conditions);
 

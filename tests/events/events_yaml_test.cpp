@@ -63,11 +63,11 @@ TEST(EventsYaml, DegenerateGeometryIsRefusedNamingFileLineAndField) {
             "cam.yaml:2: field 'events.zones[0].points': zone 'z' is not a simple polygon (its "
             "edges cross, fold back or enclose no area)");
   EXPECT_EQ(error_of("lines:\n  - {name: a, from: [5, 5], to: [700, 5]}\n"),
-            "cam.yaml:2: field 'events.lines[0].to': point [700.000000, 5.000000] lies outside "
+            "cam.yaml:2: field 'events.lines[0].to': point [700, 5] lies outside "
             "the 640x480 frame");
   EXPECT_EQ(error_of("lines:\n  - {name: a, units: fraction, from: [0, 0], to: [1.5, 1]}\n"),
             "cam.yaml:2: field 'events.lines[0].to': a point in fractions of the frame must lie "
-            "in [0, 1], got [1.500000, 1.000000]");
+            "in [0, 1], got [1.5, 1]");
 }
 
 TEST(EventsYaml, BadValuesAreRefusedNamingTheField) {
