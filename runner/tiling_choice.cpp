@@ -51,6 +51,11 @@ TilingDecision decide_tiling(const DetectorConfig& detector, pipeline::PlaybackM
     case TileMode::automatic:
       break;
   }
+  if (frame.width <= 0 || frame.height <= 0) {
+    return {false,
+            "tiles: auto chose none: the frame size is not known at start (a source not up "
+            "yet); set detector.tiles to cut a grid"};
+  }
   const detector::TileGrid grid = automatic_tile_grid(detector, frame);
   if (!grid.tiled()) {
     return {false, fmt::format("tiles: auto chose none: a {}x{} frame is at most {:.0f} x the "

@@ -77,6 +77,14 @@ TEST(TilingChoice, AutoTilesALiveOrPacedFrameOnlyWhenTheTilesKeepThePace) {
   }
 }
 
+TEST(TilingChoice, AutoCutsNothingWhenTheFrameSizeIsNotKnownAtStart) {
+  // A camera absent at start reports 0 x 0 (it reconnects later).
+  const auto decision = decide_tiling(with_tiles("auto"), PlaybackMode::realtime,
+                                      FrameShape{0, 0, 0.0, true}, std::nullopt);
+  EXPECT_FALSE(decision.tiled);
+  EXPECT_NE(decision.why.find("not known"), std::string::npos) << decision.why;
+}
+
 TEST(TilingChoice, AGridOrOffIsTakenAsAsked) {
   EXPECT_TRUE(decide_tiling(with_tiles("2x2"), PlaybackMode::realtime, kVga, std::nullopt).tiled);
   EXPECT_FALSE(
