@@ -76,6 +76,9 @@ void TilingDetector::detect_batch(const cv::Mat* const* images, const std::int64
   }
   inner_->detect_batch(view_pointers_.data(), view_frames_.data(), static_cast<int>(total),
                        pass_boxes_);
+  // The headers hold a reference to their frames' pixels: let go of them now, so that a frame
+  // buffer the pipeline hands back to its capture thread is not kept alive by a stale header.
+  for (std::size_t k = 0; k < total; ++k) views_[k].release();
   for (std::size_t i = 0; i < static_cast<std::size_t>(count); ++i) {
     const std::vector<PixelRect>& passes = layouts_[image_layouts_[i]].passes;
     const auto* first = &pass_boxes_[static_cast<std::size_t>(first_pass_[i])];
