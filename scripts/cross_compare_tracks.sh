@@ -30,7 +30,9 @@ else
 fi
 
 # One configuration per build, differing only in the output file. One detector thread: the same
-# arithmetic order on both machines.
+# arithmetic order on both machines. The engine is named (backend auto measures both at start and
+# could choose differently under qemu than natively), and tiles are off: the merge's arithmetic is
+# checked under qemu by detector_tests, and seven passes a frame would cost this stage minutes.
 write_config() {
   cat >"$work/$1.yaml" <<EOF
 source:
@@ -41,7 +43,9 @@ detector:
   kind: ssd
   model: "$model"
   anchors: "$anchors"
+  backend: cpu
   threads: 1
+  tiles: "off"
 output:
   jsonl_file: "$work/$1.jsonl"
 stats_interval_s: 0
