@@ -107,16 +107,6 @@ Check absent(const std::string& relative) {
   };
 }
 
-Check no_temporaries(const std::string& folder) {
-  return [folder](const Workspace& ws) {
-    if (!fs::exists(ws.path(folder))) return;
-    for (const auto& entry : fs::directory_iterator(ws.path(folder))) {
-      EXPECT_EQ(entry.path().filename().string().find(".tmp-"), std::string::npos)
-          << "temporary left behind: " << entry.path();
-    }
-  };
-}
-
 // A published file: a regular file (not a link), whole lines, not empty.
 Check published(const std::string& relative) {
   return [relative](const Workspace& ws) {

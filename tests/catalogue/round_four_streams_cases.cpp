@@ -74,16 +74,6 @@ Check inputs_unchanged() {
   };
 }
 
-Check no_temporaries(const std::string& folder) {
-  return [folder](const Workspace& ws) {
-    if (!fs::exists(ws.path(folder))) return;
-    for (const auto& entry : fs::directory_iterator(ws.path(folder))) {
-      EXPECT_EQ(entry.path().filename().string().find(".tmp-"), std::string::npos)
-          << "temporary left behind: " << entry.path();
-    }
-  };
-}
-
 // Nothing but the temporaries of other processes: the folder holds no file at all.
 Check empty_folder(const std::string& folder) {
   return [folder](const Workspace& ws) {

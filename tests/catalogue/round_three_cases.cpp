@@ -84,16 +84,6 @@ std::function<void(const Workspace&)> whole_text(const std::string& relative,
   };
 }
 
-std::function<void(const Workspace&)> no_temporaries(const std::string& folder) {
-  return [folder](const Workspace& ws) {
-    if (!fs::exists(ws.path(folder))) return;
-    for (const auto& entry : fs::directory_iterator(ws.path(folder))) {
-      EXPECT_EQ(entry.path().filename().string().find(".tmp-"), std::string::npos)
-          << "temporary left behind: " << entry.path();
-    }
-  };
-}
-
 ProcessConditions with_disk_of(std::uint64_t bytes) {
   ProcessConditions conditions;
   conditions.file_size_limit = bytes;

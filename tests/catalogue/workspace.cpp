@@ -82,4 +82,14 @@ std::string read_text(const fs::path& path) {
   return text.str();
 }
 
+std::function<void(const Workspace&)> no_temporaries(const std::string& folder) {
+  return [folder](const Workspace& ws) {
+    if (!std::filesystem::exists(ws.path(folder))) return;
+    for (const auto& entry : std::filesystem::directory_iterator(ws.path(folder))) {
+      EXPECT_EQ(entry.path().filename().string().find(".tmp-"), std::string::npos)
+          << "temporary left behind: " << entry.path();
+    }
+  };
+}
+
 }  // namespace rtmot::test

@@ -1,6 +1,7 @@
 #pragma once
 // A scratch folder per catalogue case, with helpers that build the bad inputs from real data.
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -34,5 +35,9 @@ class Workspace {
 };
 
 std::string read_text(const std::filesystem::path& path);
+
+/// A case's check that `folder` (relative to the workspace; absent is fine) holds no output
+/// temporary (`NAME.tmp-PID`, common/output_file.hpp) after the run.
+std::function<void(const Workspace&)> no_temporaries(const std::string& folder);
 
 }  // namespace rtmot::test
