@@ -180,24 +180,35 @@ double median_ms(Call call) {
   return ms[1];
 }
 
-// What one frame of this shape costs `ssd`, alone and with its tiles in one batch, on a grey frame
-// (the network's work does not depend on the pixels).
-DetectorCost measure_cost(detector::Detector& ssd, const FrameShape& frame,
-                          const std::vector<detector::PixelRect>& passes) {
-  const cv::Mat grey(frame.height, frame.width, CV_8UC3, cv::Scalar::all(114));
-  std::vector<cv::Mat> views;
-  for (const detector::PixelRect& r : passes)
-    views.push_back(grey(cv::Rect(r.x, r.y, r.width, r.height)));
-  std::vector<const cv::Mat*> images;
-  for (const cv::Mat& view : views) images.push_back(&view);
-  const std::vector<std::int64_t> numbers(images.size(), 1);
-  std::vector<std::vector<tracker::Detection>> out;
-  DetectorCost cost;
-  cost.whole_ms = median_ms([&] { ssd.detect_batch(images.data(), numbers.data(), 1, out); });
-  cost.tiled_ms = median_ms([&] {
-    ssd.detect_batch(images.data(), numbers.data(), static_cast<int>(images.size()), out);
-  });
-  return cost;
+// A grey frame of this shape, cut into its passes (the network's work does not depend on the
+// pixels), and what a detector takes for the first `count` of them in one batch.
+class CostProbe {
+ public:
+  CostProbe(const FrameShape& frame, const std::vector<detector::PixelRect>& passes)
+      : grey_(frame.height, frame.width, CV_8UC3, cv::Scalar::all(114)) {
+    for (const detector::PixelRect& r : passes)
+      views_.push_back(grey_(cv::Rect(r.x, r.y, r.width, r.height)));
+    for (const cv::Mat& view : views_) images_.push_back(&view);
+    numbers_.assign(images_.size(), 1);
+  }
+  double batch_ms(detector::Detector& ssd, std::size_t count) {
+    return median_ms([&] {
+      ssd.detect_batch(images_.data(), numbers_.data(), static_cast<int>(count), out_);
+    });
+  }
+  std::size_t passes() const { return images_.size(); }
+
+ private:
+  cv::Mat grey_;
+  std::vector<cv::Mat> views_;
+  std::vector<const cv::Mat*> images_;
+  std::vector<std::int64_t> numbers_;
+  std::vector<std::vector<tracker::Detection>> out_;
+};
+
+bool runs_on_cpu(const detector::Detector& detector) {
+  const auto* ssd = dynamic_cast<const detector::SsdDetector*>(&detector);
+  return ssd != nullptr && ssd->backend().backend != cv::dnn::DNN_BACKEND_CUDA;
 }
 
 }  // namespace
@@ -225,16 +236,31 @@ std::vector<std::unique_ptr<detector::Detector>> make_detectors(
           : 1;
   const int sources_per_pass = source_count(config);
   std::vector<std::unique_ptr<detector::Detector>> lanes;
-  lanes.push_back(build_detector(config, true, sources_per_pass * static_cast<int>(tiled_passes)));
   std::optional<DetectorCost> cost;
   if (tiled_passes > 1 && tiling_needs_measurement(wanted, config.playback.mode, frame)) {
-    cost = measure_cost(*lanes.front(), frame,
-                        detector::TilingDetector::plan_passes(frame.width, frame.height, tiling));
+    // Timed in two steps: the whole frame on a detector sized for it, then the tiled batch only
+    // where the whole frame's cost leaves room for it (on the CPU it mostly does not, and building
+    // and timing the batch took 2-3 s of start-up).
+    lanes.push_back(build_detector(config, true, sources_per_pass));
+    CostProbe probe(frame, detector::TilingDetector::plan_passes(frame.width, frame.height, tiling));
+    cost = DetectorCost{probe.batch_ms(*lanes.front(), 1), 0.0, false};
+    if (tiled_cost_needs_timing(frame, cost->whole_ms, probe.passes(),
+                                runs_on_cpu(*lanes.front()))) {
+      lanes.front() =
+          build_detector(config, false, sources_per_pass * static_cast<int>(tiled_passes));
+      cost->tiled_ms = probe.batch_ms(*lanes.front(), probe.passes());
+    } else {
+      cost->tiled_ms = cpu_tiled_floor_ms(cost->whole_ms, probe.passes());
+      cost->tiled_estimated = true;
+    }
+  } else {
+    lanes.push_back(
+        build_detector(config, true, sources_per_pass * static_cast<int>(tiled_passes)));
   }
   const TilingDecision decision = decide_tiling(wanted, config.playback.mode, frame, cost);
   const bool tiled = decision.tiled && tiled_passes > 1;
   spdlog::info("{}", decision.why);
-  if (!tiled && tiled_passes > 1) {
+  if (!tiled && tiled_passes > 1 && !(cost && cost->tiled_estimated)) {
     // Sized for tiles that will not be cut: its batch network would compute empty slots.
     lanes.front() = build_detector(config, false, sources_per_pass);
   }

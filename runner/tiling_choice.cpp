@@ -10,9 +10,14 @@ namespace {
 constexpr int kNetworkSize = 300;
 constexpr float kMaxTileMagnification = 2.F;
 
+// The share of n single passes that a batch of n costs a CPU engine at least (cpu_tiled_floor_ms).
+constexpr double kCpuBatchFloor = 0.6;
+
 bool skips_frames(pipeline::PlaybackMode playback, const FrameShape& frame) {
   return frame.live || playback != pipeline::PlaybackMode::every_frame;
 }
+
+double frame_period_ms(const FrameShape& frame) { return frame.fps > 0.0 ? 1000.0 / frame.fps : 0.0; }
 
 }  // namespace
 
@@ -36,6 +41,17 @@ bool tiling_needs_measurement(const DetectorConfig& detector, pipeline::Playback
   return detector.kind == DetectorKind::ssd &&
          detector.tiles.mode == detector::TileMode::automatic &&
          automatic_tile_grid(detector, frame).tiled() && skips_frames(playback, frame);
+}
+
+double cpu_tiled_floor_ms(double whole_ms, std::size_t passes) {
+  return kCpuBatchFloor * static_cast<double>(passes) * whole_ms;
+}
+
+bool tiled_cost_needs_timing(const FrameShape& frame, double whole_ms, std::size_t passes,
+                             bool cpu_engine) {
+  const double period_ms = frame_period_ms(frame);
+  if (period_ms <= 0.0) return false;  // no period to fit: auto cuts no tiles
+  return !cpu_engine || cpu_tiled_floor_ms(whole_ms, passes) <= period_ms;
 }
 
 TilingDecision decide_tiling(const DetectorConfig& detector, pipeline::PlaybackMode playback,
@@ -70,20 +86,21 @@ TilingDecision decide_tiling(const DetectorConfig& detector, pipeline::PlaybackM
                               grid_text, frame.width, frame.height)};
   }
   if (!cost) return {false, "tiles: auto chose none: the detector's speed was not measured"};
-  const double period_ms = frame.fps > 0.0 ? 1000.0 / frame.fps : 0.0;
+  const double period_ms = frame_period_ms(frame);
   // The detector keeps the camera's pace with its tiles: tiling costs no frame that the whole
   // frame alone would have had (docs/tiling.md, "Where tiling pays").
-  if (period_ms > 0.0 && cost->tiled_ms <= period_ms) {
+  if (period_ms > 0.0 && !cost->tiled_estimated && cost->tiled_ms <= period_ms) {
     return {true, fmt::format("tiles: auto chose {} for a {}x{} frame: measured {:.1f} ms a frame "
                               "with them ({:.1f} without), within the {:.1f} ms between frames",
                               grid_text, frame.width, frame.height, cost->tiled_ms, cost->whole_ms,
                               period_ms)};
   }
-  return {false, fmt::format("tiles: auto chose none for a {}x{} frame: {} would take {:.1f} ms a "
+  return {false, fmt::format("tiles: auto chose none for a {}x{} frame: {} would take {}{:.1f} ms a "
                              "frame ({:.1f} without), past the {:.1f} ms between frames: more "
                              "frames skipped",
-                             frame.width, frame.height, grid_text, cost->tiled_ms, cost->whole_ms,
-                             period_ms)};
+                             frame.width, frame.height, grid_text,
+                             cost->tiled_estimated ? "at least " : "", cost->tiled_ms,
+                             cost->whole_ms, period_ms)};
 }
 
 }  // namespace rtmot::runner

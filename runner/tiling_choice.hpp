@@ -1,6 +1,7 @@
 #pragma once
 // The one place `detector.tiles: auto` is decided (docs/tiling.md, "What auto chooses"): from the
 // frame size, the playback mode and the detector's measured speed, with the reason for the log.
+#include <cstddef>
 #include <optional>
 #include <string>
 
@@ -23,6 +24,7 @@ struct FrameShape {
 struct DetectorCost {
   double whole_ms{0.0};  // the frame alone
   double tiled_ms{0.0};  // the frame and its tiles, one batch
+  bool tiled_estimated{false};  // tiled_ms is cpu_tiled_floor_ms(), not a measurement
 };
 
 struct TilingDecision {
@@ -40,6 +42,19 @@ detector::TileGrid automatic_tile_grid(const DetectorConfig& detector, const Fra
 /// whose frames may be skipped when the detector is slow (not every-frame playback).
 bool tiling_needs_measurement(const DetectorConfig& detector, pipeline::PlaybackMode playback,
                               const FrameShape& frame);
+
+/// The least a batch of the frame and its tiles can cost a CPU engine, from the whole frame's
+/// measured cost. On the CPU a batch of n images costs about n single passes (768x576, 3x2 tiles +
+/// the whole frame, 2 threads: XNNPACK 222-237 ms against 29-31 ms alone, 7.1-8.2x), so the
+/// batch need not be built and timed (2-3 s at start) where even this floor misses the frame
+/// period. The floor is kept well under the measured ratio (0.6 of n passes): where it does not
+/// rule tiles out, the batch is timed. Not for CUDA, where a batch costs little more than one.
+double cpu_tiled_floor_ms(double whole_ms, std::size_t passes);
+
+/// Whether the tiled batch must be timed before auto can decide: the frame period is known and a
+/// CPU engine's floor (cpu_tiled_floor_ms) does not already miss it.
+bool tiled_cost_needs_timing(const FrameShape& frame, double whole_ms, std::size_t passes,
+                             bool cpu_engine);
 
 /// The decision for a request of `detector.tiles` (auto, off or a grid); `cost` is needed only
 /// where tiling_needs_measurement() said so.

@@ -1,25 +1,26 @@
 #!/usr/bin/env bash
 # Fuzzes every parser of untrusted input for SECONDS each (default 60) with libFuzzer + ASan + UBSan.
-# Configures build-fuzz with clang, builds the targets, makes seed corpora from the real data
-# (tests/fuzz/make_corpus.sh), runs each target and prints executions and time. Exits 1 if any target
-# found a crash (the reproducer is in build-fuzz/artifacts/; turn it into a tests/regression case).
+# Builds the targets in BUILD_DIR (default build-asan: scripts/sanitize.sh asan configures it with
+# them, and a folder not configured for fuzzing is configured the same way), makes seed corpora from
+# the real data (tests/fuzz/make_corpus.sh), runs each target and prints executions and time. Exits 1
+# if any target found a crash (the reproducer is in BUILD_DIR/artifacts/; turn it into a
+# tests/regression case).
 # Usage: scripts/fuzz.sh [SECONDS]   Env: JOBS (build parallelism, default 2), BUILD_DIR,
 # RTMOT_SHARED_DIR (default ../shared).
 set -euo pipefail
 seconds=${1:-60}
 root=$(cd "$(dirname "$0")/.." && pwd)
-build=${BUILD_DIR:-$root/build-fuzz}
+build=${BUILD_DIR:-$root/build-asan}
 shared=${RTMOT_SHARED_DIR:-$root/../shared}
 export RTMOT_SHARED_DIR=$shared
 jobs=${JOBS:-2}
 
 # -fsanitize=fuzzer-no-link instruments our libraries for coverage; the targets link libFuzzer.
-# UBSan must abort (not just print) for the fuzzer to notice. Warnings are not errors here: clang may
-# warn where the g++ of the normal build does not, and that must not stop fuzzing.
-CC=clang CXX=clang++ cmake -S "$root" -B "$build" -G Ninja \
-  -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRTMOT_BUILD_FUZZERS=ON -DRTMOT_BUILD_BENCH=OFF \
-  -DRTMOT_SANITIZE=address,undefined -DRTMOT_WERROR=OFF -DRTMOT_SHARED_DIR="$shared" \
-  -DCMAKE_CXX_FLAGS="-fsanitize=fuzzer-no-link -fno-sanitize-recover=all" >"$build.configure.log"
+# UBSan must abort (not just print) for the fuzzer to notice. One configuration, sanitize.sh's
+# (asan), so that CI compiles the instrumented project once for the tests and the fuzzers.
+if ! grep -qs '^RTMOT_BUILD_FUZZERS:BOOL=ON' "$build/CMakeCache.txt"; then
+  JOBS=$jobs ASAN_DIR=$build bash "$root/scripts/sanitize.sh" configure-asan
+fi
 cmake --build "$build" --target fuzzers -j "$jobs"
 
 "$root/tests/fuzz/make_corpus.sh" "$build" "$build/seeds"

@@ -6,6 +6,7 @@ set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config file git ca-certificates
   clang libclang-rt-dev                       # fuzzers and sanitizers
+  ccache                                      # scripts/test.sh: the pinned build reuses the native one's objects
   libopencv-dev libeigen3-dev zlib1g-dev
   libxnnpack-dev libpthreadpool-dev libonnx-dev libprotobuf-dev  # the XNNPACK detector backend
   libgstreamer1.0-dev libgstreamer-plugins-base1.0-dev

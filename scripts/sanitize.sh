@@ -1,6 +1,9 @@
 #!/usr/bin/env bash
 # Sanitizer builds of the whole suite, sized for CI (2 cores):
-#   build-asan: -DRTMOT_SANITIZE=address,undefined, every test (ctest).
+#   build-asan: -DRTMOT_SANITIZE=address,undefined, every test (ctest). The same build holds the
+#               libFuzzer targets (scripts/fuzz.sh runs them from it): its code is instrumented for
+#               the fuzzers' coverage too (-fsanitize=fuzzer-no-link, which only counts edges
+#               outside a fuzzer), so CI compiles the project once for both, not twice.
 #   build-tsan: -DRTMOT_SANITIZE=thread, the concurrency tests (pipeline, queues, slot, signals,
 #               reconnecting source, the study's thread pool and cross-validation): where
 #               ThreadSanitizer can find something.
@@ -22,16 +25,36 @@ supp=$root/scripts/sanitizers
 # sanitizer instrumentation of the template-heavy CLI/JSON/format code at -O2), clang a few minutes.
 # -O1 with line tables keeps stack traces exact and builds faster. Warnings are the Release build's
 # job (g++, -Werror): clang warns differently, and that must not hide a sanitizer finding.
-configure() {  # DIR SANITIZERS
-  CC=${SANITIZE_CC:-clang} CXX=${SANITIZE_CXX:-clang++} cmake -S "$root" -B "$1" -G Ninja \
+configure() {  # DIR SANITIZERS [CMAKE ARGS...]
+  local dir=$1 sanitizers=$2
+  shift 2
+  CC=${SANITIZE_CC:-clang} CXX=${SANITIZE_CXX:-clang++} cmake -S "$root" -B "$dir" -G Ninja \
     -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -gline-tables-only" \
-    -DRTMOT_BUILD_BENCH=OFF -DRTMOT_WERROR=OFF -DRTMOT_SANITIZE="$2" >"$1.configure.log"
+    -DRTMOT_BUILD_BENCH=OFF -DRTMOT_WERROR=OFF -DRTMOT_SANITIZE="$sanitizers" "$@" >"$dir.configure.log"
 }
+
+# UBSan aborts on its first finding (what the fuzzers need, and the tests' halt_on_error).
+configure_asan() {
+  configure "$asan_dir" address,undefined -DRTMOT_BUILD_FUZZERS=ON \
+    -DRTMOT_SHARED_DIR="${RTMOT_SHARED_DIR:-$root/../shared}" \
+    -DCMAKE_CXX_FLAGS="-fsanitize=fuzzer-no-link -fno-sanitize-recover=all"
+}
+case $which in
+  asan | tsan | all) ;;
+  configure-asan) # scripts/fuzz.sh: the same build for its targets
+    configure_asan
+    exit 0
+    ;;
+  *)
+    echo "usage: scripts/sanitize.sh [asan|tsan|all]" >&2
+    exit 2
+    ;;
+esac
 
 status=0
 if [[ $which == asan || $which == all ]]; then
   start=$(date +%s)
-  configure "$asan_dir" address,undefined
+  configure_asan
   cmake --build "$asan_dir" -j "$jobs"
   LSAN_OPTIONS=print_suppressions=0 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1 \
     UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 \

@@ -3,8 +3,8 @@
 #   1. dependencies, model, sample video   (installs only what is missing)
 #   2. native build, Release, -Werror, every test (CTest + GoogleTest + system tests)
 #   2b. the pinned OpenCV 4.10 (scripts/build_opencv.sh), then the same build and every test on it
-#   3. fuzzing: every libFuzzer target for FUZZ_SECONDS (default 10) each
-#   4. AddressSanitizer + UndefinedBehaviorSanitizer: the whole suite
+#   3. AddressSanitizer + UndefinedBehaviorSanitizer: the whole suite (the build holds the fuzzers)
+#   4. fuzzing: every libFuzzer target for FUZZ_SECONDS (default 10) each, from the ASan build
 #   5. ThreadSanitizer: the pipeline's lock-free hand-offs and every threaded component
 #   6. aarch64: cross build in an isolated sysroot, the architecture-sensitive tests (CTest label
 #      `arch`) under qemu, tracks equal x86's
@@ -51,6 +51,13 @@ summary() {
 trap summary EXIT
 # Every ctest of every stage (the scripts' own included) prints a failing test's whole output.
 export CTEST_OUTPUT_ON_FAILURE=1
+# Every build goes through ccache (scripts/install_deps.sh installs it). In one cold run the pinned
+# OpenCV build recompiles only the objects that include OpenCV (80 of 283): the others are the
+# native build's, same compiler, same flags. With paths relative to the checkout (build/ and
+# build-pinned/ are siblings) their command lines are the same. A second run on the same machine
+# reuses everything unchanged. CCACHE_DIR, if set, says where the cache lives.
+export CMAKE_C_COMPILER_LAUNCHER=ccache CMAKE_CXX_COMPILER_LAUNCHER=ccache
+export CCACHE_BASEDIR="$root" CCACHE_NOHASHDIR=1
 
 stage "dependencies, model, sample video"
 bash scripts/install_deps.sh
@@ -78,10 +85,10 @@ ctest --test-dir "$root/build-pinned" --output-on-failure -j"$(nproc)" --timeout
 "$root/build-pinned/bench/detector_batch_bench" --backends cpu --batches 1,2,4 --iterations 5
 # --- end pinned OpenCV
 
-stage "fuzzing"
-bash scripts/fuzz.sh "${FUZZ_SECONDS:-10}"
 stage "asan+ubsan: whole suite"
 bash scripts/sanitize.sh asan
+stage "fuzzing"
+bash scripts/fuzz.sh "${FUZZ_SECONDS:-10}"
 stage "tsan: threaded components"
 bash scripts/sanitize.sh tsan
 stage "aarch64: cross build, qemu tests, same tracks"

@@ -77,6 +77,24 @@ TEST(TilingChoice, AutoTilesALiveOrPacedFrameOnlyWhenTheTilesKeepThePace) {
   }
 }
 
+TEST(TilingChoice, ACpuBatchIsTimedOnlyWhereTheWholeFramesCostLeavesRoomForIt) {
+  // kHd: 33.3 ms between frames, 9 passes (4x2 tiles + the whole frame).
+  constexpr std::size_t passes = 9;
+  // 30 ms a whole frame: 9 passes cannot cost under 0.6 x 9 x 30 = 162 ms on a CPU engine.
+  EXPECT_DOUBLE_EQ(cpu_tiled_floor_ms(30.0, passes), 162.0);
+  EXPECT_FALSE(tiled_cost_needs_timing(kHd, 30.0, passes, true));
+  // 5 ms: 27 ms may fit the 33.3 ms, so the batch is built and timed; on CUDA it always is.
+  EXPECT_TRUE(tiled_cost_needs_timing(kHd, 5.0, passes, true));
+  EXPECT_TRUE(tiled_cost_needs_timing(kHd, 30.0, passes, false));
+  // No frame period (a rate not known): nothing to fit, nothing timed.
+  EXPECT_FALSE(tiled_cost_needs_timing(FrameShape{1920, 1080, 0.0, true}, 1.0, passes, false));
+  // The floor decides none and the log says it is a floor, not a measurement.
+  const auto decision = decide_tiling(with_tiles("auto"), PlaybackMode::realtime, kHd,
+                                      DetectorCost{30.0, 162.0, true});
+  EXPECT_FALSE(decision.tiled);
+  EXPECT_NE(decision.why.find("at least 162.0 ms"), std::string::npos) << decision.why;
+}
+
 TEST(TilingChoice, AutoCutsNothingWhenTheFrameSizeIsNotKnownAtStart) {
   // A camera absent at start reports 0 x 0 (it reconnects later).
   const auto decision = decide_tiling(with_tiles("auto"), PlaybackMode::realtime,
