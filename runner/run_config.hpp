@@ -78,6 +78,9 @@ struct DetectorConfig {
   float tile_threshold{detector::TileMergeConfig{}.tile_score_threshold};
   /// ssd: drop boxes of shapes their class does not have (detector/box_plausibility.hpp).
   bool plausible_shapes{true};
+  /// A colour signature per detection from the image (vision/), used where the tracker's
+  /// appearance gate or weight is on.
+  bool appearance{true};
 };
 
 struct OutputConfig {

@@ -291,6 +291,11 @@ std::vector<RunSetting> detector_settings() {
               "ssd: drop boxes of shapes their class does not have, e.g. a person wider than tall "
               "(docs/tiling.md)",
               [](RunConfig& c) -> bool& { return c.detector.plausible_shapes; }),
+      boolean("detector.appearance", "--appearance",
+              "a colour signature of each detection from the image, for the tracker's appearance "
+              "gate and weight (tracker.appearance_gate, appearance_weight; docs/appearance.md); "
+              "off: the tracker sees boxes only",
+              [](RunConfig& c) -> bool& { return c.detector.appearance; }),
       text("detector.det_file", "--det-file",
            "replay: a MOTChallenge det.txt (the flag also sets kind replay)",
            [](RunConfig& c) -> std::string& { return c.detector.det_file; }),

@@ -35,6 +35,7 @@
 #include "runner/source_factory.hpp"
 #include "runner/tiling_choice.hpp"
 #include "tracker/score_scale.hpp"
+#include "vision/appearance_detector.hpp"
 
 namespace rtmot::runner {
 namespace {
@@ -206,6 +207,13 @@ class CostProbe {
   std::vector<std::vector<tracker::Detection>> out_;
 };
 
+// The image's work is done only where the tracker will use it.
+bool measures_appearance(const RunConfig& config) {
+  const tracker::TrackerConfig& tracker = config.tracker;
+  return config.detector.appearance &&
+         (tracker.appearance_weight > 0.0 || tracker.appearance_gate < 1.0);
+}
+
 bool runs_on_cpu(const detector::Detector& detector) {
   const auto* ssd = dynamic_cast<const detector::SsdDetector*>(&detector);
   return ssd != nullptr && ssd->backend().backend != cv::dnn::DNN_BACKEND_CUDA;
@@ -214,7 +222,10 @@ bool runs_on_cpu(const detector::Detector& detector) {
 }  // namespace
 
 std::unique_ptr<detector::Detector> make_detector(const RunConfig& config) {
-  return build_detector(config, true, source_count(config));
+  auto built = build_detector(config, true, source_count(config));
+  if (measures_appearance(config))
+    built = std::make_unique<vision::AppearanceDetector>(std::move(built));
+  return built;
 }
 
 std::vector<platform::SourceInfo> source_infos(const std::vector<pipeline::PipelineInput>& inputs) {
@@ -295,6 +306,9 @@ std::vector<std::unique_ptr<detector::Detector>> make_detectors(
     for (auto& lane : lanes) {
       lane = std::make_unique<detector::TilingDetector>(std::move(lane), tiling);
     }
+  }
+  if (measures_appearance(config)) {
+    for (auto& lane : lanes) lane = std::make_unique<vision::AppearanceDetector>(std::move(lane));
   }
   return lanes;
 }

@@ -9,7 +9,8 @@
 #   LATENCIES  comma-separated: "every" (every frame, no skipping) and/or simulated detector
 #              latencies in ms (e.g. every,30,250)
 # Env: SEQUENCES (default "PETS09-S2L1 ADL-Rundle-6"), FRAMES (the first N frames only; default all),
-#      BUILD (default build), RESCORE=1 (score a run folder again without running the pipeline
+#      SCORE_FROM (score frames N.. only: the ground truth, the results and the processed frames
+#      from N on, e.g. a second half; the run still starts at frame 1), BUILD (default build), RESCORE=1 (score a run folder again without running the pipeline
 #      again, when its run finished).
 # vtest.avi is PETS09-S2L1, whose true rate is 7 fps while the file's header says 10: a latency L
 # at 7 fps is simulated as L x 10 / 7 on the file's clock (the same frames are skipped), and the
@@ -57,7 +58,8 @@ for sequence in ${SEQUENCES:-PETS09-S2L1 ADL-Rundle-6}; do
     mkdir -p "$run/gt/$sequence/gt" "$run/results"
     cp "$gt/seqinfo.ini" "$run/gt/$sequence/"
     # The ground truth of the frames run (FRAMES): scoring stops where the run stopped.
-    awk -F, -v n="$frames" '$1 <= n' "$gt/gt/gt.txt" >"$run/gt/$sequence/gt/gt.txt"
+    from="${SCORE_FROM:-1}"
+    awk -F, -v n="$frames" -v from="$from" '$1 <= n && $1 >= from' "$gt/gt/gt.txt" >"$run/gt/$sequence/gt/gt.txt"
     args=(run --source "$src" --max-frames "$frames" --mot-results "$run/mot" --full-rate true)
     if [[ $latency == every ]]; then
       args+=(--playback every-frame)
@@ -73,8 +75,8 @@ for sequence in ${SEQUENCES:-PETS09-S2L1 ADL-Rundle-6}; do
       exit 1
     fi
     produced="$(ls "$run/mot"/*.txt)"
-    cp "$produced" "$run/results/$sequence.txt"
-    cp "${produced%.txt}.frames" "$run/results/$sequence.frames"
+    awk -F, -v from="$from" '$1 >= from' "$produced" >"$run/results/$sequence.txt"
+    awk -v from="$from" '/^#/ || $1 >= from' "${produced%.txt}.frames" >"$run/results/$sequence.frames"
     "$rtmot" eval --gt "$run/gt" --results "$run/results" --csv "$run/eval.csv" >"$run/eval.txt" 2>&1 || {
       echo "score_video.sh: rtmot eval failed for $sequence at $latency (log: $run/eval.txt)" >&2; exit 1; }
     processed=$(grep -vc '^#' "$run/results/$sequence.frames" || true)

@@ -6,33 +6,62 @@
 #include "tracker/affinity.hpp"
 
 namespace rtmot::tracker {
+namespace {
+
+// Below every threshold: the pair is impossible (the appearance gate).
+constexpr double kImpossible = -1.0;
+
+// The appearance's say in one pair, where both sides have one: beyond the gate the pair is
+// impossible; otherwise the assignment's preference is the affinity scaled down by the distance
+// (relative: pairs of large and small affinities are scaled alike, for every affinity kind).
+void weigh_appearance(const TrackerConfig& config, const AssociationCandidate& candidate,
+                      const Detection& detection, double& value, double& preference) {
+  if (candidate.appearance == nullptr || !candidate.appearance->valid ||
+      !detection.appearance.valid)
+    return;
+  const double distance = appearance_distance(*candidate.appearance, detection.appearance);
+  if (distance > config.appearance_gate) {
+    value = preference = kImpossible;
+    return;
+  }
+  preference = value * (1.0 - config.appearance_weight * distance);
+}
+
+}  // namespace
 
 Associator::Associator(int rows, int cols) {
   const auto cells = static_cast<std::size_t>(rows) * static_cast<std::size_t>(cols);
   affinities_.reserve(cells);
+  preferences_.reserve(cells);
   costs_.reserve(cells);
   row_hits_.reserve(static_cast<std::size_t>(rows));
   col_hits_.reserve(static_cast<std::size_t>(cols));
   assignment_.reserve(rows, cols);
 }
 
-// Fills the detections x candidates affinities (row-major), counts each row's and column's pairs
-// above the threshold (what tells a one-to-one frame from one the solver must settle), and solves.
-template <typename AffinityOf>
+// Fills the detections x candidates affinities and preferences (row-major), counts each row's and
+// column's pairs above the threshold (what tells a one-to-one frame from one the solver must
+// settle), and solves.
+template <typename AffinityOf, typename PreferenceOf>
 void Associator::fill_and_solve(const std::vector<Detection>& detections,
                                 const std::vector<AssociationCandidate>& candidates,
                                 double threshold, const AffinityOf& affinity_of,
+                                const PreferenceOf& preference_of,
                                 std::vector<AssociationMatch>& matches) {
   const int rows = static_cast<int>(detections.size());
   const int cols = static_cast<int>(candidates.size());
   if (rows == 0 || cols == 0) return;
   affinities_.resize(static_cast<std::size_t>(rows) * cols);
+  preferences_.resize(affinities_.size());
   row_hits_.assign(rows, 0);
   col_hits_.assign(cols, 0);
   for (int r = 0; r < rows; ++r) {
     for (int c = 0; c < cols; ++c) {
-      const double value = affinity_of(r, c);
+      double value = affinity_of(r, c);
+      double preference = value;
+      preference_of(r, c, value, preference);
       affinities_[static_cast<std::size_t>(r) * cols + c] = value;
+      preferences_[static_cast<std::size_t>(r) * cols + c] = preference;
       if (value > threshold) {
         ++row_hits_[r];
         ++col_hits_[c];
@@ -52,6 +81,9 @@ void Associator::associate(const TrackerConfig& config, double threshold,
         return affinity(config, candidates[c].predicted, detections[r].box,
                         candidates[c].gate_frames, candidates[c].noise_margin);
       },
+      [&](int r, int c, double& value, double& preference) {
+        weigh_appearance(config, candidates[c], detections[r], value, preference);
+      },
       matches);
 }
 
@@ -61,7 +93,7 @@ double normalised_centre_distance(const Box& predicted, const Box& detection) {
   return std::hypot(dx, dy);
 }
 
-void Associator::associate_by_distance(double per_frame, double max_reach,
+void Associator::associate_by_distance(const TrackerConfig& config,
                                        const std::vector<Detection>& detections,
                                        const std::vector<AssociationCandidate>& candidates,
                                        std::vector<AssociationMatch>& matches) {
@@ -71,12 +103,16 @@ void Associator::associate_by_distance(double per_frame, double max_reach,
       [&](int r, int c) {
         const Box& predicted = candidates[c].predicted;
         const Box& box = detections[r].box;
-        const double reach = std::min(per_frame * candidates[c].gate_frames, max_reach);
+        const double reach = std::min(config.distance_gate_per_frame * candidates[c].gate_frames,
+                                      config.distance_gate_max);
         const double distance = normalised_centre_distance(predicted, box);
         const double heights = double{box.h} / predicted.h;
         const bool possible = distance <= reach && heights <= kDistanceRoundHeightRatio &&
                               heights >= 1.0 / kDistanceRoundHeightRatio;
-        return possible ? 1.0 / (1.0 + distance) : -1.0;
+        return possible ? 1.0 / (1.0 + distance) : kImpossible;
+      },
+      [&](int r, int c, double& value, double& preference) {
+        weigh_appearance(config, candidates[c], detections[r], value, preference);
       },
       matches);
 }
@@ -98,7 +134,7 @@ void Associator::solve(double threshold, int rows, int cols,
   const double best = *std::max_element(affinities_.begin(), affinities_.end());
   if (!(best >= threshold)) return;  // no pair could pass the gate: skip the solver
   costs_.resize(affinities_.size());
-  std::transform(affinities_.begin(), affinities_.end(), costs_.begin(),
+  std::transform(preferences_.begin(), preferences_.end(), costs_.begin(),
                  [](double value) { return -value; });
   const std::vector<int>& assigned = assignment_.solve(costs_.data(), rows, cols);
   for (int r = 0; r < rows; ++r) {

@@ -14,6 +14,7 @@ struct AssociationCandidate {
   Box predicted;
   double gate_frames{1.0};  // nominal frames that widen its gate (TrackerConfig::gate_clock)
   float noise_margin{0.F};  // the gate margin the stream's box noise asks for (noise_gate_factor)
+  const Appearance* appearance{nullptr};  // the track's, when it has one
 };
 
 /// The distance round's pairs differ in height by at most this factor: a far detection of a
@@ -33,7 +34,8 @@ class Associator {
   /// Reserves a workspace for up to rows x cols matrices; larger ones grow it once.
   Associator(int rows, int cols);
 
-  /// Appends to `matches` the pairs whose affinity reaches `threshold`. When every
+  /// Appends to `matches` the pairs whose affinity reaches `threshold`; where the candidate and the
+  /// detection both have an appearance, config's appearance gate and weight apply. When every
   /// detection and every candidate has at most one partner above the threshold, those pairs are
   /// taken directly (sort.py's shortcut); otherwise the optimal assignment decides.
   void associate(const TrackerConfig& config, double threshold,
@@ -42,23 +44,28 @@ class Associator {
                  std::vector<AssociationMatch>& matches);
 
   /// The same round by centre distance (TrackerConfig::distance_gate_per_frame): a pair is
-  /// possible when the detection's centre lies within min(per_frame x gate_frames, max_reach)
-  /// of the candidate's predicted centre, in the predicted box's sizes, and their heights are
-  /// within kDistanceRoundHeightRatio; the assignment prefers the closer pairs.
-  void associate_by_distance(double per_frame, double max_reach,
+  /// possible when the detection's centre lies within min(distance_gate_per_frame x
+  /// gate_frames, distance_gate_max) of the candidate's predicted centre, in the predicted box's
+  /// sizes, and their heights are within kDistanceRoundHeightRatio; the assignment prefers the
+  /// closer pairs. The appearance weighs in as in associate().
+  void associate_by_distance(const TrackerConfig& config,
                              const std::vector<Detection>& detections,
                              const std::vector<AssociationCandidate>& candidates,
                              std::vector<AssociationMatch>& matches);
 
  private:
-  template <typename AffinityOf>
+  template <typename AffinityOf, typename PreferenceOf>
   void fill_and_solve(const std::vector<Detection>& detections,
                       const std::vector<AssociationCandidate>& candidates, double threshold,
-                      const AffinityOf& affinity_of, std::vector<AssociationMatch>& matches);
-  // Appends the matches for the affinities_ already filled (rows x cols, row-major).
+                      const AffinityOf& affinity_of, const PreferenceOf& preference_of,
+                      std::vector<AssociationMatch>& matches);
+  // Appends the matches for the affinities_ and preferences_ already filled (rows x cols,
+  // row-major): the affinities decide which pairs are possible, the preferences which of them
+  // the assignment takes.
   void solve(double threshold, int rows, int cols, std::vector<AssociationMatch>& matches);
 
   std::vector<double> affinities_;
+  std::vector<double> preferences_;
   std::vector<double> costs_;
   std::vector<int> row_hits_;
   std::vector<int> col_hits_;

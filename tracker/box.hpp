@@ -2,6 +2,7 @@
 // Value types the tracker speaks: boxes, detections and what it reports per track.
 #include <cstdint>
 
+#include "tracker/appearance.hpp"
 #include "tracker/track_stage.hpp"
 
 namespace rtmot::tracker {
@@ -20,9 +21,16 @@ struct Box {
 
 /// One detector output. `class_id` uses the detector's own ids (COCO's 91-id map for the SSD).
 struct Detection {
+  // Constructed from what a detector knows (`{box, score, class_id}`); the appearance, which only
+  // the image layer adds, is set afterwards.
+  Detection() = default;
+  Detection(const Box& found, float found_score = 1.F, int found_class = 0)
+      : box(found), score(found_score), class_id(found_class) {}
+
   Box box;
   float score{1.F};
   int class_id{0};
+  Appearance appearance;  // from the image (vision/), when there is one
 };
 
 /// What the tracker reports for a track in one frame: update() reports the confirmed ones,

@@ -16,6 +16,14 @@ inline float iou(const Box& a, const Box& b) {
   return union_area > 0.F ? intersection / union_area : 0.F;
 }
 
+/// The share of `box`'s area that `other` covers, in [0, 1].
+inline float covered_share(const Box& box, const Box& other) {
+  const float ix = std::max(0.F, std::min(box.x + box.w, other.x + other.w) - std::max(box.x, other.x));
+  const float iy = std::max(0.F, std::min(box.y + box.h, other.y + other.h) - std::max(box.y, other.y));
+  const float area = box.w * box.h;
+  return area > 0.F ? ix * iy / area : 0.F;
+}
+
 /// The box grown about its centre by `margin` times its size on every side (C-BIoU's buffer).
 inline Box enlarged(const Box& box, float margin) {
   return Box{box.x - margin * box.w, box.y - margin * box.h, box.w * (1.F + 2.F * margin),

@@ -55,6 +55,7 @@ struct Track {
   std::int32_t matches{0};
   std::int32_t class_id{0};
   TrackLife life;
+  Appearance appearance;  // learnt from its unoccluded matches (invalid without images)
   // Born at or above strong_birth_range_cut: confirmed sooner.
   bool strong_birth{false};
 

@@ -21,6 +21,9 @@ constexpr int kTypicalSceneSize = 64;
 // The box noise is measured on matches about one nominal frame ahead: a live camera's timestamps
 // jitter, and two frames ahead the offset is mostly motion (the time-widened gate's business).
 constexpr double kOneFrameSlack = 0.5;
+// A detection whose box another detection covers this much of shows someone else's pixels too:
+// its appearance does not teach its track (a tenth of a person is an arm or a bag).
+constexpr float kOccludedShare = 0.1F;
 
 const TrackerConfig& validated(const TrackerConfig& config) {
   if (const auto problem = config_problem(config))
@@ -63,6 +66,7 @@ struct Tracker::State {
     rest.reserve(detections);
     rest_index.reserve(detections);
     high_taken.reserve(detections);
+    hidden_flags.resize(2 * detections);  // high and low together: at most max_detections each
     positions.reserve(tracks);
     candidates.reserve(tracks);
     round_matches.reserve(std::min(tracks, detections));
@@ -133,6 +137,18 @@ struct Tracker::State {
       }
     }
     high_taken.assign(high.size(), 0);
+    forget_hidden_appearances();
+  }
+
+  // A detection that another one partly covers shows some of the other person's colours: its
+  // appearance neither decides a pair nor teaches a track (kOccludedShare).
+  void forget_hidden_appearances() {
+    std::size_t hidden = 0;
+    for (const Detection& d : high) hidden_flags[hidden++] = d.appearance.valid && overlapped(d);
+    for (const Detection& d : low) hidden_flags[hidden++] = d.appearance.valid && overlapped(d);
+    hidden = 0;
+    for (Detection& d : high) d.appearance.valid = d.appearance.valid && !hidden_flags[hidden++];
+    for (Detection& d : low) d.appearance.valid = d.appearance.valid && !hidden_flags[hidden++];
   }
 
   // Every live track advances by `dt` nominal frames and starts the update coasting; a track
@@ -219,11 +235,11 @@ struct Tracker::State {
     candidates.clear();
     for (const int position : positions) {
       const Track& track = slots[order[position]];
-      candidates.push_back(AssociationCandidate{track.predicted, step_frames, 0.F});
+      candidates.push_back(
+          AssociationCandidate{track.predicted, step_frames, 0.F, &track.appearance});
     }
     round_matches.clear();
-    associator.associate_by_distance(config.distance_gate_per_frame, config.distance_gate_max, rest,
-                                     candidates, round_matches);
+    associator.associate_by_distance(config, rest, candidates, round_matches);
     for (const AssociationMatch& m : round_matches) {
       high_taken[static_cast<std::size_t>(rest_index[static_cast<std::size_t>(m.detection)])] = 1;
       correct_track(slots[order[positions[m.candidate]]], rest[m.detection]);
@@ -265,7 +281,8 @@ struct Tracker::State {
       const Track& track = slots[order[position]];
       const double gate_time =
           config.gate_clock == GateClock::frame_gap ? step_frames : track.frames_since_update;
-      candidates.push_back(AssociationCandidate{track.predicted, gate_time, noise_margin});
+      candidates.push_back(
+          AssociationCandidate{track.predicted, gate_time, noise_margin, &track.appearance});
     }
     round_matches.clear();
     associator.associate(config, threshold, detections, candidates, round_matches);
@@ -290,6 +307,10 @@ struct Tracker::State {
       track.at_last_observation = *kalman;
     }
     track.last_observation = detection.box;
+    if (detection.appearance.valid) {  // valid: no other detection covers it
+      blend_appearance(track.appearance, detection.appearance,
+                       static_cast<float>(config.appearance_momentum));
+    }
     track.steps_since_update = 0;
     track.frames_since_update = 0.0;
     ++track.hit_streak;
@@ -310,6 +331,18 @@ struct Tracker::State {
                                 static_cast<float>(i) / static_cast<float>(steps)));
     }
     kalman = replay;
+  }
+
+  // Whether another detection of this frame covers part of `detection` (kOccludedShare).
+  bool overlapped(const Detection& detection) const {
+    const auto covers = [&](const Detection& other) {
+      const Box& a = other.box;
+      const Box& b = detection.box;
+      const bool itself = a.x == b.x && a.y == b.y && a.w == b.w && a.h == b.h;
+      return !itself && covered_share(b, a) > kOccludedShare;
+    };
+    return std::any_of(high.begin(), high.end(), covers) ||
+           std::any_of(low.begin(), low.end(), covers);
   }
 
   // Every high-score detection that no round took starts a tentative track (with a birth cut,
@@ -362,6 +395,7 @@ struct Tracker::State {
     track.score_sum = detection.score;
     track.matches = 1;
     track.class_id = detection.class_id;
+    track.appearance = detection.appearance;
     track.life.born();
     track.strong_birth = config.strong_birth_range_cut > 0.0 &&
                          detection.score >= score_cut.range_point(config.strong_birth_range_cut);
@@ -456,6 +490,7 @@ struct Tracker::State {
   std::vector<Detection> high;
   std::vector<Detection> low;
   std::vector<char> high_taken;  // high[d] was matched by a round
+  std::vector<char> hidden_flags;  // high's, then low's: partly covered by another detection
   std::vector<Detection> rest;   // the cascade's second level: detections left by the first
   std::vector<int> rest_index;   // their index in `high`
   std::vector<int> positions;    // the round's tracks, as indices into `order`

@@ -32,6 +32,8 @@ TrackerConfig with_every_option(TrackerConfig base) {
   base.noise_gate_factor = 3.0;
   base.distance_gate_per_frame = 0.5;
   base.distance_gate_max = 5.0;
+  base.appearance_gate = 0.8;
+  base.appearance_weight = 0.5;
   return base;
 }
 
@@ -100,6 +102,11 @@ std::optional<std::string> config_problem(const TrackerConfig& config) {
         config.distance_gate_max >= 0.0 && config.distance_gate_max <= limits::kMaxDistanceGate))
     return "distance_gate_per_frame and distance_gate_max must be in [0, " +
            std::to_string(limits::kMaxDistanceGate) + "]";
+  if (!(config.appearance_gate >= 0.0 && config.appearance_gate <= 1.0 &&
+        config.appearance_weight >= 0.0 && config.appearance_weight <= 1.0))
+    return "appearance_gate and appearance_weight must be in [0, 1]";
+  if (!(config.appearance_momentum >= 0.0 && config.appearance_momentum < 1.0))
+    return "appearance_momentum must be in [0, 1)";
   return std::nullopt;
 }
 

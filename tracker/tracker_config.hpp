@@ -137,6 +137,18 @@ struct TrackerConfig {
   double distance_gate_per_frame{0.0};
   double distance_gate_max{5.0};
 
+  // --- appearance: where detections carry one (vision/, from the image); else nothing changes ---
+  /// A track and a detection whose appearances lie further apart than this (Hellinger distance)
+  /// are never matched. 1 = no gate.
+  double appearance_gate{1.0};
+  /// Among the pairs the affinity allows, the assignment prefers affinity x (1 - weight x
+  /// appearance distance): whether a pair is possible stays the affinity's (and the gate's)
+  /// decision, which of the possible pairs is the appearance's too. 0 = off.
+  double appearance_weight{0.0};
+  /// A track's appearance keeps this share of itself at each match by a detection that no other
+  /// detection overlaps (a partly hidden person shows someone else's colours).
+  double appearance_momentum{0.9};
+
   // --- particle filter ---
   int particle_count{100};
   std::uint64_t seed{1};

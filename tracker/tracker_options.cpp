@@ -284,6 +284,19 @@ std::vector<TrackerOption> make_table() {
            &C::distance_gate_per_frame, 0.0, limits::kMaxDistanceGate),
       real("distance_gate_max", "that round's largest reach, in box sizes", &C::distance_gate_max,
            0.0, limits::kMaxDistanceGate),
+      real("appearance_gate",
+           "where the detections carry an appearance (detector.appearance): a track and a "
+           "detection that look further apart than this (Hellinger distance of their colour "
+           "signatures) are never matched (1: no gate)",
+           &C::appearance_gate, 0.0, 1.0),
+      real("appearance_weight",
+           "among the pairs the affinity allows, the assignment prefers affinity x (1 - this x "
+           "the appearance distance) (0: appearance plays no part in the choice)",
+           &C::appearance_weight, 0.0, 1.0),
+      real("appearance_momentum",
+           "a track's appearance keeps this share of itself at each match by a detection no "
+           "other detection overlaps",
+           &C::appearance_momentum, 0.0, 0.999),
       integer("particle_count",
               "particles per track (particle predictor); max_tracks x particle_count is at most " +
                   std::to_string(limits::kMaxParticleStorage),

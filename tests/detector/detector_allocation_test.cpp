@@ -12,6 +12,7 @@
 #include "detector/ssd_postprocess.hpp"
 #include "detector/tiling_detector.hpp"
 #include "shared_data.hpp"
+#include "vision/appearance_detector.hpp"
 #include "vtest_frames.hpp"
 
 #if RTMOT_HAVE_XNNPACK
@@ -78,6 +79,19 @@ TEST(DetectorAllocation, TilingAllocatesNothingInSteadyState) {
   ASSERT_GE(out.size(), 9U);
   const test::CountingScope counting;
   for (int i = 0; i < 10; ++i) tiling.detect(frame, 3 + i, out);
+  EXPECT_EQ(counting.allocations(), 0);
+}
+
+TEST(DetectorAllocation, AppearanceAllocatesNothingInSteadyState) {
+  vision::AppearanceDetector appearance(std::make_unique<TwoBoxes>());
+  cv::Mat frame(576, 768, CV_8UC3);
+  cv::randu(frame, cv::Scalar::all(0), cv::Scalar::all(255));
+  std::vector<tracker::Detection> out;
+  appearance.detect(frame, 1, out);  // its HSV buffer takes the frame's size
+  ASSERT_EQ(out.size(), 2U);
+  ASSERT_TRUE(out[0].appearance.valid);
+  const test::CountingScope counting;
+  for (int i = 0; i < 10; ++i) appearance.detect(frame, 2 + i, out);
   EXPECT_EQ(counting.allocations(), 0);
 }
 
