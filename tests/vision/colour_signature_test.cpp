@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <iostream>
 #include <map>
 #include <set>
 #include <sstream>
@@ -108,7 +109,9 @@ TEST(ColourSignature, APersonInTheNextFrameIsNearestToThemselves) {
   other_distance /= others;
   std::cout << asked << " people asked, nearest is self " << rate << ", mean distance to self "
             << own_distance << ", to others " << other_distance << "\n";
-  EXPECT_GE(rate, 0.0);
+  // Measured: 94 of 94, 0.16 against 0.63.
+  EXPECT_GE(rate, 0.95);
+  EXPECT_LT(own_distance, 0.5 * other_distance);
 }
 
 }  // namespace
