@@ -1,13 +1,13 @@
-// The tracker's use of appearance (tracker/appearance.hpp): the distance and the model's update,
-// and a crossing that boxes alone get wrong.
+// The tracker's use of appearance (tracker/appearance.hpp): the distance, the model's update, and
+// the association's gate and preference (tracker/association.hpp) where the boxes alone would
+// swap two people.
 #include <gtest/gtest.h>
 
 #include <map>
+#include <vector>
 
-#include "scene.hpp"
 #include "tracker/appearance.hpp"
-#include "tracker/presets.hpp"
-#include "tracker/tracker.hpp"
+#include "tracker/association.hpp"
 
 namespace rtmot::tracker {
 namespace {
@@ -40,46 +40,61 @@ TEST(Appearance, TheModelMovesTowardsWhatIsSeenByOneMinusTheMomentum) {
   EXPECT_FLOAT_EQ(model.bins[5], 0.1F);
 }
 
-// Two people walk towards each other, meet (one box for both: the detector sees one of them), and
-// turn back where they came from. The constant-velocity prediction carries each across, onto the
-// other: boxes alone swap their ids. Their colours (red and blue) do not.
-std::map<int, int> ids_by_colour(const TrackerConfig& config, bool with_colours) {
-  Tracker tracker(config);
-  const Appearance red = colour(0);
-  const Appearance blue = colour(30);
-  std::map<int, int> last_id;  // colour bin -> id reported on the last frame
-  const auto seen = [&](float x, const Appearance& look) {
-    Detection d = test::detection(x, 200.F);
-    if (with_colours) d.appearance = look;
-    return d;
-  };
-  int frame = 0;
-  const auto step = [&](const std::vector<Detection>& detections) {
-    return tracker.update(detections, frame++ / config.frame_rate);
-  };
-  for (int i = 0; i < 10; ++i) step({seen(100.F + 20.F * i, red), seen(460.F - 20.F * i, blue)});
-  step({seen(290.F, red)});  // together: one box
-  for (int i = 1; i <= 8; ++i) {
-    const float red_x = 290.F - 20.F * i;
-    const float blue_x = 290.F + 20.F * i;
-    const auto& reports = step({seen(red_x, red), seen(blue_x, blue)});
-    for (const TrackReport& r : reports) last_id[r.box.center_x() < 290.F ? 0 : 30] = r.id;
+// Two tracks side by side (predictions 10 px apart) and two detections, each overlapping both
+// predictions: by their boxes the nearer pairs win (IoU 0.90 against 0.54), by their colours the
+// other two. Whether a pair is possible stays the boxes' decision; which possible pair is taken
+// is the colours' too.
+struct SideBySide {
+  Appearance red = colour(0);
+  Appearance blue = colour(30);
+  std::vector<AssociationCandidate> candidates{
+      {Box{100.F, 200.F, 40.F, 80.F}, 1.0, 0.F, &red},    // 0: red
+      {Box{110.F, 200.F, 40.F, 80.F}, 1.0, 0.F, &blue}};  // 1: blue
+  std::vector<Detection> detections;
+
+  explicit SideBySide(bool with_colours) {
+    detections.emplace_back(Box{112.F, 200.F, 40.F, 80.F}, 0.9F, 1);  // red, nearer to blue's
+    detections.emplace_back(Box{98.F, 200.F, 40.F, 80.F}, 0.9F, 1);   // blue, nearer to red's
+    if (with_colours) {
+      detections[0].appearance = red;
+      detections[1].appearance = blue;
+    }
   }
-  return last_id;
+
+  // candidate -> detection
+  std::map<int, int> matched(const TrackerConfig& config) const {
+    Associator associator(2, 2);
+    std::vector<AssociationMatch> matches;
+    associator.associate(config, 0.3, detections, candidates, matches);
+    std::map<int, int> pairs;
+    for (const AssociationMatch& m : matches) pairs[m.candidate] = m.detection;
+    return pairs;
+  }
+};
+
+TEST(Appearance, ColoursDecideAmongThePairsTheBoxesAllow) {
+  TrackerConfig config;
+  config.appearance_weight = 1.0;
+  const std::map<int, int> by_boxes{{0, 1}, {1, 0}};
+  const std::map<int, int> by_colours{{0, 0}, {1, 1}};
+  EXPECT_EQ(SideBySide(false).matched(config), by_boxes);  // no appearance: the boxes alone
+  EXPECT_EQ(SideBySide(true).matched(config), by_colours);
+  config.appearance_weight = 0.0;  // off: the colours are there but play no part
+  EXPECT_EQ(SideBySide(true).matched(config), by_boxes);
 }
 
-TEST(Appearance, IdsFollowTheColoursThroughACrossingThatBoxesAloneSwap) {
-  TrackerConfig config = *find_preset("rtmot");
-  config.appearance_gate = 0.8;
-  config.appearance_weight = 0.5;
-  // The first frames' ids: red started first (id 1), blue second (id 2).
-  const auto boxes_only = ids_by_colour(config, false);
-  ASSERT_EQ(boxes_only.size(), 2U);
-  EXPECT_EQ(boxes_only.at(0), 2) << "without colours the red person should take blue's id";
-  const auto with_colours = ids_by_colour(config, true);
-  ASSERT_EQ(with_colours.size(), 2U);
-  EXPECT_EQ(with_colours.at(0), 1);
-  EXPECT_EQ(with_colours.at(30), 2);
+TEST(Appearance, ThePairsBeyondTheGateAreNeverMatched) {
+  TrackerConfig config;
+  config.appearance_gate = 0.8;  // weight 0: only the gate
+  const SideBySide scene(true);
+  const std::map<int, int> by_colours{{0, 0}, {1, 1}};
+  EXPECT_EQ(scene.matched(config), by_colours);
+  // A detection that looks like no track is matched by none, however well its box fits.
+  SideBySide stranger(true);
+  stranger.detections.resize(1);
+  stranger.detections[0].box = stranger.candidates[0].predicted;
+  stranger.detections[0].appearance = colour(12);
+  EXPECT_TRUE(stranger.matched(config).empty());
 }
 
 }  // namespace

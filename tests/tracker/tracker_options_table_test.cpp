@@ -59,6 +59,9 @@ TEST(TrackerOptions, EveryKnobOfTheConfigCanBeSet) {
                                      {"noise_gate_factor", "2.5"},
                                      {"distance_gate_per_frame", "0.35"},
                                      {"distance_gate_max", "3.5"},
+                                     {"appearance_gate", "0.7"},
+                                     {"appearance_weight", "0.3"},
+                                     {"appearance_momentum", "0.8"},
                                      {"particle_count", "33"},
                                      {"seed", "18446744073709551615"},
                                      {"max_tracks", "20"},
@@ -95,11 +98,14 @@ TEST(TrackerOptions, EveryKnobOfTheConfigCanBeSet) {
   EXPECT_DOUBLE_EQ(config.noise_gate_factor, 2.5);
   EXPECT_DOUBLE_EQ(config.distance_gate_per_frame, 0.35);
   EXPECT_DOUBLE_EQ(config.distance_gate_max, 3.5);
+  EXPECT_DOUBLE_EQ(config.appearance_gate, 0.7);
+  EXPECT_DOUBLE_EQ(config.appearance_weight, 0.3);
+  EXPECT_DOUBLE_EQ(config.appearance_momentum, 0.8);
   EXPECT_EQ(config.particle_count, 33);
   EXPECT_EQ(config.seed, 18446744073709551615ULL);
   EXPECT_EQ(config.max_tracks, 20);
   EXPECT_EQ(config.max_detections, 30);
-  EXPECT_EQ(tracker_options().size(), 36U) << "a new TrackerConfig field needs a line here too";
+  EXPECT_EQ(tracker_options().size(), 39U) << "a new TrackerConfig field needs a line here too";
 }
 
 TEST(TrackerOptions, AnAffinityBringsItsUsualThresholdUnlessOneFollows) {
