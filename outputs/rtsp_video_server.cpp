@@ -5,7 +5,9 @@
 #include <gst/rtsp-server/rtsp-server.h>
 #include <spdlog/spdlog.h>
 
+#include <atomic>
 #include <cmath>
+#include <mutex>
 
 #include "common/input_error.hpp"
 #include "outputs/bgr_buffer.hpp"
@@ -14,8 +16,108 @@
 
 namespace rtmot::outputs {
 
+// What the media's callbacks share with the server: the current media's appsrc (set and cleared
+// on gst-rtsp-server's threads, used by push() on the sink stage) and the frame count. Every
+// closure and pad probe that calls back holds its own reference, so a callback that comes after
+// the server is gone finds live memory. That happens: clients are served on gst-rtsp-server's
+// thread pool, not on the server's main loop, and a client's teardown can unprepare the media
+// after close() returned (CI once aborted there, std::system_error from locking the mutex of a
+// server already destroyed).
+struct RtspMediaLink {
+  // push() only try_locks it: the sink stage never waits for an RTSP thread.
+  std::mutex mutex;
+  const GstRTSPMedia* media{nullptr};  // the current media, for identity only (not owned)
+  GstElement* appsrc{nullptr};
+  GstElement* padding{nullptr};  // the media's videobox: sized at its first frame
+  GstPad* probed_pad{nullptr};   // the appsrc's src pad, while the probe counts its buffers
+  gulong probe_id{0};
+  bool caps_set{false};
+  bool closed{false};  // the server closed: a media configured later gets no frames
+  // Written by the media's streaming thread, read by anyone: a statistic, no other memory is
+  // published through it, so relaxed order is enough.
+  std::atomic<std::uint64_t> frames_streamed{0};
+
+  // With `mutex` held. The probe goes with the media, and the elements' references are dropped.
+  void forget() {
+    if (probed_pad != nullptr) {
+      if (probe_id != 0) gst_pad_remove_probe(probed_pad, probe_id);
+      gst_object_unref(probed_pad);
+    }
+    probed_pad = nullptr;
+    probe_id = 0;
+    if (appsrc != nullptr) gst_object_unref(appsrc);
+    if (padding != nullptr) gst_object_unref(padding);
+    appsrc = nullptr;
+    padding = nullptr;
+    media = nullptr;
+  }
+};
+
+namespace {
+
+using LinkRef = std::shared_ptr<RtspMediaLink>;
+
+// A callback's own reference, freed by GLib when the handler or probe goes.
+gpointer new_link_ref(const LinkRef& link) {
+  return new LinkRef(link);
+}
+void free_link_ref(gpointer data) {
+  delete static_cast<LinkRef*>(data);
+}
+void free_link_ref_closure(gpointer data, GClosure*) {
+  free_link_ref(data);
+}
+
+GstPadProbeReturn on_frame_streamed(GstPad*, GstPadProbeInfo*, gpointer data) {
+  (*static_cast<LinkRef*>(data))->frames_streamed.fetch_add(1, std::memory_order_relaxed);
+  return GST_PAD_PROBE_OK;
+}
+
+void on_media_unprepared(GstRTSPMedia* media, gpointer data) {
+  const LinkRef link = *static_cast<LinkRef*>(data);  // alive past forget()'s own releases
+  const std::lock_guard<std::mutex> lock(link->mutex);
+  // A media replaced by a newer one (a client that left after another came) leaves the newer be.
+  if (link->media == media) link->forget();
+}
+
+void on_media_configure(GstRTSPMediaFactory*, GstRTSPMedia* media, gpointer data) {
+  const LinkRef link = *static_cast<LinkRef*>(data);
+  GstElement* element = gst_rtsp_media_get_element(media);
+  GstElement* appsrc = gst_bin_get_by_name_recurse_up(GST_BIN(element), "src");
+  GstElement* padding = gst_bin_get_by_name_recurse_up(GST_BIN(element), "pad");
+  gst_object_unref(element);
+  g_signal_connect_data(media, "unprepared", G_CALLBACK(&on_media_unprepared),
+                        new_link_ref(link), &free_link_ref_closure, GConnectFlags{});
+  const std::lock_guard<std::mutex> lock(link->mutex);
+  if (link->closed) {
+    if (appsrc != nullptr) gst_object_unref(appsrc);
+    if (padding != nullptr) gst_object_unref(padding);
+    return;
+  }
+  link->forget();
+  link->media = media;
+  link->appsrc = appsrc;
+  link->padding = padding;
+  link->caps_set = false;
+  if (appsrc != nullptr) {
+    link->probed_pad = gst_element_get_static_pad(appsrc, "src");
+    if (link->probed_pad != nullptr) {
+      link->probe_id = gst_pad_add_probe(link->probed_pad, GST_PAD_PROBE_TYPE_BUFFER,
+                                         &on_frame_streamed, new_link_ref(link), &free_link_ref);
+    }
+  }
+}
+
+GstRTSPFilterResult hang_up(GstRTSPServer*, GstRTSPClient*, gpointer) {
+  return GST_RTSP_FILTER_REMOVE;  // closes the client's connection and its sessions
+}
+
+}  // namespace
+
 RtspVideoServer::RtspVideoServer(VideoTarget target, double fps, const VideoEncoding& encoding)
-    : target_(std::move(target)), fps_(fps > 0.0 ? fps : 30.0) {
+    : target_(std::move(target)),
+      fps_(fps > 0.0 ? fps : 30.0),
+      link_(std::make_shared<RtspMediaLink>()) {
   platform::gst::ensure_initialized();
   encoder_ = &open_encoder(target_.text, encoding);
   const VideoEncoder& encoder = *encoder_;
@@ -39,8 +141,8 @@ RtspVideoServer::RtspVideoServer(VideoTarget target, double fps, const VideoEnco
       rtp_payloader(encoder.codec));
   gst_rtsp_media_factory_set_launch(factory, launch.c_str());
   gst_rtsp_media_factory_set_shared(factory, TRUE);
-  g_signal_connect(factory, "media-configure", G_CALLBACK(&RtspVideoServer::on_media_configure),
-                   this);
+  g_signal_connect_data(factory, "media-configure", G_CALLBACK(&on_media_configure),
+                        new_link_ref(link_), &free_link_ref_closure, GConnectFlags{});
   GstRTSPMountPoints* mounts = gst_rtsp_server_get_mount_points(server_);
   gst_rtsp_mount_points_add_factory(mounts, target_.mount.c_str(), factory);  // takes factory
   g_object_unref(mounts);
@@ -70,12 +172,16 @@ RtspVideoServer::~RtspVideoServer() {
 void RtspVideoServer::close() {
   if (closed_) return;
   closed_ = true;
+  {
+    const std::lock_guard<std::mutex> lock(link_->mutex);
+    link_->closed = true;
+    link_->forget();
+  }
+  // Clients are served on gst-rtsp-server's own threads, which outlive this server's main loop: a
+  // client left connected would wait for frames until its own timeout. Hung up, it hears the end.
+  gst_rtsp_server_client_filter(server_, &hang_up, nullptr);
   g_main_loop_quit(loop_);
   loop_thread_.join();
-  {
-    const std::lock_guard<std::mutex> lock(media_mutex_);
-    forget_media();
-  }
   GSource* source = g_main_context_find_source_by_id(context_, source_id_);
   if (source != nullptr) g_source_destroy(source);
   g_object_unref(server_);
@@ -84,62 +190,20 @@ void RtspVideoServer::close() {
 }
 
 bool RtspVideoServer::has_client() {
-  const std::lock_guard<std::mutex> lock(media_mutex_);
-  return appsrc_ != nullptr;
+  const std::lock_guard<std::mutex> lock(link_->mutex);
+  return link_->appsrc != nullptr;
 }
 
-void RtspVideoServer::on_media_configure(GstRTSPMediaFactory*, GstRTSPMedia* media, gpointer self) {
-  auto& server = *static_cast<RtspVideoServer*>(self);
-  GstElement* element = gst_rtsp_media_get_element(media);
-  GstElement* appsrc = gst_bin_get_by_name_recurse_up(GST_BIN(element), "src");
-  GstElement* padding = gst_bin_get_by_name_recurse_up(GST_BIN(element), "pad");
-  gst_object_unref(element);
-  g_signal_connect(media, "unprepared", G_CALLBACK(&RtspVideoServer::on_media_unprepared), self);
-  const std::lock_guard<std::mutex> lock(server.media_mutex_);
-  server.forget_media();
-  server.appsrc_ = appsrc;
-  server.padding_ = padding;
-  server.caps_set_ = false;
-  if (appsrc != nullptr) {
-    server.probed_pad_ = gst_element_get_static_pad(appsrc, "src");
-    if (server.probed_pad_ != nullptr) {
-      server.probe_id_ = gst_pad_add_probe(server.probed_pad_, GST_PAD_PROBE_TYPE_BUFFER,
-                                           &RtspVideoServer::on_frame_streamed, self, nullptr);
-    }
-  }
-}
-
-void RtspVideoServer::on_media_unprepared(GstRTSPMedia*, gpointer self) {
-  auto& server = *static_cast<RtspVideoServer*>(self);
-  const std::lock_guard<std::mutex> lock(server.media_mutex_);
-  server.forget_media();
-}
-
-GstPadProbeReturn RtspVideoServer::on_frame_streamed(GstPad*, GstPadProbeInfo*, gpointer self) {
-  static_cast<RtspVideoServer*>(self)->frames_streamed_.fetch_add(1, std::memory_order_relaxed);
-  return GST_PAD_PROBE_OK;
-}
-
-// The probe goes with the media: a media that outlives this server (a client still holding it)
-// must not call back into it.
-void RtspVideoServer::forget_media() {
-  if (probed_pad_ != nullptr) {
-    if (probe_id_ != 0) gst_pad_remove_probe(probed_pad_, probe_id_);
-    gst_object_unref(probed_pad_);
-  }
-  probed_pad_ = nullptr;
-  probe_id_ = 0;
-  if (appsrc_ != nullptr) gst_object_unref(appsrc_);
-  if (padding_ != nullptr) gst_object_unref(padding_);
-  appsrc_ = nullptr;
-  padding_ = nullptr;
+std::uint64_t RtspVideoServer::frames_streamed() const {
+  return link_->frames_streamed.load(std::memory_order_relaxed);
 }
 
 void RtspVideoServer::push(const cv::Mat& bgr) {
   if (closed_ || bgr.empty()) return;
-  std::unique_lock<std::mutex> lock(media_mutex_, std::try_to_lock);
-  if (!lock.owns_lock() || appsrc_ == nullptr) return;
-  if (!caps_set_) {
+  RtspMediaLink& link = *link_;
+  std::unique_lock<std::mutex> lock(link.mutex, std::try_to_lock);
+  if (!lock.owns_lock() || link.appsrc == nullptr) return;
+  if (!link.caps_set) {
     int numerator = 0;
     int denominator = 1;
     gst_util_double_to_fraction(fps_, &numerator, &denominator);
@@ -147,16 +211,16 @@ void RtspVideoServer::push(const cv::Mat& bgr) {
         "video/x-raw", "format", G_TYPE_STRING, "BGR", "width", G_TYPE_INT, bgr.cols, "height",
         G_TYPE_INT, bgr.rows, "framerate", GST_TYPE_FRACTION, numerator, denominator, nullptr));
     // Before the first buffer: the videobox is sized before the encoder's caps are negotiated.
-    if (padding_ != nullptr) set_encoder_padding(padding_, encoder_->codec, bgr.cols, bgr.rows);
-    gst_app_src_set_caps(GST_APP_SRC(appsrc_), caps.get());
-    caps_set_ = true;
+    if (link.padding != nullptr) {
+      set_encoder_padding(link.padding, encoder_->codec, bgr.cols, bgr.rows);
+    }
+    gst_app_src_set_caps(GST_APP_SRC(link.appsrc), caps.get());
+    link.caps_set = true;
     if (!padding_warned_) warn_if_padded(target_.text, *encoder_, bgr.cols, bgr.rows);
     padding_warned_ = true;
   }
-  GstBuffer* buffer = copy_to_gst_buffer(bgr);
-  ++frames_;
   // A refused buffer (client just left, media flushing) is simply not streamed.
-  gst_app_src_push_buffer(GST_APP_SRC(appsrc_), buffer);
+  gst_app_src_push_buffer(GST_APP_SRC(link.appsrc), copy_to_gst_buffer(bgr));
 }
 
 }  // namespace rtmot::outputs

@@ -6,9 +6,8 @@
 // encoded while at least one client watches.
 #include <gst/gst.h>
 
-#include <atomic>
 #include <cstdint>
-#include <mutex>
+#include <memory>
 #include <thread>
 
 #include "outputs/video_encoding.hpp"
@@ -19,6 +18,8 @@ typedef struct _GstRTSPMedia GstRTSPMedia;
 typedef struct _GstRTSPMediaFactory GstRTSPMediaFactory;
 
 namespace rtmot::outputs {
+
+struct RtspMediaLink;  // what the media's callbacks share with the server (the .cpp says why)
 
 class RtspVideoServer final : public VideoStream {
  public:
@@ -38,16 +39,9 @@ class RtspVideoServer final : public VideoStream {
   /// Frames that left the appsrc into the encoder (counted by a pad probe): what a client that
   /// watched throughout received. Fewer than pushed when no client watched yet, or when the encoder
   /// fell behind and the two-frame leaky queue dropped the oldest (a live stream shows the newest).
-  std::uint64_t frames_streamed() const override {
-    return frames_streamed_.load(std::memory_order_relaxed);
-  }
+  std::uint64_t frames_streamed() const override;
 
  private:
-  static void on_media_configure(GstRTSPMediaFactory*, GstRTSPMedia* media, gpointer self);
-  static void on_media_unprepared(GstRTSPMedia* media, gpointer self);
-  static GstPadProbeReturn on_frame_streamed(GstPad*, GstPadProbeInfo*, gpointer self);
-  void forget_media();  // with media_mutex_ held
-
   VideoTarget target_;
   double fps_;
   const VideoEncoder* encoder_{nullptr};  // chosen in the constructor, for the padding
@@ -56,19 +50,8 @@ class RtspVideoServer final : public VideoStream {
   GstRTSPServer* server_{nullptr};
   guint source_id_{0};
   std::thread loop_thread_;
-  // The appsrc of the current media: set and cleared on the RTSP thread, used by push() on the sink
-  // stage. A mutex that push() only try_locks: the sink stage never waits for the RTSP thread.
-  std::mutex media_mutex_;
-  GstElement* appsrc_{nullptr};
-  GstElement* padding_{nullptr};  // the media's videobox: sized at its first frame
-  GstPad* probed_pad_{nullptr};   // the appsrc's src pad, while the probe counts its buffers
-  gulong probe_id_{0};
-  bool caps_set_{false};
+  std::shared_ptr<RtspMediaLink> link_;
   bool padding_warned_{false};
-  std::uint64_t frames_{0};
-  // Written by the media's streaming thread, read by anyone: a statistic, no other memory is
-  // published through it, so relaxed order is enough.
-  std::atomic<std::uint64_t> frames_streamed_{0};
   bool closed_{false};
 };
 

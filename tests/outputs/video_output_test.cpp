@@ -9,6 +9,8 @@
 
 #include <chrono>
 #include <fstream>
+#include <memory>
+#include <iostream>
 #include <opencv2/imgcodecs.hpp>
 #include <thread>
 
@@ -345,6 +347,49 @@ TEST_F(VideoOutputs, RtspServerIsPulledByAClient) {
   EXPECT_GE(streamed, static_cast<std::uint64_t>(frame_count / 2));
   EXPECT_EQ(static_cast<std::uint64_t>(back.frames), streamed);
   expect_overlay(back.saved, folder_ / "rtsp.png");
+}
+
+// A server closed while a client watches hangs up on it (the client hears the end instead of waiting
+// for frames until its own timeout), and nothing of the server is used after it is gone: clients are
+// served on gst-rtsp-server's threads, which outlive the server's main loop, and a client's
+// teardown unprepares the media there, later. CI once aborted on that (a late callback locked the
+// mutex of a destroyed server); under AddressSanitizer the same is a use after free.
+TEST_F(VideoOutputs, ClosedRtspServerHangsUpOnItsClientsAndLeavesNoCallbackBehind) {
+  const unsigned short port = test::free_tcp_port();
+  const VideoTarget target = target_of("rtsp://127.0.0.1:" + std::to_string(port) + "/tracks");
+  auto server = std::make_unique<RtspVideoServer>(target, 30.0);
+  GError* raw_error = nullptr;
+  const platform::gst::ObjectPtr<GstElement> client(gst_parse_launch(
+      ("rtspsrc location=rtsp://127.0.0.1:" + std::to_string(port) +
+       "/tracks protocols=tcp latency=0 ! rtph264depay ! avdec_h264 ! fakesink sync=false")
+          .c_str(),
+      &raw_error));
+  const platform::gst::ErrorPtr error(raw_error);
+  ASSERT_TRUE(client && !error) << (error ? error->message : "");
+  const platform::gst::ObjectPtr<GstBus> bus(gst_element_get_bus(client.get()));
+  gst_element_set_state(client.get(), GST_STATE_PLAYING);
+  const auto deadline = std::chrono::steady_clock::now() + 20s;
+  while (!server->has_client() && std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(10ms);
+  }
+  ASSERT_TRUE(server->has_client());
+  std::this_thread::sleep_for(300ms);  // the client's PLAY reached the media
+  push_test_frames(*server, 15ms);
+  EXPECT_GT(server->frames_streamed(), 0U);
+
+  const auto closed_at = std::chrono::steady_clock::now();
+  server->close();
+  server.reset();
+  const platform::gst::MessagePtr end(gst_bus_timed_pop_filtered(
+      bus.get(), 10 * GST_SECOND,
+      static_cast<GstMessageType>(GST_MESSAGE_ERROR | GST_MESSAGE_EOS)));
+  EXPECT_NE(end, nullptr) << "the client was not told that the stream ended";
+  std::cout << "client heard the end after "
+            << std::chrono::duration<double>(std::chrono::steady_clock::now() - closed_at).count()
+            << " s\n";
+  // The client's teardown and the media's unprepare run now, with the server gone.
+  gst_element_set_state(client.get(), GST_STATE_NULL);
+  std::this_thread::sleep_for(500ms);
 }
 
 // x264 refuses odd sides and sides under 16: the RTSP server's pipeline, built before the size is
