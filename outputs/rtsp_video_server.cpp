@@ -86,8 +86,8 @@ void on_media_configure(GstRTSPMediaFactory*, GstRTSPMedia* media, gpointer data
   GstElement* appsrc = gst_bin_get_by_name_recurse_up(GST_BIN(element), "src");
   GstElement* padding = gst_bin_get_by_name_recurse_up(GST_BIN(element), "pad");
   gst_object_unref(element);
-  g_signal_connect_data(media, "unprepared", G_CALLBACK(&on_media_unprepared),
-                        new_link_ref(link), &free_link_ref_closure, GConnectFlags{});
+  g_signal_connect_data(media, "unprepared", G_CALLBACK(&on_media_unprepared), new_link_ref(link),
+                        &free_link_ref_closure, GConnectFlags{});
   const std::lock_guard<std::mutex> lock(link->mutex);
   if (link->closed) {
     if (appsrc != nullptr) gst_object_unref(appsrc);

@@ -9,8 +9,8 @@
 
 #include <chrono>
 #include <fstream>
-#include <memory>
 #include <iostream>
+#include <memory>
 #include <opencv2/imgcodecs.hpp>
 #include <thread>
 
@@ -349,11 +349,11 @@ TEST_F(VideoOutputs, RtspServerIsPulledByAClient) {
   expect_overlay(back.saved, folder_ / "rtsp.png");
 }
 
-// A server closed while a client watches hangs up on it (the client hears the end instead of waiting
-// for frames until its own timeout), and nothing of the server is used after it is gone: clients are
-// served on gst-rtsp-server's threads, which outlive the server's main loop, and a client's
-// teardown unprepares the media there, later. CI once aborted on that (a late callback locked the
-// mutex of a destroyed server); under AddressSanitizer the same is a use after free.
+// A server closed while a client watches hangs up on it (the client hears the end instead of
+// waiting for frames until its own timeout), and nothing of the server is used after it is gone:
+// clients are served on gst-rtsp-server's threads, which outlive the server's main loop, and a
+// client's teardown unprepares the media there, later. CI once aborted on that (a late callback
+// locked the mutex of a destroyed server); under AddressSanitizer the same is a use after free.
 TEST_F(VideoOutputs, ClosedRtspServerHangsUpOnItsClientsAndLeavesNoCallbackBehind) {
   const unsigned short port = test::free_tcp_port();
   const VideoTarget target = target_of("rtsp://127.0.0.1:" + std::to_string(port) + "/tracks");
@@ -380,9 +380,9 @@ TEST_F(VideoOutputs, ClosedRtspServerHangsUpOnItsClientsAndLeavesNoCallbackBehin
   const auto closed_at = std::chrono::steady_clock::now();
   server->close();
   server.reset();
-  const platform::gst::MessagePtr end(gst_bus_timed_pop_filtered(
-      bus.get(), 10 * GST_SECOND,
-      static_cast<GstMessageType>(GST_MESSAGE_ERROR | GST_MESSAGE_EOS)));
+  const platform::gst::MessagePtr end(
+      gst_bus_timed_pop_filtered(bus.get(), 10 * GST_SECOND,
+                                 static_cast<GstMessageType>(GST_MESSAGE_ERROR | GST_MESSAGE_EOS)));
   EXPECT_NE(end, nullptr) << "the client was not told that the stream ended";
   std::cout << "client heard the end after "
             << std::chrono::duration<double>(std::chrono::steady_clock::now() - closed_at).count()
