@@ -27,9 +27,6 @@ struct Reference {
 
 constexpr float kReferenceThreshold = 0.3F;
 constexpr float kExtraAllowedBelow = 0.35F;  // unmatched detections must score under this
-constexpr int kFirstFrame = 1;
-constexpr int kFrameStep = 50;
-constexpr int kLastFrame = 751;
 
 /// How one backend may differ from the reference (made with the TF.js model on x86-64).
 struct Tolerance {
@@ -151,13 +148,17 @@ TEST_P(SsdReference, ReproducesTheTfjsModelOnVtest) {
   SsdDetector detector(config);
   std::cout << detector.describe() << "\n";
 
-  std::set<int> numbers;
-  for (int frame = kFirstFrame; frame <= kLastFrame; frame += kFrameStep) numbers.insert(frame);
+  const std::set<int> numbers = test::reference_frame_numbers();
   const auto frames = test::vtest_frames(numbers);
   ASSERT_EQ(frames.size(), numbers.size());
   const int width = frames.begin()->second.cols;
   const int height = frames.begin()->second.rows;
-  const auto reference = read_reference(reference_path, width, height);
+  auto reference = read_reference(reference_path, width, height);
+  // The reference's rows of the frames checked here (all of them but under emulation).
+  reference.erase(std::remove_if(reference.begin(), reference.end(),
+                                 [&](const Reference& r) { return numbers.count(r.frame) == 0; }),
+                  reference.end());
+  ASSERT_FALSE(reference.empty());
   ASSERT_FALSE(reference.empty());
 
   // All frames' detections first: one by one, or in batches of max_batch (the last one shorter).
@@ -264,8 +265,7 @@ TEST(SsdXnnpackAgainstOpenCv, SameDetectionsOnTheSameFrames) {
   config.backend = BackendRequest::xnnpack;
   config.max_batch = 8;
   SsdDetector xnnpack(config);
-  std::set<int> numbers;
-  for (int frame = kFirstFrame; frame <= kLastFrame; frame += kFrameStep) numbers.insert(frame);
+  const std::set<int> numbers = test::reference_frame_numbers();
   const auto frames = test::vtest_frames(numbers);
   ASSERT_EQ(frames.size(), numbers.size());
   std::vector<const cv::Mat*> images;
@@ -308,13 +308,15 @@ TEST(SsdXnnpackAgainstOpenCv, SameDetectionsOnTheSameFrames) {
   std::cout << "xnnpack vs OpenCV cpu (batch 1 and 8): " << compared
             << " detections, worst box deviation " << worst_box << " px, worst score deviation "
             << worst_score << "\n";
-  EXPECT_GT(compared, 100U);
+  // Enough to mean something: at least 5 per image and list (~18 on average in the 16 frames, ~9 in
+  // the first four).
+  EXPECT_GE(compared, 5U * 2U * images.size());
   EXPECT_LE(worst_box, 0.1F);
   EXPECT_LE(worst_score, 0.001F);
 }
 
-// Batched runs take the 16 frames as batches of 8 (and 4 + 4 + 4 + 4): the per-image decoding of a
-// batch's outputs must give what one image at a time gives.
+// Batched runs take the 16 frames (4 under emulation) as batches of 8 (and 4 + 4 + 4 + 4): the
+// per-image decoding of a batch's outputs must give what one image at a time gives.
 INSTANTIATE_TEST_SUITE_P(
     Backends, SsdReference,
     ::testing::Values(
