@@ -128,8 +128,9 @@ int main(int argc, char** argv) {
   using namespace rtmot::app;
   const std::vector<Subcommand> subcommands = {
       // SUBCOMMAND-LIST
-      add_count_command(app), add_eval_command(app),  add_listen_command(app), add_run_command(app),
-      add_soak_command(app),  add_study_command(app), add_track_command(app),
+      add_count_command(app), add_eval_command(app),  add_listen_command(app),
+      add_model_command(app), add_run_command(app),   add_soak_command(app),
+      add_study_command(app), add_track_command(app),
   };
 
   if (asks_for_json_log(argc, argv)) {

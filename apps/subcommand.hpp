@@ -20,6 +20,7 @@ struct Subcommand {
 Subcommand add_count_command(CLI::App& parent);
 Subcommand add_eval_command(CLI::App& parent);
 Subcommand add_listen_command(CLI::App& parent);
+Subcommand add_model_command(CLI::App& parent);
 Subcommand add_run_command(CLI::App& parent);
 Subcommand add_soak_command(CLI::App& parent);
 Subcommand add_study_command(CLI::App& parent);

@@ -14,14 +14,15 @@
 #include "common/input_error.hpp"
 #include "detector/coco_labels.hpp"
 #include "detector/model_checksum.hpp"
+#include "detector/model_contract.hpp"
 #include "detector/model_files.hpp"
 
 namespace rtmot::detector {
 namespace {
 
-constexpr int kInputSize = 300;                   // the network's fixed input, square
-constexpr int kNumClasses = kCocoMaxClassId + 1;  // with the background column
-constexpr double kPixelScale = 1.0 / 127.5;  // [0, 255] -> [-1, 1], as the graph's Preprocessor
+constexpr int kInputSize = kModelInputSize;
+constexpr int kNumClasses = kModelClassColumns;
+constexpr double kPixelScale = kModelPixelScale;
 
 InputError model_error(const std::filesystem::path& path, const std::string& problem) {
   return InputError(path.string(), 0, "", problem, ExitCode::bad_model);
@@ -149,7 +150,7 @@ SsdDetector::SsdDetector(SsdConfig config)
                                              : cv::dnn::Net()),
       postprocess_(read_anchors(anchors_path_of(config_)), kNumClasses,
                    postprocess_config(config_)),
-      output_names_{"box_encodings", "class_logits"} {
+      output_names_{kBoxOutputName, kClassOutputName} {
   if (config_.threads > 0) cv::setNumThreads(config_.threads);
   for (int slot = 0; slot < config_.max_batch; ++slot) {
     resized_.emplace_back(kInputSize, kInputSize, CV_8UC3);

@@ -7,6 +7,8 @@
 #include <memory>
 #include <string>
 
+#include "detector/model_contract.hpp"
+
 namespace rtmot::detector {
 
 /// True when this build has the XNNPACK backend (libxnnpack-dev and libonnx-dev were found).
@@ -21,14 +23,14 @@ const char* xnnpack_supported_operators();
 
 struct XnnpackNetworkConfig {
   std::filesystem::path model_path;
-  int input_size{300};  // the square input the detector feeds (3 channels)
+  int input_size{kModelInputSize};  // the square input the detector feeds (3 channels)
   int max_batch{1};
   /// Worker threads (pthreadpool); 1 runs on the caller's thread; 0 = one per CPU this process may
   /// use, which also caps a larger count. With a pool, each pass runs on it or on the caller's
   /// thread alone, whichever is faster as measured (detector/pool_governor.hpp).
   int threads{0};
-  std::string box_output{"box_encodings"};
-  std::string logit_output{"class_logits"};
+  std::string box_output{kBoxOutputName};
+  std::string logit_output{kClassOutputName};
 };
 
 /// One thread at a time. Two runtimes of fixed shape share the repacked weights and the thread
