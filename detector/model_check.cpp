@@ -9,6 +9,7 @@
 
 #include "common/input_error.hpp"
 #include "detector/dnn_backend.hpp"
+#include "detector/label_table.hpp"
 #include "detector/model_checksum.hpp"
 #include "detector/model_contract.hpp"
 #include "detector/model_files.hpp"
@@ -72,40 +73,46 @@ void inspect_outputs(ModelCheck& check) {
     check.problems.push_back("model: OpenCV cannot load or run it: " + e.err);
     return;
   }
-  const NamedShape* boxes = output_named(check.outputs, kBoxOutputName);
-  const NamedShape* classes = output_named(check.outputs, kClassOutputName);
+  const ModelDescription& described = check.description;
+  const char* box_name = described.box_output.c_str();
+  const char* score_name = described.score_output.c_str();
+  const NamedShape* boxes = output_named(check.outputs, box_name);
+  const NamedShape* classes = output_named(check.outputs, score_name);
   if (boxes == nullptr || classes == nullptr) {
     std::vector<std::string> names;
     for (const auto& o : check.outputs) names.push_back(o.name + " " + shape_text(o.shape));
     check.problems.push_back(fmt::format(
-        "outputs: the contract's are {} [1, anchors, 4] and {} [1, anchors, classes]; this "
-        "model's are {}",
-        kBoxOutputName, kClassOutputName, fmt::join(names, ", ")));
+        "outputs: expected {} [1, anchors, 4] and {} [1, anchors, classes]{}; this model's are "
+        "{}{}",
+        box_name, score_name,
+        described.file.empty() ? " (the bundled contract)" : " (" + described.file.string() + ")",
+        fmt::join(names, ", "),
+        described.file.empty() ? "; another model describes itself in " +
+                                     description_path_of(check.model).string() + " (docs/model.md)"
+                               : ""));
     return;
   }
   if (boxes->shape.size() != 3 || boxes->shape[0] != 1 || boxes->shape[2] != 4) {
-    check.problems.push_back(fmt::format("outputs.{}: shape {} is not [1, anchors, 4]",
-                                         kBoxOutputName, shape_text(boxes->shape)));
+    check.problems.push_back(fmt::format("outputs.boxes: {} has shape {}, not [1, anchors, 4]",
+                                         box_name, shape_text(boxes->shape)));
     return;
   }
   check.anchors_in_model = boxes->shape[1];
   if (classes->shape.size() != 3 || classes->shape[0] != 1 ||
       classes->shape[1] != check.anchors_in_model) {
-    check.problems.push_back(fmt::format("outputs.{}: shape {} is not [1, {}, classes]",
-                                         kClassOutputName, shape_text(classes->shape),
+    check.problems.push_back(fmt::format("outputs.scores: {} has shape {}, not [1, {}, classes]",
+                                         score_name, shape_text(classes->shape),
                                          check.anchors_in_model));
     return;
   }
   check.class_columns = classes->shape[2];
-  if (check.class_columns != kModelClassColumns) {
-    check.problems.push_back(fmt::format(
-        "outputs.{}: {} class columns; rtmot names classes by COCO's table ({} columns: the "
-        "background, then ids 1..{}), another label set is not supported yet",
-        kClassOutputName, check.class_columns, kModelClassColumns, kCocoMaxClassId));
+  if (check.class_columns != check.label_columns) {
+    check.problems.push_back(fmt::format("labels: {} class columns in the model, {} names in {}",
+                                         check.class_columns, check.label_columns, check.labels));
   }
   try {
     const auto pair = run_outputs(net, 2);
-    const NamedShape* batched = output_named(pair, kBoxOutputName);
+    const NamedShape* batched = output_named(pair, box_name);
     check.batch_dimension = batched != nullptr && !batched->shape.empty() && batched->shape[0] == 2;
   } catch (const cv::Exception&) {
     check.batch_dimension = false;  // a fixed batch of one refuses two images: reported as "no"
@@ -113,6 +120,7 @@ void inspect_outputs(ModelCheck& check) {
 }
 
 void check_anchors(ModelCheck& check) {
+  if (check.description.layout != OutputLayout::deltas) return;  // the boxes come decoded
   try {
     check.anchors_in_file = static_cast<int>(read_anchors(check.anchors_file).size());
   } catch (const InputError& e) {
@@ -190,6 +198,16 @@ ModelCheck check_model(const ModelCheckConfig& config) {
   // A path that is no model file at all (missing, a folder, a FIFO, too large) ends the check.
   open_model_file(check.model, kMaxModelBytes, "model");
   check.model_bytes = std::filesystem::file_size(check.model);
+  check.description = read_model_description(check.model);
+  try {
+    const LabelTable labels = check.description.labels.empty()
+                                  ? LabelTable::coco()
+                                  : LabelTable::from_file(check.description.labels);
+    check.labels = labels.source();
+    check.label_columns = labels.columns();
+  } catch (const InputError& e) {
+    check.problems.push_back(std::string("labels: ") + e.what());
+  }
   check.checksums = checksum_state(check);
   inspect_outputs(check);
   check_anchors(check);
@@ -205,15 +223,23 @@ std::string format_model_check(const ModelCheck& check) {
   };
   line("model", fmt::format("{} ({:.1f} MB)", check.model.string(),
                             static_cast<double>(check.model_bytes) / 1e6));
+  const ModelDescription& described = check.description;
+  line("described", described.file.empty()
+                        ? "no " + description_path_of(check.model).filename().string() +
+                              " beside the model: the bundled contract"
+                        : described.file.string());
   line("checksums", check.checksums);
-  line("input", fmt::format("fed N x 3 x {0} x {0} floats, RGB planes, (value - 127.5) / 127.5",
-                            kModelInputSize));
+  line("input", fmt::format("fed N x 3 x {0} x {0} floats, {1} planes, (value - {2:g}) * {3:g}",
+                            described.input_size, kColourOrderNames.name(described.colour),
+                            described.mean, described.scale));
   std::vector<std::string> outputs;
   for (const auto& o : check.outputs) outputs.push_back(o.name + " " + shape_text(o.shape));
   line("outputs", outputs.empty() ? std::string("(none computed)")
                                   : fmt::format("{}", fmt::join(outputs, ", ")));
   if (check.anchors_in_model > 0) {
-    line("layout", "box deltas + class logits, decoded against an anchors file (the contract's)");
+    line("layout", described.layout == OutputLayout::deltas
+                       ? "deltas: box codes + class logits, decoded against an anchors file"
+                       : "decoded: corner boxes in 0..1 + class probabilities");
     line("batch", check.batch_dimension ? "yes: N images in one pass (max_batch above 1 works)"
                                         : "no: one image per pass (max_batch must stay 1)");
   }
@@ -221,11 +247,8 @@ std::string format_model_check(const ModelCheck& check) {
     line("anchors", fmt::format("{}: {} rows", check.anchors_file.string(), check.anchors_in_file));
   }
   if (check.class_columns > 0) {
-    line("classes", check.class_columns == kModelClassColumns
-                        ? fmt::format("{} columns: the background, then COCO ids 1..{} (labels: "
-                                      "COCO's table, built in)",
-                                      check.class_columns, kCocoMaxClassId)
-                        : fmt::format("{} columns", check.class_columns));
+    line("classes", fmt::format("{} columns, the first the background (labels: {})",
+                                check.class_columns, check.labels));
   }
   for (const auto& engine : check.engines) {
     line("engine", engine.engine + ": " + (engine.runs ? engine.detail : "no: " + engine.detail));

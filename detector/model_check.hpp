@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "detector/model_description.hpp"
+
 namespace rtmot::detector {
 
 struct ModelCheckConfig {
@@ -28,13 +30,17 @@ struct EngineCheck {
 
 struct ModelCheck {
   std::filesystem::path model;
+  /// The description beside the model (model_description.hpp; file empty: none), as read.
+  ModelDescription description;
+  std::string labels;  // where the class names come from, and how many
   std::uintmax_t model_bytes{0};
-  std::string checksums;            // what the model's .sha256 said
-  std::vector<NamedShape> outputs;  // as OpenCV computes them for one image
-  bool batch_dimension{false};      // two images in one pass give two rows
-  int anchors_in_model{0};          // rows of the outputs
-  int class_columns{0};             // columns of the class output, background first
-  std::filesystem::path anchors_file;
+  std::string checksums;               // what the model's .sha256 said
+  std::vector<NamedShape> outputs;     // as OpenCV computes them for one image
+  bool batch_dimension{false};         // two images in one pass give two rows
+  int anchors_in_model{0};             // rows of the outputs
+  int class_columns{0};                // columns of the class output, background first
+  int label_columns{0};                // lines of the labels (COCO's table: 91)
+  std::filesystem::path anchors_file;  // layout deltas only
   int anchors_in_file{0};
   std::vector<EngineCheck> engines;
   /// Each names the field that does not fit the contract; empty when `rtmot run` can use the model.
@@ -45,7 +51,8 @@ struct ModelCheck {
 
 /// Loads and runs the model on every engine this build has. Throws rtmot::InputError
 /// (ExitCode::bad_model) naming the file when the model cannot be opened at all (missing, a
-/// folder, too large); everything found after that is reported in the result.
+/// folder, too large) or its description is not valid (file, line and field); everything found
+/// after that is reported in the result.
 ModelCheck check_model(const ModelCheckConfig& config);
 
 /// The report `rtmot model check` prints: one fact per line.

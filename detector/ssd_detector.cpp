@@ -20,10 +20,6 @@
 namespace rtmot::detector {
 namespace {
 
-constexpr int kInputSize = kModelInputSize;
-constexpr int kNumClasses = kModelClassColumns;
-constexpr double kPixelScale = kModelPixelScale;
-
 InputError model_error(const std::filesystem::path& path, const std::string& problem) {
   return InputError(path.string(), 0, "", problem, ExitCode::bad_model);
 }
@@ -90,16 +86,26 @@ cv::dnn::Net load_network(const std::filesystem::path& path, const BackendChoice
   return net;
 }
 
-SsdPostprocessConfig postprocess_config(const SsdConfig& config) {
+// The shape limits (box_plausibility.hpp) are COCO's classes': a model of other labels gets none.
+SsdPostprocessConfig postprocess_config(const SsdConfig& config,
+                                        const ModelDescription& description,
+                                        const LabelTable& labels) {
   for (const int id : config.classes) {
-    if (id < 1 || id > kCocoMaxClassId) {
+    if (id < 1 || id >= labels.columns()) {
       throw InputError("", 0, "classes",
-                       "COCO class id " + std::to_string(id) + " is outside 1..90",
+                       "class id " + std::to_string(id) + " is outside 1.." +
+                           std::to_string(labels.columns() - 1) + " (labels: " + labels.source() +
+                           ")",
                        ExitCode::usage);
     }
   }
   return {config.score_threshold, config.nms_iou, config.max_detections, config.classes,
-          config.plausible_shapes};
+          config.plausible_shapes && description.labels.empty()};
+}
+
+LabelTable labels_of(const ModelDescription& description) {
+  return description.labels.empty() ? LabelTable::coco()
+                                    : LabelTable::from_file(description.labels);
 }
 
 std::filesystem::path anchors_path_of(const SsdConfig& config) {
@@ -144,17 +150,19 @@ std::filesystem::path default_anchors_path(const std::filesystem::path& model_pa
 
 SsdDetector::SsdDetector(SsdConfig config)
     : config_(std::move(config)),
+      description_(read_model_description(config_.model_path)),
+      labels_(labels_of(description_)),
       backend_(checked_backend(config_)),
       xnn_(backend_.engine == Engine::xnnpack ? build_xnnpack() : nullptr),
       net_(backend_.engine == Engine::opencv ? load_network(config_.model_path, backend_)
                                              : cv::dnn::Net()),
-      postprocess_(read_anchors(anchors_path_of(config_)), kNumClasses,
-                   postprocess_config(config_)),
-      output_names_{kBoxOutputName, kClassOutputName} {
+      postprocess_(make_postprocessor()),
+      output_names_{description_.box_output, description_.score_output} {
   if (config_.threads > 0) cv::setNumThreads(config_.threads);
+  const int size = description_.input_size;
   for (int slot = 0; slot < config_.max_batch; ++slot) {
-    resized_.emplace_back(kInputSize, kInputSize, CV_8UC3);
-    normalized_.emplace_back(kInputSize, kInputSize, CV_32FC3);
+    resized_.emplace_back(size, size, CV_8UC3);
+    normalized_.emplace_back(size, size, CV_32FC3);
   }
   if (backend_.engine != Engine::xnnpack || !start_xnnpack()) {
     start_opencv();
@@ -165,11 +173,21 @@ SsdDetector::SsdDetector(SsdConfig config)
   // The choice and its reason are logged by whoever builds the pipeline (describe()), once.
 }
 
+SsdPostprocessor SsdDetector::make_postprocessor() const {
+  const SsdPostprocessConfig postprocess = postprocess_config(config_, description_, labels_);
+  if (description_.layout == OutputLayout::decoded) {
+    return SsdPostprocessor::decoded(labels_.columns(), postprocess);
+  }
+  return SsdPostprocessor(read_anchors(anchors_path_of(config_)), labels_.columns(), postprocess);
+}
+
 std::unique_ptr<XnnpackNetwork> SsdDetector::build_xnnpack() {
   try {
     XnnpackNetworkConfig xnn;
     xnn.model_path = config_.model_path;
-    xnn.input_size = kInputSize;
+    xnn.input_size = description_.input_size;
+    xnn.box_output = description_.box_output;
+    xnn.logit_output = description_.score_output;
     xnn.max_batch = config_.max_batch;
     xnn.threads = config_.threads;
     try {
@@ -189,7 +207,8 @@ std::unique_ptr<XnnpackNetwork> SsdDetector::build_xnnpack() {
 bool SsdDetector::start_xnnpack() {
   try {
     for (int image = 0; image < config_.max_batch; ++image) {
-      xnn_inputs_.emplace_back(kInputSize, kInputSize, CV_32FC3, xnn_->input(image));
+      xnn_inputs_.emplace_back(description_.input_size, description_.input_size, CV_32FC3,
+                               xnn_->input(image));
     }
     warm_up(1);
     if (config_.max_batch > 1) warm_up(config_.max_batch);
@@ -268,18 +287,20 @@ void SsdDetector::keep_the_faster_engine() {
 void SsdDetector::start_opencv() {
   if (net_.empty()) net_ = load_network(config_.model_path, backend_);
   const int batch = config_.max_batch;
-  const int blob_shape[] = {batch, 3, kInputSize, kInputSize};
+  const int size = description_.input_size;
+  const int blob_shape[] = {batch, 3, size, size};
   blob_.create(4, blob_shape, CV_32F);
   blob_.setTo(0.F);
-  const int single_shape[] = {1, 3, kInputSize, kInputSize};
+  const int single_shape[] = {1, 3, size, size};
   single_view_ = cv::Mat(4, single_shape, CV_32F, blob_.data);
   batch_view_ = blob_;
   if (batch > 1) batch_net_ = load_network(config_.model_path, backend_);
   // cv::split writes channel k (BGR order) into planes_[3 * image + k]; they point at the RGB
-  // planes 2, 1, 0 of that image.
+  // planes 2, 1, 0 of that image (or planes 0, 1, 2 for a model that takes BGR).
+  const bool rgb = description_.colour == ColourOrder::rgb;
   for (int image = 0; image < batch; ++image) {
     for (int bgr = 0; bgr < 3; ++bgr) {
-      planes_.emplace_back(kInputSize, kInputSize, CV_32F, blob_.ptr<float>(image, 2 - bgr));
+      planes_.emplace_back(size, size, CV_32F, blob_.ptr<float>(image, rgb ? 2 - bgr : bgr));
     }
   }
   // One forward pass now (at the largest batch, which also sizes OpenCV's buffers for it): it
@@ -309,17 +330,26 @@ void SsdDetector::warm_up(int count) {
   } catch (const std::runtime_error& e) {  // XNNPACK's
     throw model_error(config_.model_path, std::string("the model does not run: ") + e.what());
   }
-  const auto anchors = static_cast<std::size_t>(postprocess_.num_anchors());
   const int pass = count == 1 ? 1 : config_.max_batch;  // images the network computed
   const auto images = static_cast<std::size_t>(pass);
-  const std::string mismatch = "the model's outputs do not match " + std::to_string(anchors) +
-                               " anchors x (4 box codes, 91 classes): wrong model or anchors file";
+  const auto columns = static_cast<std::size_t>(labels_.columns());
+  if (description_.layout == OutputLayout::decoded && postprocess_.num_anchors() == 0) {
+    // The rows per image are the model's own: read from its first pass's box output.
+    const std::size_t rows =
+        xnn_ ? xnn_->anchors() : (outputs_.empty() ? 0 : outputs_[0].total() / (images * 4));
+    postprocess_.size_for(static_cast<int>(rows));
+  }
+  const auto anchors = static_cast<std::size_t>(postprocess_.num_anchors());
+  const std::string mismatch =
+      "the model's outputs do not match " + std::to_string(anchors) + " rows x (4 box values, " +
+      std::to_string(columns) + " class columns of " + labels_.source() +
+      "): wrong model, anchors or labels file (rtmot model check says which)";
   if (xnn_) {
-    if (xnn_->anchors() != anchors || xnn_->classes() != static_cast<std::size_t>(kNumClasses)) {
+    if (xnn_->anchors() != anchors || xnn_->classes() != columns) {
       throw model_error(config_.model_path, mismatch);
     }
-  } else if (outputs_.size() != 2 || outputs_[0].total() != images * anchors * 4 ||
-             outputs_[1].total() != images * anchors * kNumClasses) {
+  } else if (anchors == 0 || outputs_.size() != 2 || outputs_[0].total() != images * anchors * 4 ||
+             outputs_[1].total() != images * anchors * columns) {
     throw model_error(config_.model_path, mismatch);
   }
   // A model exported for one image per pass concatenates a batch's anchors into one row (the
@@ -337,7 +367,7 @@ void SsdDetector::warm_up(int count) {
   const auto finite = [](const float* data, std::size_t n) {
     return std::all_of(data, data + n, [](float v) { return std::isfinite(v); });
   };
-  if (!finite(boxes_, images * anchors * 4) || !finite(logits_, images * anchors * kNumClasses)) {
+  if (!finite(boxes_, images * anchors * 4) || !finite(logits_, images * anchors * columns)) {
     throw model_error(config_.model_path,
                       "the model computes NaN or infinite values on its start-up pass (damaged "
                       "weights?): run scripts/fetch_model.sh again");
@@ -404,10 +434,15 @@ void SsdDetector::preprocess(const cv::Mat& bgr_image, int slot) {
   // source pixels elsewhere; measured on vtest.avi that moves scores by up to 0.17 against the
   // reference, this way by 5e-5. (cv::resize also allocates two small interpolation tables.)
   cv::resize(bgr_image, resized, resized.size(), 0.0, 0.0, cv::INTER_LINEAR);
-  resized.convertTo(normalized, CV_32F, kPixelScale, -1.0);
-  if (xnn_) {
-    cv::cvtColor(normalized, xnn_inputs_[index], cv::COLOR_BGR2RGB);
-    return;  // XNNPACK takes NHWC: the same values, interleaved
+  resized.convertTo(normalized, CV_32F, description_.scale,
+                    -description_.mean * description_.scale);
+  if (xnn_) {  // XNNPACK takes NHWC: the same values, interleaved
+    if (description_.colour == ColourOrder::rgb) {
+      cv::cvtColor(normalized, xnn_inputs_[index], cv::COLOR_BGR2RGB);
+    } else {
+      normalized.copyTo(xnn_inputs_[index]);
+    }
+    return;
   }
   cv::split(normalized, planes_.data() + 3 * slot);  // into blob_, reordered to RGB
 }
@@ -447,13 +482,13 @@ void SsdDetector::detect_batch(const cv::Mat* const* images, const std::int64_t*
   if (count < 1) throw std::invalid_argument("SsdDetector::detect_batch: count must be >= 1");
   if (out.size() < static_cast<std::size_t>(count)) out.resize(static_cast<std::size_t>(count));
   const std::size_t box_stride = static_cast<std::size_t>(postprocess_.num_anchors()) * 4;
-  const std::size_t logit_stride =
-      static_cast<std::size_t>(postprocess_.num_anchors()) * kNumClasses;
+  const std::size_t logit_stride = static_cast<std::size_t>(postprocess_.num_anchors()) *
+                                   static_cast<std::size_t>(labels_.columns());
   for (int first = 0; first < count; first += config_.max_batch) {
     const int n = std::min(config_.max_batch, count - first);
     preprocess_batch(images + first, n);
     forward(n);
-    // Outputs are [n, anchors, 4] and [n, anchors, 91]: image i's rows follow image i-1's.
+    // Outputs are [n, anchors, 4] and [n, anchors, columns]: image i's rows follow image i-1's.
     for (int i = 0; i < n; ++i) {
       const cv::Mat& image = *images[first + i];
       postprocess_.run(boxes_ + static_cast<std::size_t>(i) * box_stride,
@@ -465,14 +500,20 @@ void SsdDetector::detect_batch(const cv::Mat* const* images, const std::int64_t*
 
 std::string SsdDetector::describe() const {
   std::ostringstream text;
-  text << "SSDLite-MobileNetV2 COCO (" << config_.model_path.string() << ") on " << backend_.name
-       << " (" << backend_.reason << ")" << (xnn_ ? " [" + xnn_->summary() + "]" : std::string())
+  text << (description_.file.empty() ? "SSDLite-MobileNetV2 COCO (" : "SSD (")
+       << config_.model_path.string()
+       << (description_.file.empty()
+               ? std::string()
+               : ", described by " + description_.file.string() + ", layout " +
+                     std::string(kOutputLayoutNames.name(description_.layout)))
+       << ") on " << backend_.name << " (" << backend_.reason << ")"
+       << (xnn_ ? " [" + xnn_->summary() + "]" : std::string())
        << ", batch <= " << config_.max_batch << ", score >= " << config_.score_threshold
        << ", NMS IoU " << config_.nms_iou << ", classes ";
   if (config_.classes.empty()) text << "all";
   for (std::size_t i = 0; i < config_.classes.size(); ++i) {
     const int id = config_.classes[i];
-    text << (i ? "," : "") << id << " (" << coco_label(id) << ")";
+    text << (i ? "," : "") << id << " (" << labels_.name(id) << ")";
   }
   return text.str();
 }

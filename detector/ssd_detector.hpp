@@ -13,6 +13,8 @@
 #include "detector/detector.hpp"
 #include "detector/dnn_backend.hpp"
 #include "detector/forward_fault.hpp"
+#include "detector/label_table.hpp"
+#include "detector/model_description.hpp"
 #include "detector/ssd_defaults.hpp"
 #include "detector/ssd_postprocess.hpp"
 #include "detector/xnnpack_network.hpp"
@@ -22,12 +24,14 @@ namespace rtmot::detector {
 struct SsdConfig {
   std::filesystem::path model_path{"models/ssdlite_mobilenet_v2_coco.onnx"};
   /// Empty: the model path with ".onnx" replaced by ".anchors.csv", as fetch_model.sh writes it.
+  /// Read for layout deltas only (model_description.hpp).
   std::filesystem::path anchors_path;
   float score_threshold{kDefaultScoreThreshold};
   float nms_iou{kDefaultNmsIou};
   int max_detections{kDefaultMaxDetections};
-  std::vector<int> classes{default_classes()};  // COCO ids; empty = all
-  /// Drop boxes of shapes their class does not have (box_plausibility.hpp).
+  std::vector<int> classes{default_classes()};  // columns of the model's labels; empty = all
+  /// Drop boxes of shapes their class does not have (box_plausibility.hpp; COCO's classes, so
+  /// only for a model labelled by COCO's table).
   bool plausible_shapes{true};
   BackendRequest backend{BackendRequest::automatic};
   Fp16Request fp16{Fp16Request::automatic};
@@ -85,12 +89,17 @@ class SsdDetector : public Detector {
   /// the input blob) of all its images, for benchmarks.
   std::int64_t last_preprocess_ns() const { return last_preprocess_ns_; }
   std::string describe() const override;
+  /// How the model is fed and read (its .model.yaml, or the bundled contract), and its labels.
+  const ModelDescription& description() const { return description_; }
+  const LabelTable& labels() const { return labels_; }
 
   const BackendChoice& backend() const { return backend_; }
   /// On XNNPACK with a pool: how its passes ran (pool or caller's thread), for benchmarks.
   std::string xnnpack_pool_use() const { return xnn_ ? xnn_->pool_use() : std::string(); }
 
  private:
+  /// Layout deltas: decoded against the anchors file; decoded: sized at the first pass.
+  SsdPostprocessor make_postprocessor() const;
   void preprocess(const cv::Mat& bgr_image, int slot);
   /// preprocess() of images[0..count) into slots 0..count, the images in parallel (OpenCV's
   /// thread pool), timed into last_preprocess_ns_.
@@ -113,17 +122,19 @@ class SsdDetector : public Detector {
   void fall_back_to_opencv(const std::string& why);
 
   SsdConfig config_;
+  ModelDescription description_;
+  LabelTable labels_;
   BackendChoice backend_;
   // The model is loaded before the anchors are read (a damaged model is named first).
   std::unique_ptr<XnnpackNetwork> xnn_;  // when backend_.engine is xnnpack
-  cv::dnn::Net net_;                     // input 1 x 3 x 300 x 300, always
-  cv::dnn::Net batch_net_;               // input max_batch x 3 x 300 x 300, when max_batch > 1
+  cv::dnn::Net net_;                     // input 1 x 3 x size x size, always
+  cv::dnn::Net batch_net_;               // input max_batch x 3 x size x size, when max_batch > 1
   SsdPostprocessor postprocess_;
   // Reused every frame (sizes fixed by the network), so steady state allocates no image buffers;
   // one of each per batch slot, so that a batch's images are preprocessed in parallel.
-  std::vector<cv::Mat> resized_;     // 300x300 BGR, 8-bit
-  std::vector<cv::Mat> normalized_;  // 300x300 BGR, float in [-1, 1]
-  cv::Mat blob_;                     // max_batch x 3 x 300 x 300 RGB planes: the network input
+  std::vector<cv::Mat> resized_;     // size x size BGR, 8-bit
+  std::vector<cv::Mat> normalized_;  // size x size BGR, float, as the description says
+  cv::Mat blob_;                     // max_batch x 3 x size x size planes: the network input
   // 4-D headers on blob_'s first image and on all of it, made once because a 4-D cv::Mat header
   // allocates its size/step arrays.
   cv::Mat single_view_;
@@ -132,8 +143,8 @@ class SsdDetector : public Detector {
 
   std::vector<cv::Mat> outputs_;
   std::vector<cv::String> output_names_;
-  std::vector<cv::Mat> xnn_inputs_;  // 300x300 RGB float headers on xnn_'s input, per image
-  // The last pass's outputs, [images, anchors, 4] and [images, anchors, 91], whichever engine.
+  std::vector<cv::Mat> xnn_inputs_;  // size x size float headers on xnn_'s input, per image
+  // The last pass's outputs, [images, anchors, 4] and [images, anchors, columns], either engine.
   const float* boxes_{nullptr};
   const float* logits_{nullptr};
   std::int64_t last_forward_ns_{0};

@@ -42,11 +42,22 @@ float iou(const Corners& a, const Corners& b) {
 
 SsdPostprocessor::SsdPostprocessor(std::vector<Anchor> anchors, int num_classes,
                                    SsdPostprocessConfig config)
-    : anchors_(std::move(anchors)),
+    : SsdPostprocessor(OutputLayout::deltas, std::move(anchors), num_classes, std::move(config)) {
+  if (anchors_.empty()) throw std::invalid_argument("SsdPostprocessor: no anchors");
+}
+
+SsdPostprocessor SsdPostprocessor::decoded(int num_classes, SsdPostprocessConfig config) {
+  return SsdPostprocessor(OutputLayout::decoded, {}, num_classes, std::move(config));
+}
+
+SsdPostprocessor::SsdPostprocessor(OutputLayout layout, std::vector<Anchor> anchors,
+                                   int num_classes, SsdPostprocessConfig config)
+    : layout_(layout),
+      anchors_(std::move(anchors)),
+      anchor_count_(anchors_.size()),
       num_classes_(num_classes),
       config_(std::move(config)),
       logit_threshold_(logit_of(config_.score_threshold)) {
-  if (anchors_.empty()) throw std::invalid_argument("SsdPostprocessor: no anchors");
   if (config_.classes.empty()) {
     for (int id = 1; id < num_classes_; ++id) class_ids_.push_back(id);
   } else {
@@ -60,45 +71,64 @@ SsdPostprocessor::SsdPostprocessor(std::vector<Anchor> anchors, int num_classes,
       }
     }
   }
-  // The worst case (every class of every anchor passes) once, so run() never grows these.
-  candidates_.reserve(anchors_.size() * class_ids_.size());
-  kept_.reserve(anchors_.size());
-  const auto max_kept = static_cast<std::size_t>(std::max(config_.max_detections, 0));
-  emitted_.reserve(std::min(anchors_.size(), max_kept) * class_ids_.size());
+  reserve();
 }
 
-void SsdPostprocessor::run(const float* box_encodings, const float* class_logits, int image_width,
+void SsdPostprocessor::size_for(int anchors) {
+  anchor_count_ = static_cast<std::size_t>(std::max(anchors, 0));
+  reserve();
+}
+
+// The worst case (every class of every anchor passes) once, so run() never grows these.
+void SsdPostprocessor::reserve() {
+  candidates_.reserve(anchor_count_ * class_ids_.size());
+  kept_.reserve(anchor_count_);
+  const auto max_kept = static_cast<std::size_t>(std::max(config_.max_detections, 0));
+  emitted_.reserve(std::min(anchor_count_, max_kept) * class_ids_.size());
+}
+
+void SsdPostprocessor::run(const float* boxes, const float* scores, int image_width,
                            int image_height, std::vector<tracker::Detection>& out) {
   out.clear();
-  collect(box_encodings, class_logits, image_width, image_height);
+  collect(boxes, scores, image_width, image_height);
   suppress_and_emit(image_width, image_height, out);
 }
 
-void SsdPostprocessor::collect(const float* box_encodings, const float* class_logits,
-                               int image_width, int image_height) {
+void SsdPostprocessor::collect(const float* boxes, const float* scores, int image_width,
+                               int image_height) {
   candidates_.clear();
   const auto width = static_cast<float>(image_width);
   const auto height = static_cast<float>(image_height);
-  for (std::size_t a = 0; a < anchors_.size(); ++a) {
-    const float* logits = class_logits + a * static_cast<std::size_t>(num_classes_);
+  const bool logits = layout_ == OutputLayout::deltas;
+  for (std::size_t a = 0; a < anchor_count_; ++a) {
+    const float* row = scores + a * static_cast<std::size_t>(num_classes_);
     bool decoded = false;
     Candidate box{};
     for (const int id : class_ids_) {
-      const float logit = logits[id];
-      if (logit < logit_threshold_) continue;
-      const float score = sigmoid(logit);
-      if (score < config_.score_threshold) continue;
+      float score = row[id];
+      if (logits) {
+        if (score < logit_threshold_) continue;
+        score = sigmoid(score);
+      }
+      if (!(score >= config_.score_threshold)) continue;  // NaN too
       if (!decoded) {  // decode an anchor's box only when one of its classes passes
-        const Anchor& anchor = anchors_[a];
-        const float* code = box_encodings + a * 4;
-        const float yc = code[0] / kCenterScale * anchor.height + anchor.y_center;
-        const float xc = code[1] / kCenterScale * anchor.width + anchor.x_center;
-        const float half_h = 0.5F * std::exp(code[2] / kSizeScale) * anchor.height;
-        const float half_w = 0.5F * std::exp(code[3] / kSizeScale) * anchor.width;
-        box.x1 = (xc - half_w) * width;
-        box.y1 = (yc - half_h) * height;
-        box.x2 = (xc + half_w) * width;
-        box.y2 = (yc + half_h) * height;
+        const float* code = boxes + a * 4;
+        if (logits) {
+          const Anchor& anchor = anchors_[a];
+          const float yc = code[0] / kCenterScale * anchor.height + anchor.y_center;
+          const float xc = code[1] / kCenterScale * anchor.width + anchor.x_center;
+          const float half_h = 0.5F * std::exp(code[2] / kSizeScale) * anchor.height;
+          const float half_w = 0.5F * std::exp(code[3] / kSizeScale) * anchor.width;
+          box.x1 = (xc - half_w) * width;
+          box.y1 = (yc - half_h) * height;
+          box.x2 = (xc + half_w) * width;
+          box.y2 = (yc + half_h) * height;
+        } else {
+          box.x1 = code[0] * width;
+          box.y1 = code[1] * height;
+          box.x2 = code[2] * width;
+          box.y2 = code[3] * height;
+        }
         decoded = true;
       }
       if (config_.plausible_shapes && !plausible_shape(id, box.x2 - box.x1, box.y2 - box.y1)) {

@@ -4,6 +4,7 @@
 // class): the network's raw outputs become scored boxes in pixels. See docs/model.md.
 #include <vector>
 
+#include "detector/model_description.hpp"
 #include "detector/ssd_anchors.hpp"
 #include "detector/ssd_defaults.hpp"
 #include "tracker/box.hpp"
@@ -22,19 +23,26 @@ struct SsdPostprocessConfig {
 
 class SsdPostprocessor {
  public:
-  /// `num_classes` counts the background column 0 (91 for COCO). Throws std::invalid_argument for
-  /// class ids outside 1..num_classes-1 or an empty anchor list.
+  /// Layout deltas: the outputs are box codes against `anchors`. `num_classes` counts the
+  /// background column 0 (91 for COCO). Throws std::invalid_argument for class ids outside
+  /// 1..num_classes-1 or an empty anchor list.
   SsdPostprocessor(std::vector<Anchor> anchors, int num_classes, SsdPostprocessConfig config);
+  /// Layout decoded: the outputs are corner boxes in 0..1 and probabilities; the anchor count is
+  /// the model's, known once it ran (size_for()). Throws as above for the class ids.
+  static SsdPostprocessor decoded(int num_classes, SsdPostprocessConfig config);
+  /// Layout decoded: sets the rows per image and reserves for them (once, at start-up).
+  void size_for(int anchors);
 
-  /// `box_encodings`: num_anchors() x 4 (ty, tx, th, tw); `class_logits`: num_anchors() x
-  /// num_classes. Fills `out` (cleared first) with boxes in pixels of a `image_width` x
-  /// `image_height` image, clipped to it, best score first. Allocates nothing once `out` has grown
-  /// to its working size.
-  void run(const float* box_encodings, const float* class_logits, int image_width, int image_height,
+  /// `boxes`: num_anchors() x 4 (deltas: ty, tx, th, tw; decoded: x1, y1, x2, y2 in 0..1);
+  /// `scores`: num_anchors() x num_classes (deltas: logits; decoded: probabilities). Fills `out`
+  /// (cleared first) with boxes in pixels of a `image_width` x `image_height` image, clipped to
+  /// it, best score first. Allocates nothing once `out` has grown to its working size.
+  void run(const float* boxes, const float* scores, int image_width, int image_height,
            std::vector<tracker::Detection>& out);
 
-  int num_anchors() const { return static_cast<int>(anchors_.size()); }
+  int num_anchors() const { return static_cast<int>(anchor_count_); }
   int num_classes() const { return num_classes_; }
+  OutputLayout layout() const { return layout_; }
 
  private:
   struct Candidate {
@@ -43,11 +51,15 @@ class SsdPostprocessor {
     float x1, y1, x2, y2;  // pixels, not clipped (as the TF pipeline suppresses)
   };
 
-  void collect(const float* box_encodings, const float* class_logits, int image_width,
-               int image_height);
+  SsdPostprocessor(OutputLayout layout, std::vector<Anchor> anchors, int num_classes,
+                   SsdPostprocessConfig config);
+  void reserve();
+  void collect(const float* boxes, const float* scores, int image_width, int image_height);
   void suppress_and_emit(int image_width, int image_height, std::vector<tracker::Detection>& out);
 
-  std::vector<Anchor> anchors_;
+  OutputLayout layout_;
+  std::vector<Anchor> anchors_;  // layout deltas only
+  std::size_t anchor_count_;
   int num_classes_;
   SsdPostprocessConfig config_;
   std::vector<int> class_ids_;  // the classes to look at, ascending

@@ -1,0 +1,228 @@
+// A model of the other output layout, described by its own .model.yaml and labelled by its own
+// labels file (detector/model_description.hpp, label_table.hpp): the bundled model wrapped as
+// jetson-inference's pytorch-ssd export is (decoded boxes and probabilities, input_0, (p - 127) /
+// 128, labels.txt), written by make_model_fixture.py at the start. It must find what the bundled
+// model finds; its labels name its classes; a description or labels file that does not fit is a
+// start-up error naming file, line and field.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "common/input_error.hpp"
+#include "detector/coco_labels.hpp"
+#include "detector/model_check.hpp"
+#include "detector/ssd_detector.hpp"
+#include "detector/xnnpack_network.hpp"
+#include "shared_data.hpp"
+#include "vtest_frames.hpp"
+
+namespace rtmot::detector {
+namespace {
+
+namespace fs = std::filesystem;
+
+class ModelLayout : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = fs::temp_directory_path() / ("rtmot-model-layout-" + std::to_string(::getpid()));
+    fs::create_directories(dir_);
+    const fs::path coco = dir_ / "coco.txt";
+    {
+      std::ofstream out(coco);
+      for (int id = 0; id <= kCocoMaxClassId; ++id) out << coco_label(id) << '\n';
+    }
+    const char* python = std::getenv("PYTHON");
+    const std::string command = std::string(python != nullptr ? python : "/usr/bin/python3") + " " +
+                                test::source_path("tests/detector/make_model_fixture.py").string() +
+                                " " + bundled().string() + " " + bundled_anchors().string() + " " +
+                                coco.string() + " " + (dir_ / "decoded").string();
+    fixture_made_ = std::system(command.c_str()) == 0;
+  }
+  static void TearDownTestSuite() { fs::remove_all(dir_); }
+
+  void SetUp() override {
+    if (!fs::exists(bundled()))
+      FAIL() << "missing model " << bundled() << ": scripts/fetch_model.sh";
+    ASSERT_TRUE(fixture_made_) << "make_model_fixture.py failed (python3-onnx, python3-numpy)";
+  }
+
+  static fs::path bundled() { return test::source_path("models/ssdlite_mobilenet_v2_coco.onnx"); }
+  static fs::path bundled_anchors() {
+    return test::source_path("models/ssdlite_mobilenet_v2_coco.anchors.csv");
+  }
+  static fs::path fixture() { return dir_ / "decoded.onnx"; }
+
+  static SsdConfig config_for(const fs::path& model, BackendRequest backend) {
+    SsdConfig config;
+    config.model_path = model;
+    config.backend = backend;
+    config.classes = {};
+    config.plausible_shapes = false;  // COCO's shape limits: not for another label set
+    config.verify_checksums = false;
+    return config;
+  }
+
+  // Writes `text` as the fixture's description (a copy of the fixture under another name).
+  static fs::path described_copy(const std::string& name, const std::string& text) {
+    const fs::path model = dir_ / (name + ".onnx");
+    fs::copy_file(fixture(), model, fs::copy_options::overwrite_existing);
+    std::ofstream(dir_ / (name + ".model.yaml")) << text;
+    return model;
+  }
+
+  static InputError start_up_error(const fs::path& model) {
+    try {
+      SsdDetector detector(config_for(model, BackendRequest::cpu));
+    } catch (const InputError& e) {
+      return e;
+    }
+    ADD_FAILURE() << "no error for " << model;
+    return InputError("", 0, "", "none");
+  }
+
+  static inline fs::path dir_;
+  static inline bool fixture_made_{false};
+};
+
+float box_deviation(const tracker::Box& a, const tracker::Box& b) {
+  return std::max({std::abs(a.x - b.x), std::abs(a.y - b.y), std::abs(a.x + a.w - b.x - b.w),
+                   std::abs(a.y + a.h - b.y - b.h)});
+}
+
+TEST_F(ModelLayout, DecodedLayoutFindsWhatTheBundledModelFinds) {
+  SsdDetector reference(config_for(bundled(), BackendRequest::cpu));
+  SsdDetector decoded(config_for(fixture(), BackendRequest::cpu));
+  EXPECT_EQ(decoded.description().layout, OutputLayout::decoded);
+  const auto frames = test::vtest_frames({1, 51, 101, 151});
+  ASSERT_EQ(frames.size(), 4U);
+  std::size_t compared = 0;
+  float worst_box = 0.F;
+  float worst_score = 0.F;
+  for (const auto& [number, image] : frames) {
+    std::vector<tracker::Detection> expected;
+    std::vector<tracker::Detection> found;
+    reference.detect(image, number, expected);
+    decoded.detect(image, number, found);
+    ASSERT_EQ(found.size(), expected.size()) << "frame " << number;
+    for (std::size_t i = 0; i < expected.size(); ++i) {
+      // Both sorted best first; equal scores keep their order (the same candidates, same NMS).
+      EXPECT_EQ(found[i].class_id, expected[i].class_id) << "frame " << number;
+      worst_box = std::max(worst_box, box_deviation(found[i].box, expected[i].box));
+      worst_score = std::max(worst_score, std::abs(found[i].score - expected[i].score));
+      ++compared;
+    }
+  }
+  std::cout << "decoded layout vs bundled, OpenCV cpu: " << compared
+            << " detections, worst box deviation " << worst_box << " px, worst score deviation "
+            << worst_score << "\n";
+  EXPECT_GE(compared, 20U);
+  EXPECT_LE(worst_box, 0.05F);
+  EXPECT_LE(worst_score, 1e-4F);
+}
+
+TEST_F(ModelLayout, ItsLabelsFileNamesItsClasses) {
+  SsdConfig config = config_for(fixture(), BackendRequest::cpu);
+  config.classes = {1};
+  SsdDetector detector(config);
+  EXPECT_EQ(detector.labels().columns(), 91);
+  EXPECT_EQ(detector.labels().name(1), "pedestrian");
+  EXPECT_EQ(detector.labels().id_of("pedestrian"), 1);
+  EXPECT_EQ(detector.labels().id_of("person"), -1);
+  EXPECT_EQ(detector.labels().name(0), "");  // BACKGROUND is no class
+  EXPECT_NE(detector.describe().find("1 (pedestrian)"), std::string::npos) << detector.describe();
+  EXPECT_NE(detector.describe().find("layout decoded"), std::string::npos);
+}
+
+// XNNPACK builds the network proper only: the wrapper's operators (Mul, Exp, Slice, Sigmoid) make
+// a forced xnnpack an error naming the operator, and model check says the same.
+TEST_F(ModelLayout, CheckReportsTheLayoutLabelsAndEngines) {
+  const ModelCheck check = check_model({fixture(), {}});
+  const std::string report = format_model_check(check);
+  std::cout << report;
+  EXPECT_TRUE(check.usable()) << report;
+  EXPECT_EQ(check.class_columns, 91);
+  EXPECT_EQ(check.label_columns, 91);
+  EXPECT_EQ(check.anchors_in_file, 0);  // decoded: no anchors file is read
+  EXPECT_NE(report.find("layout     decoded: corner boxes in 0..1 + class probabilities\n"),
+            std::string::npos);
+  EXPECT_NE(report.find("input      fed N x 3 x 300 x 300 floats, rgb planes, (value - 127) * "
+                        "0.0078125\n"),
+            std::string::npos);
+  ASSERT_GE(check.engines.size(), 2U);
+  EXPECT_TRUE(check.engines[0].runs);
+  if (xnnpack_built() && xnnpack_runs_here()) {
+    EXPECT_FALSE(check.engines[1].runs);
+    EXPECT_NE(check.engines[1].detail.find("is not supported by the xnnpack backend"),
+              std::string::npos)
+        << check.engines[1].detail;
+  }
+}
+
+TEST_F(ModelLayout, ADescriptionThatDoesNotFitNamesFileLineAndField) {
+  struct Case {
+    const char* name;
+    const char* yaml;
+    int line;
+    const char* field;
+    const char* says;
+  };
+  const std::vector<Case> cases = {
+      {"unknown_key", "layout: decoded\ninput:\n  sise: 300\n", 3, "input.sise",
+       "unknown key (did you mean size?)"},
+      {"other_size", "layout: decoded\ninput:\n  size: 512\n", 3, "input.size",
+       "300 (the only input size"},
+      {"bad_layout", "layout: corners\n", 1, "layout", "expected deltas or decoded"},
+      {"zero_scale", "layout: decoded\ninput:\n  scale: 0\n", 3, "input.scale", "above 0"},
+      {"not_yaml", "layout: [decoded\n", 2, "", "not valid YAML"},
+  };
+  for (const Case& c : cases) {
+    const InputError e = start_up_error(described_copy(c.name, c.yaml));
+    EXPECT_EQ(e.exit_code(), ExitCode::bad_model) << c.name;
+    EXPECT_EQ(e.file(), (dir_ / (std::string(c.name) + ".model.yaml")).string()) << c.name;
+    EXPECT_EQ(e.line(), c.line) << c.name << ": " << e.what();
+    EXPECT_EQ(e.field(), c.field) << c.name << ": " << e.what();
+    EXPECT_NE(std::string(e.what()).find(c.says), std::string::npos) << c.name << ": " << e.what();
+  }
+}
+
+TEST_F(ModelLayout, LabelsThatDoNotFitTheModelAreNamed) {
+  // One name short of the model's 91 columns: the start-up pass names the labels file.
+  {
+    std::ifstream in(dir_ / "decoded.labels.txt");
+    std::ofstream out(dir_ / "short.labels.txt");
+    std::string line;
+    for (int i = 0; i < 90 && std::getline(in, line); ++i) out << line << '\n';
+  }
+  const fs::path model = described_copy(
+      "short",
+      "layout: decoded\ninput:\n  mean: 127\n  scale: 0.0078125\nlabels: short.labels.txt\n");
+  const InputError short_labels = start_up_error(model);
+  EXPECT_EQ(short_labels.exit_code(), ExitCode::bad_model);
+  // The model's outputs are read against the labels' 90 columns, which they do not fit.
+  EXPECT_NE(std::string(short_labels.what())
+                .find("90 class columns of " + (dir_ / "short.labels.txt").string()),
+            std::string::npos)
+      << short_labels.what();
+
+  // A name given twice, and a missing file: named with file and line.
+  std::ofstream(dir_ / "twice.labels.txt") << "BACKGROUND\ncat\ndog\ncat\n";
+  const InputError twice =
+      start_up_error(described_copy("twice", "layout: decoded\nlabels: twice.labels.txt\n"));
+  EXPECT_EQ(twice.file(), (dir_ / "twice.labels.txt").string());
+  EXPECT_EQ(twice.line(), 4);
+  EXPECT_NE(std::string(twice.what()).find("'cat' names two columns (first on line 2)"),
+            std::string::npos)
+      << twice.what();
+  const InputError missing =
+      start_up_error(described_copy("missing", "layout: decoded\nlabels: nowhere.labels.txt\n"));
+  EXPECT_EQ(missing.exit_code(), ExitCode::bad_model);
+  EXPECT_EQ(missing.file(), (dir_ / "nowhere.labels.txt").string()) << missing.what();
+}
+
+}  // namespace
+}  // namespace rtmot::detector
