@@ -17,6 +17,7 @@
 #include "pipeline/pipeline.hpp"
 #include "platform/board.hpp"
 #include "platform/signals.hpp"
+#include "runner/class_choice.hpp"
 #include "runner/run_config.hpp"
 #include "runner/run_flags.hpp"
 #include "runner/run_setup.hpp"
@@ -57,6 +58,7 @@ int run(const RunCommand& command) {
   // clear error line at once.
   runner::prepare_video_output(config);
   runner::check_model_found(config);
+  runner::check_classes(config);  // names of the model's labels: known now
 
   spdlog::info("board: {}", platform::describe(platform::detect_board()));
   // Every source opens before any output: a bad URI in a list fails the run with nothing written.

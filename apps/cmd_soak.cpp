@@ -21,6 +21,7 @@
 #include "common/input_file.hpp"
 #include "pipeline/pipeline.hpp"
 #include "platform/signals.hpp"
+#include "runner/class_choice.hpp"
 #include "runner/run_config.hpp"
 #include "runner/run_setup.hpp"
 
@@ -88,6 +89,7 @@ int run_soak(const SoakOptions& options) {
   runner::validate(config);
   refuse_outputs_of_a_run(config);
   runner::check_model_found(config);
+  runner::check_classes(config);  // names of the model's labels: known now
 
   using Clock = std::chrono::steady_clock;
   const auto start = Clock::now();

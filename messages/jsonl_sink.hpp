@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <string_view>
 
 #include "common/output_file.hpp"
@@ -19,7 +20,9 @@ constexpr int json_schema_version = 2;
 
 /// A class id's name ("person" for COCO id 1); empty for an unknown id. A plain function pointer:
 /// the messages library knows no label map (the detector's is detector::coco_label).
-using ClassLabelFn = std::string_view (*)(int class_id);
+/// The name of a class id (empty: none). A function object, not a pointer: a model's own labels
+/// (detector/label_table.hpp) are a table the caller holds.
+using ClassLabelFn = std::function<std::string_view(int class_id)>;
 
 /// What a JSON line carries beyond the message itself.
 struct JsonLineExtras {

@@ -101,6 +101,7 @@ void read_settings(const Section& section, const YAML::Node& node, const std::st
       if (!setting->set(config, text, problem)) {
         section.fail(entry.second, name, refusal(*setting, text, problem));
       }
+      config.lines[section.field(name)] = line_of(entry.second);
     } else if (has_settings_under(key)) {
       const Section child(entry.second, section.file(), section.field(name));
       read_settings(child, entry.second, key, config);

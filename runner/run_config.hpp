@@ -2,6 +2,7 @@
 // Everything `rtmot run` needs, read from a YAML file (docs/config.md lists every key). Strict: an
 // unknown key, a wrong type or a bad value throws rtmot::InputError naming file, line and field.
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -69,8 +70,10 @@ struct DetectorConfig {
   /// Batches in flight in the detect stage (its lanes, each a detector of its own); 0 = auto:
   /// 3 on CUDA, 1 otherwise. Decided in one place: runner::make_detectors.
   int in_flight{0};
-  std::vector<int> classes{detector::default_classes()};  // COCO ids to keep; empty = all
-  std::string det_file;                                   // replay: a MOTChallenge det.txt
+  /// ssd: the classes to keep, as given: names of the model's labels or column numbers, resolved
+  /// against the model's labels by runner/class_choice.hpp; empty = all.
+  std::vector<std::string> classes{"person"};
+  std::string det_file;  // replay: a MOTChallenge det.txt
   /// ssd: the frame in overlapping tiles with the whole (docs/tiling.md); auto is decided in one
   /// place: runner/tiling_choice.hpp.
   detector::TileRequest tiles;
@@ -102,7 +105,10 @@ struct OutputConfig {
 };
 
 struct RunConfig {
-  std::string file;     // where it was read from (for messages)
+  std::string file;  // where it was read from (for messages)
+  /// The line each setting was read from in `file` ("detector.classes" -> 3), for checks made
+  /// once every setting is known; a flag that overrides one removes its line.
+  std::map<std::string, int> lines;
   SourceConfig source;  // one source (`source:`, or one --source)
   std::vector<SourceConfig>
       sources;  // several (`sources:` or --source repeated); replaces `source`

@@ -59,6 +59,7 @@ void RunFlags::apply(RunConfig& config) const {
     if (!settings[i].set(config, values_[i], problem)) {
       refuse(settings[i].flag, refusal(settings[i], values_[i], problem));
     }
+    config.lines.erase(settings[i].key);  // the file's line no longer holds the value
     // A source's flag (--input-flip, ...) is for every source of the run: the file's `sources:`
     // or several --source, which were copied from `source` above.
     if (settings[i].key.rfind("source.", 0) == 0) {

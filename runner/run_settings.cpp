@@ -8,7 +8,6 @@
 #include "common/checked_number.hpp"
 #include "common/frame_rate.hpp"
 #include "common/input_error.hpp"
-#include "detector/coco_labels.hpp"
 #include "detector/tile_request.hpp"
 #include "platform/video_uri.hpp"
 #include "runner/yaml_document.hpp"
@@ -226,11 +225,12 @@ std::vector<RunSetting> playback_settings() {
 
 std::vector<RunSetting> detector_settings() {
   const RealRange unit{0.0, 1.0};
-  RunSetting classes = parsed<std::vector<int>>(
+  RunSetting classes = parsed<std::vector<std::string>>(
       "detector.classes", "--classes",
-      "COCO classes to keep: names or ids (person,car or 1,3); all = every class",
-      "COCO class names or ids (1..90), or all", parse_classes,
-      [](RunConfig& c) -> std::vector<int>& { return c.detector.classes; });
+      "classes to keep: names of the model's labels (COCO's for the bundled model: person,car) "
+      "or column numbers (1,3); all = every class",
+      "class names or column numbers of the model's labels, or all", parse_classes,
+      [](RunConfig& c) -> std::vector<std::string>& { return c.detector.classes; });
   classes.list = true;
   return {
       named("detector.kind", "", "ssd (the model on every frame) or replay (a det.txt file)",
@@ -429,26 +429,22 @@ std::string refusal(const RunSetting& setting, std::string_view text, const std:
   return "'" + std::string(text) + "': expected " + setting.expected;
 }
 
-std::optional<std::vector<int>> parse_classes(std::string_view text, std::string& problem) {
-  std::vector<int> classes;
+// The words only: what they name depends on the model's labels, known once every setting is
+// (runner/class_choice.hpp resolves them).
+std::optional<std::vector<std::string>> parse_classes(std::string_view text, std::string& problem) {
+  std::vector<std::string> classes;
   if (text == "all") return classes;
   std::size_t start = 0;
   while (start <= text.size()) {
     const std::size_t comma = std::min(text.find(',', start), text.size());
     const std::string_view word = text.substr(start, comma - start);
-    int id = detector::coco_class_id(word);
-    if (id < 0) {
-      const auto number = parse_integer(word, {1, 1000});
-      if (number && !detector::coco_label(static_cast<int>(*number)).empty()) {
-        id = static_cast<int>(*number);
-      }
-    }
-    if (id < 0) {
-      problem = "'" + std::string(word) +
-                "' is not a COCO class name or id (e.g. person,car or 1,3; ids 1..90)";
+    if (word.empty() || word == "all") {
+      problem = "'" + std::string(text) +
+                "': expected class names or column numbers separated by commas (person,car or "
+                "1,3), or all alone";
       return std::nullopt;
     }
-    classes.push_back(id);
+    classes.emplace_back(word);
     start = comma + 1;
   }
   return classes;

@@ -34,8 +34,9 @@ const RunSetting* find_run_setting(std::string_view key);
 /// The message of a value `set` refused: its problem, or "expected ...".
 std::string refusal(const RunSetting& setting, std::string_view text, const std::string& problem);
 
-/// COCO classes as users write them: "person,car" or "1,3" (names or ids with a COCO label), or
-/// "all" (empty: keep every class). nullopt and `problem` otherwise.
-std::optional<std::vector<int>> parse_classes(std::string_view text, std::string& problem);
+/// Classes as users write them: "person,car" or "1,3" (names or column numbers of the model's
+/// labels, kept as words), or "all" (empty: keep every class). nullopt and `problem` for an empty
+/// word or "all" among others.
+std::optional<std::vector<std::string>> parse_classes(std::string_view text, std::string& problem);
 
 }  // namespace rtmot::runner

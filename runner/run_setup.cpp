@@ -30,6 +30,7 @@
 #include "platform/looping_source.hpp"
 #include "platform/oriented_source.hpp"
 #include "platform/video_uri.hpp"
+#include "runner/class_choice.hpp"
 #include "runner/mot_results_output.hpp"
 #include "runner/sequence_clock_source.hpp"
 #include "runner/source_factory.hpp"
@@ -120,7 +121,7 @@ std::unique_ptr<detector::Detector> build_detector(const RunConfig& config, bool
   ssd.anchors_path = wanted.anchors;
   ssd.score_threshold = wanted.score_threshold;
   ssd.nms_iou = wanted.nms_threshold;
-  ssd.classes = wanted.classes;
+  ssd.classes = resolve_classes(config, *run_labels(config));
   ssd.backend = wanted.backend;
   ssd.fp16 = wanted.fp16;
   ssd.plausible_shapes = wanted.plausible_shapes;
@@ -193,9 +194,8 @@ class CostProbe {
     numbers_.assign(images_.size(), 1);
   }
   double batch_ms(detector::Detector& ssd, std::size_t count) {
-    return median_ms([&] {
-      ssd.detect_batch(images_.data(), numbers_.data(), static_cast<int>(count), out_);
-    });
+    return median_ms(
+        [&] { ssd.detect_batch(images_.data(), numbers_.data(), static_cast<int>(count), out_); });
   }
   std::size_t passes() const { return images_.size(); }
 
@@ -253,7 +253,8 @@ std::vector<std::unique_ptr<detector::Detector>> make_detectors(
     // where the whole frame's cost leaves room for it (on the CPU it mostly does not, and building
     // and timing the batch took 2-3 s of start-up).
     lanes.push_back(build_detector(config, true, sources_per_pass));
-    CostProbe probe(frame, detector::TilingDetector::plan_passes(frame.width, frame.height, tiling));
+    CostProbe probe(frame,
+                    detector::TilingDetector::plan_passes(frame.width, frame.height, tiling));
     cost = DetectorCost{probe.batch_ms(*lanes.front(), 1), 0.0, false};
     if (tiled_cost_needs_timing(frame, cost->whole_ms, probe.passes(),
                                 runs_on_cpu(*lanes.front()))) {
@@ -324,6 +325,10 @@ RunOutputs make_outputs(const RunConfig& config, std::vector<pipeline::PipelineI
   check_run_files(config);
   RunOutputs outputs;
   std::vector<std::unique_ptr<messages::TrackSink>> sinks;
+  // The model's own class names in every output that names classes; each holds the table.
+  const messages::ClassLabelFn label_of = [labels = run_labels(config)](int id) {
+    return labels->name(id);
+  };
   const platform::SourceInfo first =
       inputs.empty() ? platform::SourceInfo{} : inputs.front().source->info();
   std::vector<outputs::OutputProbe> probes;
@@ -369,8 +374,7 @@ RunOutputs make_outputs(const RunConfig& config, std::vector<pipeline::PipelineI
   if (output.mqtt) {
     outputs::MqttPublisherOptions mqtt;
     mqtt.uri = *output.mqtt;
-    auto sink =
-        std::make_unique<outputs::MqttPublisher>(mqtt, config.stream_id, &detector::coco_label);
+    auto sink = std::make_unique<outputs::MqttPublisher>(mqtt, config.stream_id, label_of);
     const outputs::MqttPublisher* publisher = sink.get();
     probes.push_back(
         {"mqtt", [publisher] { return publisher->counters().published.load(); },
@@ -390,13 +394,12 @@ RunOutputs make_outputs(const RunConfig& config, std::vector<pipeline::PipelineI
   }
   if (!output.jsonl_file.empty()) {
     outputs.destinations.push_back(file_line("jsonl", output.jsonl_file));
-    sinks.push_back(
-        std::make_unique<messages::JsonlSink>(output.jsonl_file, &detector::coco_label));
+    sinks.push_back(std::make_unique<messages::JsonlSink>(output.jsonl_file, label_of));
   }
   std::unique_ptr<pipeline::FrameConsumer> video;
   if (output.video) {
-    auto annotated = std::make_unique<outputs::AnnotatedVideo>(
-        *output.video, output.video_encoding, first, output.overlay, &detector::coco_label);
+    auto annotated = std::make_unique<outputs::AnnotatedVideo>(*output.video, output.video_encoding,
+                                                               first, output.overlay, label_of);
     // One source (validate() checked it): the video sees every one of its frames.
     if (!inputs.empty()) inputs.front().tap = annotated->tap();
     const auto& counted = inputs.empty() ? events::EventsConfig{} : inputs.front().events;

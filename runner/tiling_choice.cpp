@@ -17,7 +17,9 @@ bool skips_frames(pipeline::PlaybackMode playback, const FrameShape& frame) {
   return frame.live || playback != pipeline::PlaybackMode::every_frame;
 }
 
-double frame_period_ms(const FrameShape& frame) { return frame.fps > 0.0 ? 1000.0 / frame.fps : 0.0; }
+double frame_period_ms(const FrameShape& frame) {
+  return frame.fps > 0.0 ? 1000.0 / frame.fps : 0.0;
+}
 
 }  // namespace
 
@@ -95,12 +97,12 @@ TilingDecision decide_tiling(const DetectorConfig& detector, pipeline::PlaybackM
                               grid_text, frame.width, frame.height, cost->tiled_ms, cost->whole_ms,
                               period_ms)};
   }
-  return {false, fmt::format("tiles: auto chose none for a {}x{} frame: {} would take {}{:.1f} ms a "
-                             "frame ({:.1f} without), past the {:.1f} ms between frames: more "
-                             "frames skipped",
-                             frame.width, frame.height, grid_text,
-                             cost->tiled_estimated ? "at least " : "", cost->tiled_ms,
-                             cost->whole_ms, period_ms)};
+  return {false, fmt::format(
+                     "tiles: auto chose none for a {}x{} frame: {} would take {}{:.1f} ms a "
+                     "frame ({:.1f} without), past the {:.1f} ms between frames: more "
+                     "frames skipped",
+                     frame.width, frame.height, grid_text, cost->tiled_estimated ? "at least " : "",
+                     cost->tiled_ms, cost->whole_ms, period_ms)};
 }
 
 }  // namespace rtmot::runner

@@ -22,8 +22,8 @@ struct FrameShape {
 
 /// What one frame costs the detector, measured at start on the run's own detector.
 struct DetectorCost {
-  double whole_ms{0.0};  // the frame alone
-  double tiled_ms{0.0};  // the frame and its tiles, one batch
+  double whole_ms{0.0};         // the frame alone
+  double tiled_ms{0.0};         // the frame and its tiles, one batch
   bool tiled_estimated{false};  // tiled_ms is cpu_tiled_floor_ms(), not a measurement
 };
 

@@ -3,12 +3,14 @@
 #include "runner/run_config.hpp"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 
 #include "common/input_error.hpp"
+#include "runner/class_choice.hpp"
 #include "runner/run_setup.hpp"
 #include "runner/source_factory.hpp"
 #include "shared_data.hpp"
@@ -55,7 +57,10 @@ TEST(RunConfig, ReadsEverySection) {
   EXPECT_EQ(config.detector.backend, detector::BackendRequest::cpu);
   EXPECT_EQ(config.detector.fp16, detector::Fp16Request::off);
   EXPECT_FLOAT_EQ(config.detector.score_threshold, 0.4F);
-  EXPECT_EQ(config.detector.classes, (std::vector<int>{1, 3}));
+  EXPECT_EQ(config.detector.classes, (std::vector<std::string>{"1", "3"}));
+  EXPECT_EQ(runner::resolve_classes(config, detector::LabelTable::coco()),
+            (std::vector<int>{1, 3}));
+  EXPECT_EQ(config.lines.at("detector.classes"), 16);
   EXPECT_EQ(config.tracker.max_age, 3);
   EXPECT_EQ(config.tracker.min_hits, 3);
   EXPECT_EQ(config.tracker.affinity, tracker::AffinityKind::linear);
@@ -118,8 +123,7 @@ TEST(RunConfig, WrongTypesNameLineAndField) {
   expect_error("detector:\n  fp16: maybe\n", 2, "detector.fp16");
   expect_error("detector:\n  threads: [2]\n", 2, "detector.threads");
   expect_error("detector:\n  classes: 1\n", 2, "detector.classes");
-  expect_error("detector:\n  classes: [1, unicorn]\n", 2, "detector.classes");
-  expect_error("detector:\n  classes: [1, 91]\n", 2, "detector.classes");
+  expect_error("detector:\n  classes: [1, '']\n", 2, "detector.classes");
   expect_error("source: [1, 2]\n", 1, "source");
   expect_error("stats_interval_s:\n", 1, "stats_interval_s");
 }
@@ -224,7 +228,8 @@ TEST(RunConfig, ASecondDocumentIsAnErrorNamingItsLine) {
 
 TEST(RunConfig, ClassesTakeNamesOrIdsAsTheCommandLineDoes) {
   const auto config = runner::parse_run_config("detector:\n  classes: [person, 3]\n", "c.yaml");
-  EXPECT_EQ(config.detector.classes, (std::vector<int>{1, 3}));
+  EXPECT_EQ(runner::resolve_classes(config, detector::LabelTable::coco()),
+            (std::vector<int>{1, 3}));
   EXPECT_TRUE(
       runner::parse_run_config("detector:\n  classes: []\n", "c.yaml").detector.classes.empty())
       << "an empty list keeps every class";
@@ -286,6 +291,57 @@ TEST(CaptureRequest, OnlyCamerasTakeASizeAndRateOthersSaySo) {
   platform::SourceOptions rate;
   rate.fps = 15.0;
   EXPECT_NE(ignored_capture_request("test://ball", rate), "");
+}
+
+// Classes are names of the model's labels: checked once the model is known, with the line the
+// file gave them on. COCO's for the bundled model.
+TEST(ClassChoice, ClassesTheLabelsDoNotHaveNameFileLineAndField) {
+  const auto expect_refused = [](const std::string& yaml, const std::string& word) {
+    const auto config = parse_run_config(yaml, "bad.yaml");
+    try {
+      resolve_classes(config, detector::LabelTable::coco());
+      ADD_FAILURE() << "accepted:\n" << yaml;
+    } catch (const InputError& error) {
+      EXPECT_EQ(error.file(), "bad.yaml");
+      EXPECT_EQ(error.line(), 3) << error.what();
+      EXPECT_EQ(error.field(), "detector.classes");
+      EXPECT_EQ(error.exit_code(), ExitCode::usage);
+      EXPECT_NE(std::string(error.what())
+                    .find("'" + word + "' is not a class of the model's labels (COCO's table"),
+                std::string::npos)
+          << error.what();
+    }
+  };
+  expect_refused("detector:\n  kind: ssd\n  classes: [1, unicorn]\n", "unicorn");
+  expect_refused("detector:\n  kind: ssd\n  classes: [1, 91]\n", "91");
+  expect_refused("detector:\n  kind: ssd\n  classes: [12]\n", "12");  // COCO reserved, unnamed
+}
+
+// A model with its own labels file (its .model.yaml names it): its names, not COCO's.
+TEST(ClassChoice, ClassesAreTheModelsOwnLabels) {
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("rtmot-class-choice-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "fruit.onnx") << "not read here";
+  std::ofstream(dir / "fruit.model.yaml") << "layout: decoded\nlabels: fruit.labels.txt\n";
+  std::ofstream(dir / "fruit.labels.txt") << "BACKGROUND\napple\nbanana\n";
+  auto config =
+      parse_run_config("detector:\n  kind: ssd\n  model: " + (dir / "fruit.onnx").string() +
+                           "\n  classes: [banana, 1]\n",
+                       "fruit.yaml");
+  const auto labels = run_labels(config);
+  EXPECT_EQ(labels->columns(), 3);
+  EXPECT_EQ(resolve_classes(config, *labels), (std::vector<int>{2, 1}));
+  config.detector.classes = {"person"};  // COCO's column 1, not this model's
+  try {
+    resolve_classes(config, *labels);
+    ADD_FAILURE() << "person accepted";
+  } catch (const InputError& error) {
+    EXPECT_NE(std::string(error.what()).find((dir / "fruit.labels.txt").string()),
+              std::string::npos)
+        << error.what();
+  }
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

@@ -103,7 +103,7 @@ TEST(RunSettings, FlagsAndFileKeysGiveTheSameValues) {
       "--threshold 0.25 --classes person,car --backend cpu --udp [::1]:5600 --metrics-port 9100 "
       "--metrics-bind ::1 --playback simulated --latency-ms 40 --max-frames 12");
   EXPECT_EQ(from_file.detector.score_threshold, from_flags.detector.score_threshold);
-  EXPECT_EQ(from_file.detector.classes, (std::vector<int>{1, 3}));
+  EXPECT_EQ(from_file.detector.classes, (std::vector<std::string>{"person", "car"}));
   EXPECT_EQ(from_flags.detector.classes, from_file.detector.classes);
   EXPECT_EQ(from_flags.detector.backend, detector::BackendRequest::cpu);
   ASSERT_TRUE(from_flags.output.udp && from_file.output.udp);
@@ -124,7 +124,7 @@ TEST(RunSettings, RefusedFlagsNameTheFlag) {
                                                         {"--overlay", "boxes"},
                                                         {"--udp", "999.999.1.1:5600"},
                                                         {"--metrics-bind", "999.999.1.1"},
-                                                        {"--classes", "unicorn"},
+                                                        {"--classes", "person,,car"},
                                                         {"--max-frames", "-1"},
                                                         {"--preset", "deepsort"}}) {
     SCOPED_TRACE(flag + " " + value);
