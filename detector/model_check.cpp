@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <new>
 #include <opencv2/core.hpp>
 #include <opencv2/dnn/dnn.hpp>
 #include <sstream>
@@ -11,7 +12,6 @@
 #include "detector/dnn_backend.hpp"
 #include "detector/label_table.hpp"
 #include "detector/model_checksum.hpp"
-#include "detector/model_contract.hpp"
 #include "detector/model_files.hpp"
 #include "detector/ssd_anchors.hpp"
 #include "detector/ssd_detector.hpp"
@@ -43,8 +43,8 @@ std::string checksum_state(ModelCheck& check) {
 }
 
 // The outputs as OpenCV computes them for a grey input of `images` images, by name.
-std::vector<NamedShape> run_outputs(cv::dnn::Net& net, int images) {
-  const int shape[] = {images, 3, kModelInputSize, kModelInputSize};
+std::vector<NamedShape> run_outputs(cv::dnn::Net& net, int images, int size) {
+  const int shape[] = {images, 3, size, size};
   const cv::Mat blob(4, shape, CV_32F, cv::Scalar(0.F));  // 0 is mid-grey after normalisation
   net.setInput(blob);
   const std::vector<cv::String> names = net.getUnconnectedOutLayersNames();
@@ -66,11 +66,17 @@ const NamedShape* output_named(const std::vector<NamedShape>& outputs, const cha
 // The model's interface through OpenCV's importer: outputs for one image and for two.
 void inspect_outputs(ModelCheck& check) {
   cv::dnn::Net net;
+  const int size = check.description.input_size;
   try {
     net = cv::dnn::readNetFromONNX(check.model.string());
-    check.outputs = run_outputs(net, 1);
+    check.outputs = run_outputs(net, 1, size);
   } catch (const cv::Exception& e) {
-    check.problems.push_back("model: OpenCV cannot load or run it: " + e.err);
+    std::string why = e.err;
+    std::replace(why.begin(), why.end(), '\n', ' ');
+    check.problems.push_back("model: OpenCV cannot load or run it: " + why);
+    return;
+  } catch (const std::bad_alloc&) {  // declared sizes beyond this machine's memory
+    check.problems.push_back("model: it asks for more memory than this machine gives (damaged?)");
     return;
   }
   const ModelDescription& described = check.description;
@@ -111,7 +117,7 @@ void inspect_outputs(ModelCheck& check) {
                                          check.class_columns, check.label_columns, check.labels));
   }
   try {
-    const auto pair = run_outputs(net, 2);
+    const auto pair = run_outputs(net, 2, size);
     const NamedShape* batched = output_named(pair, box_name);
     check.batch_dimension = batched != nullptr && !batched->shape.empty() && batched->shape[0] == 2;
   } catch (const cv::Exception&) {
@@ -144,7 +150,8 @@ EngineCheck run_engine(const ModelCheck& check, BackendRequest backend) {
     config.classes = {};
     config.verify_checksums = false;  // reported on their own line
     SsdDetector detector(config);
-    const cv::Mat grey(kModelInputSize, kModelInputSize, CV_8UC3, cv::Scalar(128, 128, 128));
+    const int size = check.description.input_size;
+    const cv::Mat grey(size, size, CV_8UC3, cv::Scalar(128, 128, 128));
     std::vector<tracker::Detection> found;
     std::vector<double> ms;
     for (int pass = 0; pass < kTimedPasses; ++pass) {

@@ -12,7 +12,6 @@
 #include <stdexcept>
 
 #include "common/input_error.hpp"
-#include "detector/coco_labels.hpp"
 #include "detector/model_checksum.hpp"
 #include "detector/model_contract.hpp"
 #include "detector/model_files.hpp"

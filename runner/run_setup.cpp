@@ -9,7 +9,6 @@
 #include <opencv2/core/utility.hpp>
 
 #include "common/input_error.hpp"
-#include "detector/coco_labels.hpp"
 #include "detector/dnn_backend.hpp"
 #include "detector/model_checksum.hpp"
 #include "detector/replay_detector.hpp"
