@@ -5,6 +5,7 @@
 
 #include "common/input_error.hpp"
 #include "common/input_file.hpp"
+#include "common/utf8.hpp"
 #include "detector/coco_labels.hpp"
 
 namespace rtmot::detector {
@@ -38,11 +39,26 @@ LabelTable LabelTable::from_file(const std::filesystem::path& path) {
   while (start < text.size()) {
     const std::size_t end = std::min(text.find('\n', start), text.size());
     std::string name = text.substr(start, end - start);
-    if (!name.empty() && name.back() == '\r') name.pop_back();  // written on Windows
+    // A line ending written on Windows, or spaces after a name, are not part of it.
+    while (!name.empty() && (name.back() == '\r' || name.back() == ' ' || name.back() == '\t')) {
+      name.pop_back();
+    }
     const int line = static_cast<int>(names.size()) + 1;
     if (name.find(',') != std::string::npos) {
       throw labels_error(path, line,
                          "'" + name + "' holds a comma (class lists are comma-separated)");
+    }
+    // The names go into JSON lines, MQTT payloads and metrics as they are: refused here, the one
+    // reader, rather than escaped in each writer.
+    if (const auto bad = first_invalid_utf8(name)) {
+      throw labels_error(path, line,
+                         "byte " + std::to_string(*bad + 1) + " of the name is not UTF-8");
+    }
+    const bool plain = std::none_of(name.begin(), name.end(), [](char c) {
+      return c == '"' || c == '\\' || static_cast<unsigned char>(c) < 0x20;
+    });
+    if (!plain) {
+      throw labels_error(path, line, "the name holds a quote, a backslash or a control character");
     }
     // The background's line (the first) is only a placeholder: its name is never matched.
     if (!name.empty() && line > 1) {

@@ -14,9 +14,10 @@ class LabelTable {
   /// COCO's 91 columns: the background, then ids 1..90 (some reserved, unnamed).
   static LabelTable coco();
   /// One name per line; an empty line is a column with no name. Throws rtmot::InputError
-  /// (ExitCode::bad_model) naming the file, and the line for a name given twice or holding a comma
-  /// (class lists are comma-separated); a file with fewer than two lines (a background and a
-  /// class) is refused too.
+  /// (ExitCode::bad_model) naming the file, and the line for a name given twice, holding a comma
+  /// (class lists are comma-separated), a quote, a backslash, a control character or bytes that
+  /// are not UTF-8 (names go into JSON as they are); a file with fewer than two lines (a
+  /// background and a class) is refused too.
   static LabelTable from_file(const std::filesystem::path& path);
 
   /// Class columns, the background's included.

@@ -218,6 +218,21 @@ TEST_F(ModelLayout, LabelsThatDoNotFitTheModelAreNamed) {
   EXPECT_NE(std::string(twice.what()).find("'cat' names two columns (first on line 2)"),
             std::string::npos)
       << twice.what();
+  // Names go into JSON as they are: a quote, a control character or a byte that is not UTF-8 is
+  // refused where the file is read.
+  std::ofstream(dir_ / "quoted.labels.txt") << "BACKGROUND\ncat\nsay \"dog\"\n";
+  const InputError quoted =
+      start_up_error(described_copy("quoted", "layout: decoded\nlabels: quoted.labels.txt\n"));
+  EXPECT_EQ(quoted.line(), 3) << quoted.what();
+  EXPECT_NE(std::string(quoted.what()).find("a quote, a backslash or a control character"),
+            std::string::npos)
+      << quoted.what();
+  std::ofstream(dir_ / "latin1.labels.txt") << "BACKGROUND\ncat\ncaf\xe9\n";
+  const InputError latin1 =
+      start_up_error(described_copy("latin1", "layout: decoded\nlabels: latin1.labels.txt\n"));
+  EXPECT_EQ(latin1.line(), 3) << latin1.what();
+  EXPECT_NE(std::string(latin1.what()).find("byte 4 of the name is not UTF-8"), std::string::npos)
+      << latin1.what();
   const InputError missing =
       start_up_error(described_copy("missing", "layout: decoded\nlabels: nowhere.labels.txt\n"));
   EXPECT_EQ(missing.exit_code(), ExitCode::bad_model);
