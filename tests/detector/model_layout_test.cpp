@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "box_deviation.hpp"
 #include "common/input_error.hpp"
 #include "detector/coco_labels.hpp"
 #include "detector/model_check.hpp"
@@ -89,10 +90,7 @@ class ModelLayout : public ::testing::Test {
   static inline bool fixture_made_{false};
 };
 
-float box_deviation(const tracker::Box& a, const tracker::Box& b) {
-  return std::max({std::abs(a.x - b.x), std::abs(a.y - b.y), std::abs(a.x + a.w - b.x - b.w),
-                   std::abs(a.y + a.h - b.y - b.h)});
-}
+using test::box_deviation;
 
 TEST_F(ModelLayout, DecodedLayoutFindsWhatTheBundledModelFinds) {
   SsdDetector reference(config_for(bundled(), BackendRequest::cpu));
@@ -209,30 +207,26 @@ TEST_F(ModelLayout, LabelsThatDoNotFitTheModelAreNamed) {
             std::string::npos)
       << short_labels.what();
 
-  // A name given twice, and a missing file: named with file and line.
-  std::ofstream(dir_ / "twice.labels.txt") << "BACKGROUND\ncat\ndog\ncat\n";
-  const InputError twice =
-      start_up_error(described_copy("twice", "layout: decoded\nlabels: twice.labels.txt\n"));
-  EXPECT_EQ(twice.file(), (dir_ / "twice.labels.txt").string());
-  EXPECT_EQ(twice.line(), 4);
-  EXPECT_NE(std::string(twice.what()).find("'cat' names two columns (first on line 2)"),
-            std::string::npos)
-      << twice.what();
-  // Names go into JSON as they are: a quote, a control character or a byte that is not UTF-8 is
-  // refused where the file is read.
-  std::ofstream(dir_ / "quoted.labels.txt") << "BACKGROUND\ncat\nsay \"dog\"\n";
-  const InputError quoted =
-      start_up_error(described_copy("quoted", "layout: decoded\nlabels: quoted.labels.txt\n"));
-  EXPECT_EQ(quoted.line(), 3) << quoted.what();
-  EXPECT_NE(std::string(quoted.what()).find("a quote, a backslash or a control character"),
-            std::string::npos)
-      << quoted.what();
-  std::ofstream(dir_ / "latin1.labels.txt") << "BACKGROUND\ncat\ncaf\xe9\n";
-  const InputError latin1 =
-      start_up_error(described_copy("latin1", "layout: decoded\nlabels: latin1.labels.txt\n"));
-  EXPECT_EQ(latin1.line(), 3) << latin1.what();
-  EXPECT_NE(std::string(latin1.what()).find("byte 4 of the name is not UTF-8"), std::string::npos)
-      << latin1.what();
+  // A labels file whose line `line` cannot be a class name: named with file and line. Names go
+  // into JSON as they are, so a quote, a control character or a byte that is not UTF-8 is refused
+  // where the file is read.
+  const auto expect_refused = [](const std::string& name, const std::string& text, int line,
+                                 const std::string& says) {
+    const fs::path labels = dir_ / (name + ".labels.txt");
+    std::ofstream(labels) << text;
+    const InputError e =
+        start_up_error(described_copy(name, "layout: decoded\nlabels: " + name + ".labels.txt\n"));
+    EXPECT_EQ(e.exit_code(), ExitCode::bad_model) << name;
+    EXPECT_EQ(e.file(), labels.string()) << name;
+    EXPECT_EQ(e.line(), line) << name << ": " << e.what();
+    EXPECT_NE(std::string(e.what()).find(says), std::string::npos) << name << ": " << e.what();
+  };
+  expect_refused("twice", "BACKGROUND\ncat\ndog\ncat\n", 4,
+                 "'cat' names two columns (first on line 2)");
+  expect_refused("quoted", "BACKGROUND\ncat\nsay \"dog\"\n", 3,
+                 "a quote, a backslash or a control character");
+  expect_refused("latin1", "BACKGROUND\ncat\ncaf\xe9\n", 3, "byte 4 of the name is not UTF-8");
+  // A labels file that is not there.
   const InputError missing =
       start_up_error(described_copy("missing", "layout: decoded\nlabels: nowhere.labels.txt\n"));
   EXPECT_EQ(missing.exit_code(), ExitCode::bad_model);

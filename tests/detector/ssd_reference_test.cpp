@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "box_deviation.hpp"
 #include "detector/ssd_detector.hpp"
 #include "shared_data.hpp"
 #include "vtest_frames.hpp"
@@ -100,10 +101,7 @@ float iou(const tracker::Box& a, const tracker::Box& b) {
   return iw * ih / (a.area() + b.area() - iw * ih);
 }
 
-float box_deviation(const tracker::Box& a, const tracker::Box& b) {
-  return std::max({std::abs(a.x - b.x), std::abs(a.y - b.y), std::abs(a.x + a.w - b.x - b.w),
-                   std::abs(a.y + a.h - b.y - b.h)});
-}
+using test::box_deviation;
 
 class SsdReference : public ::testing::TestWithParam<Case> {};
 
