@@ -54,9 +54,10 @@ void append_json_line(const FrameResult& frame, std::uint32_t total_track_count,
   bool first = true;
   for (const auto& track : frame.tracks) {
     fmt::format_to(to, R"({}{{"id":{},"class":{},)", first ? "" : ",", track.id, track.class_id);
-    if (extras.labels != nullptr) {
-      // Label maps hold plain words: no JSON escaping needed (checked by the sink's test).
-      fmt::format_to(to, R"("label":"{}",)", extras.labels(track.class_id));
+    if (extras.labels != nullptr && *extras.labels) {
+      // Label tables refuse quotes, backslashes, control characters and bytes that are not UTF-8
+      // where they are read (detector/label_table.cpp): no JSON escaping needed.
+      fmt::format_to(to, R"("label":"{}",)", (*extras.labels)(track.class_id));
     }
     fmt::format_to(to, R"("score":)");
     append_number(track.score, out);
@@ -112,7 +113,7 @@ void JsonlSink::write(const DecodedMessage& message) {
 void JsonlSink::write_line(const FrameResult& frame, std::uint32_t total_track_count,
                            bool truncated) {
   line_.clear();
-  append_json_line(frame, total_track_count, truncated, JsonLineExtras{wall_now_ns(), labels_},
+  append_json_line(frame, total_track_count, truncated, JsonLineExtras{wall_now_ns(), &labels_},
                    line_);
   file_.write(line_.data(), line_.size());
 }

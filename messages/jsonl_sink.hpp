@@ -18,16 +18,17 @@ namespace rtmot::messages {
 /// (adding a field does not raise it). docs/message-format.md lists the fields of each version.
 constexpr int json_schema_version = 2;
 
-/// A class id's name ("person" for COCO id 1); empty for an unknown id. A plain function pointer:
-/// the messages library knows no label map (the detector's is detector::coco_label).
-/// The name of a class id (empty: none). A function object, not a pointer: a model's own labels
-/// (detector/label_table.hpp) are a table the caller holds.
+/// A class id's name ("person" for COCO id 1); empty for an unknown id. The messages library knows
+/// no label map: a function object, so that a model's own labels (detector/label_table.hpp), a
+/// table the caller holds, can answer.
 using ClassLabelFn = std::function<std::string_view(int class_id)>;
 
 /// What a JSON line carries beyond the message itself.
 struct JsonLineExtras {
-  std::int64_t wall_ns{0};       // wall clock (UTC, ns since the epoch) when the line was made
-  ClassLabelFn labels{nullptr};  // nullptr: no "label" field
+  std::int64_t wall_ns{0};  // wall clock (UTC, ns since the epoch) when the line was made
+  /// The sink's own function, not a copy (a line is made per frame; copying a function object
+  /// that holds a table allocates); nullptr or empty: no "label" field.
+  const ClassLabelFn* labels{nullptr};
 };
 
 /// Nanoseconds since the Unix epoch on the system (wall) clock.

@@ -54,7 +54,7 @@ void MqttPublisher::write(const messages::FrameResult& result) {
   if (options_.uri.payload == MqttPayload::json) {
     json_.clear();
     messages::append_json_line(result, static_cast<std::uint32_t>(result.tracks.size()), false,
-                               messages::JsonLineExtras{messages::wall_now_ns(), labels_}, json_);
+                               messages::JsonLineExtras{messages::wall_now_ns(), &labels_}, json_);
     // Without the newline: one message is one JSON object. Grows the slot only for a line longer
     // than any before (the slot keeps its capacity).
     item->size = json_.size() - 1;
