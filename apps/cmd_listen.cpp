@@ -14,7 +14,7 @@
 #include "apps/number_checks.hpp"
 #include "apps/subcommand.hpp"
 #include "common/input_error.hpp"
-#include "detector/coco_labels.hpp"
+#include "detector/label_table.hpp"
 #include "messages/json_line_decoder.hpp"
 #include "messages/jsonl_sink.hpp"
 #include "messages/message_file_reader.hpp"
@@ -47,6 +47,7 @@ struct ListenOptions {
   double duration_s{0.0};  // 0 = no limit
   double stats_every_s{5.0};
   std::string jsonl_path;
+  std::string labels_path;  // the boards' model's labels file; empty: COCO's table
   std::string read_path;
   std::string mqtt_uri;
   bool quiet{false};
@@ -181,8 +182,14 @@ void print_summary(const messages::ListenerStats& stats, const InvalidJson& inva
 class MessageHandler {
  public:
   explicit MessageHandler(const ListenOptions& options) : quiet_(options.quiet) {
-    if (!options.jsonl_path.empty())
-      jsonl_ = std::make_unique<messages::JsonlSink>(options.jsonl_path, &detector::coco_label);
+    if (!options.jsonl_path.empty()) {
+      // The binary messages carry class ids only: the names are the boards' model's, given here.
+      const auto labels = std::make_shared<const detector::LabelTable>(
+          options.labels_path.empty() ? detector::LabelTable::coco()
+                                      : detector::LabelTable::from_file(options.labels_path));
+      jsonl_ = std::make_unique<messages::JsonlSink>(
+          options.jsonl_path, [labels](int class_id) { return labels->name(class_id); });
+    }
   }
 
   /// A binary message or a JSON line (an MQTT board with format=json), told apart by the first
@@ -363,8 +370,12 @@ Subcommand add_listen_command(CLI::App& parent) {
                   "print running counts every S seconds (0 = never)")
       ->check(finite_in(0.0, 1e9))
       ->capture_default_str();
-  cli->add_option("--jsonl", options->jsonl_path,
-                  "also write every valid message to this JSON-lines file");
+  auto* jsonl = cli->add_option("--jsonl", options->jsonl_path,
+                                "also write every valid message to this JSON-lines file");
+  cli->add_option("--labels", options->labels_path,
+                  "the boards' model's labels file (one name per line, the first the "
+                  "background): names the classes in --jsonl's \"label\" (default: COCO's table)")
+      ->needs(jsonl);
   auto* read =
       cli->add_option("--read", options->read_path, "decode a binary message file instead of UDP");
   cli->add_flag("--quiet,-q", options->quiet,

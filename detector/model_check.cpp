@@ -90,12 +90,11 @@ void inspect_outputs(ModelCheck& check) {
     check.problems.push_back(fmt::format(
         "outputs: expected {} [1, anchors, 4] and {} [1, anchors, classes]{}; this model's are "
         "{}{}",
-        box_name, score_name,
-        described.file.empty() ? " (the bundled contract)" : " (" + described.file.string() + ")",
-        fmt::join(names, ", "),
-        described.file.empty() ? "; another model describes itself in " +
-                                     description_path_of(check.model).string() + " (docs/model.md)"
-                               : ""));
+        box_name, score_name, " (" + described_by(described) + ")", fmt::join(names, ", "),
+        described.file.empty()
+            ? "; another model describes itself in " + description_path_of(check.model).string() +
+                  " or its metadata (docs/model.md)"
+            : ""));
     return;
   }
   if (boxes->shape.size() != 3 || boxes->shape[0] != 1 || boxes->shape[2] != 4) {
@@ -233,8 +232,8 @@ std::string format_model_check(const ModelCheck& check) {
   const ModelDescription& described = check.description;
   line("described", described.file.empty()
                         ? "no " + description_path_of(check.model).filename().string() +
-                              " beside the model: the bundled contract"
-                        : described.file.string());
+                              " beside the model, none inside it: the bundled contract"
+                        : described_by(described));
   line("checksums", check.checksums);
   line("input", fmt::format("fed N x 3 x {0} x {0} floats, {1} planes, (value - {2:g}) * {3:g}",
                             described.input_size, kColourOrderNames.name(described.colour),

@@ -7,6 +7,14 @@ namespace rtmot::detector {
 
 /// The network's input: N x 3 x this x this floats, RGB planes.
 constexpr int kModelInputSize = 300;
+/// The square inputs a model's description may give. Below 64 px an SSD's coarsest feature maps
+/// vanish; above 1024 px one image's activations outgrow a board's cache many times over, and no
+/// SSD-family detector of this kind is trained that large.
+constexpr int kMinModelInputSize = 64;
+constexpr int kMaxModelInputSize = 1024;
+/// The ONNX metadata key (ModelProto.metadata_props) whose value is a model's description, the
+/// same YAML as `<model stem>.model.yaml`, for a model that carries it inside.
+inline constexpr const char* kDescriptionMetadataKey = "rtmot.model";
 /// [0, 255] -> [-1, 1]: (value - 127.5) / 127.5, as the TF graph's Preprocessor.
 constexpr double kModelPixelScale = 1.0 / 127.5;
 /// [N, anchors, 4] box deltas (ty, tx, th, tw) against the anchors file's rows.

@@ -5,6 +5,7 @@
 #include "common/input_error.hpp"
 #include "common/input_file.hpp"
 #include "common/yaml_section.hpp"
+#include "detector/onnx_metadata.hpp"
 
 namespace rtmot::detector {
 namespace {
@@ -22,8 +23,10 @@ void read_enum(Section& section, const std::string& key, const Names& names, Enu
   out = *value;
 }
 
-ModelDescription parse(const std::filesystem::path& path, const std::string& text) {
-  const std::string file = path.string();
+// `path` is the file the YAML came from; `file` how errors name it; relative labels paths are
+// relative to `path`'s folder, which is the model's either way.
+ModelDescription parse(const std::filesystem::path& path, const std::string& file,
+                       const std::string& text) {
   YAML::Node root;
   try {
     root = YAML::Load(text);
@@ -39,8 +42,10 @@ ModelDescription parse(const std::filesystem::path& path, const std::string& tex
     description.score_output = "scores";
   }
   Section input(top.child("input"), file, "input");
-  read_checked(input, "size", description.input_size, within(kModelInputSize, kModelInputSize),
-               std::to_string(kModelInputSize) + " (the only input size the detector feeds yet)");
+  read_checked(input, "size", description.input_size,
+               within(kMinModelInputSize, kMaxModelInputSize),
+               "a whole number in " + std::to_string(kMinModelInputSize) + ".." +
+                   std::to_string(kMaxModelInputSize) + " (pixels of the square input)");
   read_enum(input, "colour", kColourOrderNames, description.colour);
   read_checked(input, "mean", description.mean, within(-255.0, 255.0), "a number in -255..255");
   read_checked(
@@ -68,12 +73,26 @@ std::filesystem::path description_path_of(const std::filesystem::path& model_pat
   return path.replace_extension(".model.yaml");
 }
 
+std::string described_by(const ModelDescription& description) {
+  if (description.file.empty()) return "the bundled contract";
+  return description.inside_model
+             ? description.file.string() + " (its metadata " + kDescriptionMetadataKey + ")"
+             : description.file.string();
+}
+
 ModelDescription read_model_description(const std::filesystem::path& model_path) {
   const std::filesystem::path path = description_path_of(model_path);
   std::error_code error;
-  if (!std::filesystem::exists(std::filesystem::symlink_status(path, error))) return {};
+  const bool beside = std::filesystem::exists(std::filesystem::symlink_status(path, error));
   try {
-    return parse(path, read_text_file(path, kMaxDescriptionBytes));
+    if (beside) return parse(path, path.string(), read_text_file(path, kMaxDescriptionBytes));
+    const std::optional<std::string> inside =
+        onnx_metadata_value(model_path, kDescriptionMetadataKey, kMaxDescriptionBytes);
+    if (!inside) return {};
+    ModelDescription description = parse(
+        model_path, model_path.string() + " (metadata " + kDescriptionMetadataKey + ")", *inside);
+    description.inside_model = true;
+    return description;
   } catch (const InputError& e) {
     // The model's files are the model's exit code, whichever reader found the problem.
     throw InputError(e.file(), e.line(), e.field(), e.problem(), ExitCode::bad_model);

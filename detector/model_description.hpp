@@ -25,7 +25,10 @@ inline constexpr auto kColourOrderNames =
                                           std::pair{ColourOrder::bgr, std::string_view("bgr")});
 
 struct ModelDescription {
-  std::filesystem::path file;  // the description read; empty: none, the bundled contract
+  /// The file the description was read from: `<model stem>.model.yaml`, or the model itself when
+  /// it carries its description in its metadata (inside_model); empty: the bundled contract.
+  std::filesystem::path file;
+  bool inside_model{false};
   OutputLayout layout{OutputLayout::deltas};
   int input_size{kModelInputSize};
   ColourOrder colour{ColourOrder::rgb};
@@ -41,11 +44,15 @@ struct ModelDescription {
 /// `<model stem>.model.yaml` beside the model.
 std::filesystem::path description_path_of(const std::filesystem::path& model_path);
 
-/// The description beside the model, or the bundled contract when there is none. For layout
-/// decoded the outputs default to jetson-inference's names, `boxes` and `scores`. Throws
-/// rtmot::InputError (ExitCode::bad_model) naming the file, line and field: not YAML, an unknown
-/// key, a value of the wrong type or out of range, an input size other than 300 (the only one the
-/// detector feeds yet).
+/// Where a description came from, for logs and `rtmot model check`.
+std::string described_by(const ModelDescription& description);
+
+/// The description beside the model; else the one inside it (ONNX metadata entry
+/// kDescriptionMetadataKey, the same YAML); else the bundled contract. A file beside the model
+/// wins, so that a user can correct a model's own description without rewriting the model. For
+/// layout decoded the outputs default to jetson-inference's names, `boxes` and `scores`. Throws
+/// rtmot::InputError (ExitCode::bad_model) naming the file (the model, for a description inside
+/// it), line and field: not YAML, an unknown key, a value of the wrong type or out of range.
 ModelDescription read_model_description(const std::filesystem::path& model_path);
 
 }  // namespace rtmot::detector

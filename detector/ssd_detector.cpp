@@ -503,7 +503,7 @@ std::string SsdDetector::describe() const {
        << config_.model_path.string()
        << (description_.file.empty()
                ? std::string()
-               : ", described by " + description_.file.string() + ", layout " +
+               : ", described by " + described_by(description_) + ", layout " +
                      std::string(kOutputLayoutNames.name(description_.layout)))
        << ") on " << backend_.name << " (" << backend_.reason << ")"
        << (xnn_ ? " [" + xnn_->summary() + "]" : std::string())

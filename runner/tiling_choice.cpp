@@ -2,13 +2,19 @@
 
 #include <fmt/format.h>
 
+#include "detector/model_description.hpp"
+
 namespace rtmot::runner {
 namespace {
 
-// The SSD's input side, and how much larger than it a tile may be: a tile twice the network's size
-// shows a person of 60 px as the network's smallest anchor (30 px) sees best (docs/tiling.md).
-constexpr int kNetworkSize = 300;
+// How much larger than the network's input a tile may be: a tile twice the network's size shows a
+// person of 60 px as the network's smallest anchor (30 px of 300) sees best (docs/tiling.md).
 constexpr float kMaxTileMagnification = 2.F;
+
+// The SSD's input side, as its model describes it (docs/model.md).
+int network_size(const DetectorConfig& detector) {
+  return detector::read_model_description(detector.model).input_size;
+}
 
 // The share of n single passes that a batch of n costs a CPU engine at least (cpu_tiled_floor_ms).
 constexpr double kCpuBatchFloor = 0.6;
@@ -27,15 +33,15 @@ detector::TilingConfig tiling_config(const DetectorConfig& detector) {
   detector::TilingConfig tiling;
   tiling.automatic = detector.tiles.mode == detector::TileMode::automatic;
   tiling.grid = {detector.tiles.columns, detector.tiles.rows, detector.tile_overlap};
-  tiling.network_size = kNetworkSize;
+  tiling.network_size = network_size(detector);
   tiling.max_magnification = kMaxTileMagnification;
   tiling.merge.tile_score_threshold = detector.tile_threshold;
   return tiling;
 }
 
 detector::TileGrid automatic_tile_grid(const DetectorConfig& detector, const FrameShape& frame) {
-  return detector::automatic_grid(frame.width, frame.height, kNetworkSize, kMaxTileMagnification,
-                                  detector.tile_overlap);
+  return detector::automatic_grid(frame.width, frame.height, network_size(detector),
+                                  kMaxTileMagnification, detector.tile_overlap);
 }
 
 bool tiling_needs_measurement(const DetectorConfig& detector, pipeline::PlaybackMode playback,
@@ -76,9 +82,10 @@ TilingDecision decide_tiling(const DetectorConfig& detector, pipeline::PlaybackM
   }
   const detector::TileGrid grid = automatic_tile_grid(detector, frame);
   if (!grid.tiled()) {
-    return {false, fmt::format("tiles: auto chose none: a {}x{} frame is at most {:.0f} x the "
-                               "network's {} px already",
-                               frame.width, frame.height, kMaxTileMagnification, kNetworkSize)};
+    return {false,
+            fmt::format("tiles: auto chose none: a {}x{} frame is at most {:.0f} x the "
+                        "network's {} px already",
+                        frame.width, frame.height, kMaxTileMagnification, network_size(detector))};
   }
   const std::string grid_text =
       fmt::format("{}x{} tiles + the whole frame", grid.columns, grid.rows);

@@ -30,7 +30,8 @@ export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 failed=()
 printf '%-22s %12s %8s %s\n' target executions seconds result
-for target in mot_rows seqinfo run_config host_port video_uri message_decoder output_uri; do
+for target in mot_rows seqinfo run_config host_port video_uri message_decoder output_uri \
+  model_description; do
   binary=$build/tests/fuzz/fuzz_$target
   if [[ ! -x $binary ]]; then
     echo "fuzz_$target: not built" >&2

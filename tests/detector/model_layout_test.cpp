@@ -1,15 +1,20 @@
-// A model of the other output layout, described by its own .model.yaml and labelled by its own
-// labels file (detector/model_description.hpp, label_table.hpp): the bundled model wrapped as
-// jetson-inference's pytorch-ssd export is (decoded boxes and probabilities, input_0, (p - 127) /
-// 128, labels.txt), written by make_model_fixture.py at the start. It must find what the bundled
-// model finds; its labels name its classes; a description or labels file that does not fit is a
-// start-up error naming file, line and field.
+// Models other than the bundled one, written by make_model_fixture.py at the start from it:
+// - the other output layout, described by its own .model.yaml and labelled by its own labels file
+//   (detector/model_description.hpp, label_table.hpp): the bundled model wrapped as
+//   jetson-inference's pytorch-ssd export is (decoded boxes and probabilities, input_0,
+//   (p - 127) / 128, labels.txt). It must find what the bundled model finds; its labels name its
+//   classes;
+// - another input size (320), with anchors regenerated for its feature maps and its description
+//   inside the ONNX file (metadata rtmot.model). It sees the frame at another scale, so it must
+//   find the people the bundled model finds, not the same boxes; both engines must agree on it.
+// A description or labels file that does not fit is a start-up error naming file, line and field.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -17,9 +22,12 @@
 #include "common/input_error.hpp"
 #include "detector/coco_labels.hpp"
 #include "detector/model_check.hpp"
+#include "detector/model_description.hpp"
 #include "detector/ssd_detector.hpp"
 #include "detector/xnnpack_network.hpp"
+#include "motio/mot_files.hpp"
 #include "shared_data.hpp"
+#include "tracker/box_geometry.hpp"
 #include "vtest_frames.hpp"
 
 namespace rtmot::detector {
@@ -41,8 +49,11 @@ class ModelLayout : public ::testing::Test {
     const std::string command = std::string(python != nullptr ? python : "/usr/bin/python3") + " " +
                                 test::source_path("tests/detector/make_model_fixture.py").string() +
                                 " " + bundled().string() + " " + bundled_anchors().string() + " " +
-                                coco.string() + " " + (dir_ / "decoded").string();
-    fixture_made_ = std::system(command.c_str()) == 0;
+                                coco.string() + " ";
+    fixture_made_ =
+        std::system((command + (dir_ / "decoded").string()).c_str()) == 0 &&
+        std::system((command + (dir_ / "size320").string() + " " + std::to_string(kResizedInput))
+                        .c_str()) == 0;
   }
   static void TearDownTestSuite() { fs::remove_all(dir_); }
 
@@ -57,6 +68,8 @@ class ModelLayout : public ::testing::Test {
     return test::source_path("models/ssdlite_mobilenet_v2_coco.anchors.csv");
   }
   static fs::path fixture() { return dir_ / "decoded.onnx"; }
+  static fs::path resized() { return dir_ / "size320.onnx"; }
+  static constexpr int kResizedInput = 320;
 
   static SsdConfig config_for(const fs::path& model, BackendRequest backend) {
     SsdConfig config;
@@ -123,6 +136,117 @@ TEST_F(ModelLayout, DecodedLayoutFindsWhatTheBundledModelFinds) {
   EXPECT_LE(worst_score, 1e-4F);
 }
 
+// Scored against PETS09-S2L1's ground truth (vtest.avi is that sequence) on 16 frames spread over
+// it: each true person counts as found by a person box of IoU >= 0.5, each box used once. The
+// resized model sees the frame at another scale, so its boxes are not the bundled model's; it must
+// find the people as well. (At 384 px this SSD, trained at 300, finds far fewer: the regressions
+// it learned do not carry over; a detector of another size needs its own training. 320 is a size
+// such SSDs are trained at.)
+struct Found {
+  std::size_t people{0};
+  std::size_t found{0};
+  std::size_t boxes{0};
+  double recall() const { return static_cast<double>(found) / static_cast<double>(people); }
+  double precision() const { return static_cast<double>(found) / static_cast<double>(boxes); }
+};
+
+Found people_found(SsdDetector& detector, const std::vector<motio::MotRow>& truth,
+                   const std::map<int, cv::Mat>& frames) {
+  const int person = coco_class_id("person");
+  Found result;
+  for (const auto& [number, image] : frames) {
+    std::vector<tracker::Detection> boxes;
+    detector.detect(image, number, boxes);
+    std::vector<bool> used(boxes.size(), false);
+    for (const auto& truth_row : truth) {
+      if (truth_row.frame != number) continue;
+      ++result.people;
+      for (std::size_t i = 0; i < boxes.size(); ++i) {
+        if (used[i] || boxes[i].class_id != person) continue;
+        if (tracker::iou(boxes[i].box, truth_row.box) < 0.5F) continue;
+        used[i] = true;
+        ++result.found;
+        break;
+      }
+    }
+    for (const auto& box : boxes) result.boxes += box.class_id == person ? 1 : 0;
+  }
+  return result;
+}
+
+TEST_F(ModelLayout, AnotherInputSizeWithRegeneratedAnchorsFindsThePeopleTheBundledModelFinds) {
+  const fs::path gt = test::shared_path("data/mot15-train/PETS09-S2L1/gt/gt.txt");
+  if (!fs::exists(gt)) GTEST_SKIP() << "no " << gt << " (../shared)";
+  const auto truth = motio::read_mot_file(gt, motio::MotFileKind::ground_truth);
+  SsdDetector reference(config_for(bundled(), BackendRequest::cpu));
+  SsdDetector resized_model(config_for(resized(), BackendRequest::cpu));
+  EXPECT_EQ(resized_model.description().input_size, kResizedInput);
+  EXPECT_TRUE(resized_model.description().inside_model);
+  EXPECT_NE(resized_model.describe().find("(its metadata rtmot.model)"), std::string::npos)
+      << resized_model.describe();
+  std::set<int> numbers;
+  for (int frame = 1; frame <= 751; frame += 50) numbers.insert(frame);
+  const auto frames = test::vtest_frames(numbers);
+  ASSERT_EQ(frames.size(), numbers.size());
+  const Found bundled_found = people_found(reference, truth, frames);
+  const Found resized_found = people_found(resized_model, truth, frames);
+  std::cout << "people found in 16 frames of PETS09-S2L1 (" << bundled_found.people
+            << " true boxes), OpenCV cpu: 300 px bundled " << bundled_found.found << " ("
+            << bundled_found.recall() << " recall, " << bundled_found.precision() << " precision), "
+            << kResizedInput << " px " << resized_found.found << " (" << resized_found.recall()
+            << ", " << resized_found.precision() << ")\n";
+  ASSERT_GE(bundled_found.people, 80U);
+  // Measured: 71 and 68 of 91 (recall 0.780, 0.747), precision 0.717 and 0.708; at 384 px the
+  // recall over 100 frames fell from 0.77 to 0.47 (docs/model.md).
+  EXPECT_GE(resized_found.recall(), bundled_found.recall() - 0.06);
+  EXPECT_GE(resized_found.precision(), bundled_found.precision() - 0.06);
+}
+
+// The engines must agree on a model of another size as on the bundled one (XNNPACK reads the
+// input size from the description; its NHWC buffers and the anchors follow).
+TEST_F(ModelLayout, XnnpackRunsAnotherInputSizeAsOpenCvDoes) {
+  if (!xnnpack_built()) GTEST_SKIP() << "this build has no XNNPACK engine";
+  if (!xnnpack_runs_here()) GTEST_SKIP() << "XNNPACK does not run on this CPU";
+  SsdDetector opencv(config_for(resized(), BackendRequest::cpu));
+  SsdDetector xnnpack(config_for(resized(), BackendRequest::xnnpack));
+  std::size_t compared = 0;
+  float worst_box = 0.F;
+  float worst_score = 0.F;
+  for (const auto& [number, image] : test::vtest_frames({1, 101})) {
+    std::vector<tracker::Detection> expected;
+    std::vector<tracker::Detection> found;
+    opencv.detect(image, number, expected);
+    xnnpack.detect(image, number, found);
+    ASSERT_EQ(found.size(), expected.size()) << "frame " << number;
+    for (std::size_t i = 0; i < expected.size(); ++i) {
+      EXPECT_EQ(found[i].class_id, expected[i].class_id) << "frame " << number;
+      worst_box = std::max(worst_box, box_deviation(found[i].box, expected[i].box));
+      worst_score = std::max(worst_score, std::abs(found[i].score - expected[i].score));
+      ++compared;
+    }
+  }
+  std::cout << "320 px input, XNNPACK vs OpenCV cpu: " << compared
+            << " detections, worst box deviation " << worst_box << " px, worst score deviation "
+            << worst_score << "\n";
+  EXPECT_GE(compared, 10U);
+  EXPECT_LE(worst_box, 0.1F);
+  EXPECT_LE(worst_score, 1e-3F);
+}
+
+// A file beside the model wins over the description inside it: a user corrects a model's own
+// description without rewriting the model.
+TEST_F(ModelLayout, ADescriptionBesideTheModelWinsOverTheOneInside) {
+  const fs::path copy = dir_ / "corrected.onnx";
+  fs::copy_file(resized(), copy, fs::copy_options::overwrite_existing);
+  EXPECT_TRUE(read_model_description(copy).inside_model);
+  EXPECT_EQ(read_model_description(copy).input_size, kResizedInput);
+  std::ofstream(dir_ / "corrected.model.yaml") << "layout: deltas\ninput:\n  size: 320\n";
+  const ModelDescription corrected = read_model_description(copy);
+  EXPECT_FALSE(corrected.inside_model);
+  EXPECT_EQ(corrected.input_size, 320);
+  EXPECT_EQ(corrected.file, dir_ / "corrected.model.yaml");
+}
+
 TEST_F(ModelLayout, ItsLabelsFileNamesItsClasses) {
   SsdConfig config = config_for(fixture(), BackendRequest::cpu);
   config.classes = {1};
@@ -172,8 +296,8 @@ TEST_F(ModelLayout, ADescriptionThatDoesNotFitNamesFileLineAndField) {
   const std::vector<Case> cases = {
       {"unknown_key", "layout: decoded\ninput:\n  sise: 300\n", 3, "input.sise",
        "unknown key (did you mean size?)"},
-      {"other_size", "layout: decoded\ninput:\n  size: 512\n", 3, "input.size",
-       "300 (the only input size"},
+      {"huge_size", "layout: decoded\ninput:\n  size: 4096\n", 3, "input.size",
+       "a whole number in 64..1024"},
       {"bad_layout", "layout: corners\n", 1, "layout", "expected deltas or decoded"},
       {"zero_scale", "layout: decoded\ninput:\n  scale: 0\n", 3, "input.scale", "above 0"},
       {"not_yaml", "layout: [decoded\n", 2, "", "not valid YAML"},

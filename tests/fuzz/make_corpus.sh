@@ -10,7 +10,7 @@ mot=$shared/data/mot15-train
 [[ -d $mot ]] || { echo "missing test data: $mot" >&2; exit 1; }
 
 rm -rf "$out"
-mkdir -p "$out"/{mot_rows,seqinfo,run_config,host_port,video_uri,message_decoder,output_uri}
+mkdir -p "$out"/{mot_rows,seqinfo,run_config,host_port,video_uri,message_decoder,output_uri,model_description}
 
 # MOT rows: the first byte picks the kind (0 det, 1 gt, 2 results; +0x80 = with a length check).
 prefixed() {  # BYTE FILE OUT
@@ -98,3 +98,32 @@ done
 "$build/tests/fuzz/make_message_seeds" "$mot/TUD-Campus/gt/gt.txt" "$out/message_decoder"
 
 for d in "$out"/*/; do echo "corpus $(basename "$d"): $(ls "$d" | wc -l) files"; done
+
+# Model files as ONNX lays out their top-level fields (ir_version, producer, a graph, opsets), then
+# the description in metadata entry rtmot.model: the descriptions of the test fixtures
+# (tests/detector/make_model_fixture.py) and a broken one. Written in protobuf's wire format by
+# hand: the seeds are the format, not a model.
+python3 - "$out/model_description" <<'PY'
+import sys
+def varint(v):
+    out = bytearray()
+    while True:
+        low, v = v & 0x7F, v >> 7
+        out.append(low | (0x80 if v else 0))
+        if not v:
+            return bytes(out)
+def field(number, payload):
+    return varint(number << 3 | 2) + varint(len(payload)) + payload
+head = varint(1 << 3) + varint(8) + field(2, b"pytorch") + field(7, b"\x0a\x04Conv" * 8) + \
+    field(8, varint(2 << 3) + varint(13))
+descriptions = {
+    "deltas320": "layout: deltas\ninput:\n  size: 320\n",
+    "decoded": "layout: decoded\ninput:\n  size: 300\n  colour: rgb\n  mean: 127\n"
+               "  scale: 0.0078125\noutputs:\n  scores: scores\n  boxes: boxes\nlabels: x.labels.txt\n",
+    "broken": "layout: decoded\ninput:\n  colour: cmyk\n",
+}
+for name, text in descriptions.items():
+    entry = field(14, field(1, b"rtmot.model") + field(2, text.encode()))
+    with open(f"{sys.argv[1]}/{name}", "wb") as f:
+        f.write(head + field(14, field(1, b"author") + field(2, b"x")) + entry)
+PY

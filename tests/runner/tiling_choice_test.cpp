@@ -3,6 +3,10 @@
 #include "runner/tiling_choice.hpp"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
 
 #include "detector/tile_request.hpp"
 #include "runner/run_config.hpp"
@@ -51,6 +55,23 @@ TEST(TilingChoice, AutoLeavesAFrameTheNetworkSeesWellWhole) {
   EXPECT_NE(decision.why.find("640x480"), std::string::npos) << decision.why;
   // PETS09-S2L1's 768 x 576 is cut (3 x 2 tiles of 300 x 320).
   EXPECT_TRUE(decide_tiling(config, PlaybackMode::every_frame, kPets, std::nullopt).tiled);
+}
+
+// The network's size is the model's (its description): a 600 px network sees PETS09-S2L1's frame
+// whole, where the bundled 300 px one needs tiles.
+TEST(TilingChoice, TilesFollowTheModelsInputSize) {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("rtmot-tiling-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "large.model.yaml") << "layout: deltas\ninput:\n  size: 600\n";
+  auto config = with_tiles("auto");
+  config.model = (dir / "large.onnx").string();
+  EXPECT_EQ(tiling_config(config).network_size, 600);
+  const auto decision = decide_tiling(config, PlaybackMode::every_frame, kPets, std::nullopt);
+  EXPECT_FALSE(decision.tiled);
+  EXPECT_NE(decision.why.find("network's 600 px"), std::string::npos) << decision.why;
+  EXPECT_EQ(tiling_config(with_tiles("auto")).network_size, 300);  // no description: bundled
+  std::filesystem::remove_all(dir);
 }
 
 TEST(TilingChoice, AutoTilesALargeFrameWhenNoFrameCanBeSkipped) {

@@ -87,4 +87,19 @@ status=0
 [[ $status == 3 ]] || { echo "FAIL: exit $status for a zero-length line, expected 3"; exit 1; }
 grep -q "bad.yaml:6: field 'source.events.lines\[0\]': line 'middle' has zero length" "$work/bad.err" ||
   { echo "FAIL: error does not name file:line:field"; cat "$work/bad.err"; exit 1; }
-echo "PASS: $checked events, the same in listen and JSON; a zero-length line is exit 3"
+
+# The binary messages carry class ids: the ground station names them by COCO's table, or by the
+# boards' model's labels file (--labels); a labels file that cannot be one is exit 4 naming its line.
+"$rtmot" listen --read "$work/m.bin" --quiet --jsonl "$work/coco.jsonl" >/dev/null
+grep -q '"label":"person"' "$work/coco.jsonl" || { echo "FAIL: no COCO label"; exit 1; }
+printf 'BACKGROUND\npedestrian\n' > "$work/labels.txt"
+"$rtmot" listen --read "$work/m.bin" --quiet --jsonl "$work/own.jsonl" --labels "$work/labels.txt" >/dev/null
+grep -q '"label":"pedestrian"' "$work/own.jsonl" && ! grep -q '"label":"person"' "$work/own.jsonl" ||
+  { echo "FAIL: --labels did not name the class"; exit 1; }
+printf 'BACKGROUND\npedestrian\npedestrian\n' > "$work/twice.txt"
+status=0
+"$rtmot" listen --read "$work/m.bin" --quiet --jsonl "$work/x.jsonl" --labels "$work/twice.txt" \
+  >/dev/null 2>"$work/twice.err" || status=$?
+[[ $status == 4 ]] && grep -q "twice.txt:3" "$work/twice.err" ||
+  { echo "FAIL: exit $status for a name given twice, expected 4 naming twice.txt:3"; cat "$work/twice.err"; exit 1; }
+echo "PASS: $checked events, the same in listen and JSON; a zero-length line is exit 3; listen names classes by --labels"
