@@ -25,7 +25,8 @@ elif [[ -f $pinned/lib/cmake/opencv4/OpenCVConfig.cmake ]] ||
 else
   echo "setup_and_run.sh: OpenCV: Debian's (the pinned build could not be made: no source or download)"
 fi
-bash scripts/build.sh "$root/build" "${opencv_args[@]}"
+# The demo needs the rtmot program only: the test command (scripts/test.sh) builds the rest.
+RTMOT_BUILD_TARGETS=rtmot bash scripts/build.sh "$root/build" "${opencv_args[@]}"
 # --- end OpenCV
 echo
 echo "=== demo: rtmot run --config configs/desktop.yaml $*"
