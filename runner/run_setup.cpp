@@ -210,7 +210,8 @@ class CostProbe {
 bool measures_appearance(const RunConfig& config) {
   const tracker::TrackerConfig& tracker = config.tracker;
   return config.detector.appearance &&
-         (tracker.appearance_weight > 0.0 || tracker.appearance_gate < 1.0);
+         (tracker.appearance_weight > 0.0 || tracker.appearance_gate < 1.0 ||
+          tracker.reid_gate > 0.0);
 }
 
 bool runs_on_cpu(const detector::Detector& detector) {

@@ -4,14 +4,16 @@
 # through scripts/score_video.sh. Research tooling: needs ../shared; the product never runs it.
 #
 # The protocol, fixed before any run:
-#   1. Every candidate (appearance_weight x appearance_gate) and `--appearance false` run on the FIRST
-#      HALVES only (PETS09-S2L1 frames 1-397 of 795, ADL-Rundle-6 1-262 of 525).
+#   1. Every candidate of the grid and `--appearance false` run on the FIRST HALVES only
+#      (PETS09-S2L1 frames 1-397 of 795, ADL-Rundle-6 1-262 of 525). GRID=association (default):
+#      appearance_weight x appearance_gate; GRID=reid: reid_gate (re-identification of lost and
+#      removed tracks, reid_max_gap_s 5) with no gate and no weight.
 #   2. The choice: the candidate with the highest IDF1 summed over both first halves, among those
 #      whose MOTA is not below `off`'s on either first half.
 #   3. Only then: the choice and `off` on the whole videos, scored on the SECOND HALVES (frames
 #      398-795, 263-525) and on the whole.
 # Tiles off (`--tiles off`): the grid is 26 pipeline runs; tiles would make each 7-9 SSD passes a
-# frame. Usage: scripts/appearance_study.sh OUT [rtmot run arguments...]
+# frame. Usage: [GRID=association|reid] scripts/appearance_study.sh OUT [rtmot run arguments...]
 set -euo pipefail
 trap 'echo "appearance_study.sh: failed at line $LINENO: $BASH_COMMAND" >&2' ERR
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -21,12 +23,22 @@ shift
 common=(--tiles off "$@")
 declare -A half=([PETS09-S2L1]=397 [ADL-Rundle-6]=262)
 declare -A candidates=([off]="--appearance false")
-for weight in 0 0.5 1; do
-  for gate in 1 0.6 0.45; do
-    [[ $weight == 0 && $gate == 1 ]] && continue  # that is `off` with the signatures computed
-    candidates["w$weight-g$gate"]="--appearance true --appearance-weight $weight --appearance-gate $gate"
-  done
-done
+case ${GRID:-association} in
+  association)
+    for weight in 0 0.5 1; do
+      for gate in 1 0.6 0.45; do
+        [[ $weight == 0 && $gate == 1 ]] && continue  # that is `off` with the signatures computed
+        candidates["w$weight-g$gate"]="--appearance true --appearance-weight $weight --appearance-gate $gate"
+      done
+    done
+    ;;
+  reid)
+    for gate in 0.3 0.4 0.5 0.6; do
+      candidates["reid$gate"]="--appearance true --reid-gate $gate --reid-max-gap-s 5"
+    done
+    ;;
+  *) echo "appearance_study.sh: GRID must be association or reid" >&2; exit 2 ;;
+esac
 
 score() {  # score TABLE_DIR LABEL SEQUENCE FRAMES SCORE_FROM ARGS...
   local dir=$1 label=$2 sequence=$3 frames=$4 from=$5

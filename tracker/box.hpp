@@ -36,7 +36,9 @@ struct Detection {
 /// What the tracker reports for a track in one frame: update() reports the confirmed ones,
 /// Tracker::track_table() every live one.
 struct TrackReport {
-  std::int32_t id{0};        // 1-based, unique for the life of a Tracker
+  // 1-based; never two live tracks with one id. A new track re-identified (reid_gate) as one lost
+  // or removed carries that one's id from its first report on.
+  std::int32_t id{0};
   Box box;                   // the filtered (posterior) box
   float score{0.F};          // score of the detection matched in this frame
   std::int32_t class_id{0};  // class of the detections that made the track

@@ -49,6 +49,12 @@ tracker::TrackerConfig rtmot_preset() {
   config.time_widened_gate = true;
   config.gate_clock = tracker::GateClock::frame_gap;
   config.noise_gate_factor = 2.0;
+  // Where detections carry an appearance (the pipeline on images; never a detection file), a
+  // track confirmed anew takes back the id of one lost or removed up to 5 s before that looks like
+  // it: chosen on the first halves of the two in-sample videos and kept since it raised IDF1 on
+  // both second halves too (docs/appearance.md, "Re-identification").
+  config.reid_gate = 0.6;
+  config.reid_max_gap_s = 5.0;
   return config;
 }
 
@@ -98,7 +104,8 @@ const std::vector<TrackerPreset>& tracker_presets() {
        ">= 0.5), max_age 30, "
        "reported from the second detection if born in the upper half of the score range (else "
        "the third or as long in time), gate widened by the time since a track's match and by "
-       "the measured box noise",
+       "the measured box noise; on images, a new track takes back the id of a lost one it looks "
+       "like (re-identification)",
        &rtmot_preset},
       {"bytetrack",
        "ByteTrack's published defaults: detections >= 0.5 (>= 0.6 to start a track), second "

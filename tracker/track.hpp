@@ -55,7 +55,10 @@ struct Track {
   std::int32_t matches{0};
   std::int32_t class_id{0};
   TrackLife life;
-  Appearance appearance;  // learnt from its unoccluded matches (invalid without images)
+  Appearance appearance;            // learnt from its unoccluded matches (invalid without images)
+  double last_seen_seconds{0.0};    // the update time of its last match (or birth)
+  bool first_confirmed_now{false};  // confirmed for the first time by the update in progress
+  bool taken_over{false};           // a re-identified track took its id: it ends in this update
   // Born at or above strong_birth_range_cut: confirmed sooner.
   bool strong_birth{false};
 

@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "tracker/appearance.hpp"
 #include "tracker/association.hpp"
 #include "tracker/box_geometry.hpp"
 #include "tracker/box_noise.hpp"
@@ -24,6 +25,12 @@ constexpr double kOneFrameSlack = 0.5;
 // A detection whose box another detection covers this much of shows someone else's pixels too:
 // its appearance does not teach its track (a tenth of a person is an arm or a bag).
 constexpr float kOccludedShare = 0.1F;
+// Re-identification: two candidates that look alike to within this are not told apart, and
+// neither gives its id (a wrong old id costs more than a new one).
+constexpr float kReidMargin = 0.1F;
+// How far a person may have gone while unseen: a walker covers about one body height a second;
+// twice that, plus one height for the boxes' own error.
+constexpr float kReidHeightsPerSecond = 2.F;
 
 const TrackerConfig& validated(const TrackerConfig& config) {
   if (const auto problem = config_problem(config))
@@ -72,6 +79,7 @@ struct Tracker::State {
     round_matches.reserve(std::min(tracks, detections));
     reports.reserve(tracks);
     table.reserve(tracks);
+    departed.resize(config.reid_gate > 0.0 ? tracks : 0);
     restart();
   }
 
@@ -90,6 +98,8 @@ struct Tracker::State {
     box_noise.reset();
     if (extension) extension->reset();
     reports.clear();
+    for (Departed& gone : departed) gone.id = 0;
+    next_departed = 0;
   }
 
   // One frame: predict, associate in up to three rounds, start tracks, settle states and report.
@@ -313,6 +323,7 @@ struct Tracker::State {
     }
     track.steps_since_update = 0;
     track.frames_since_update = 0.0;
+    track.last_seen_seconds = last_update_time;
     ++track.hit_streak;
     track.score = detection.score;
     track.score_sum += detection.score;
@@ -396,6 +407,9 @@ struct Tracker::State {
     track.matches = 1;
     track.class_id = detection.class_id;
     track.appearance = detection.appearance;
+    track.last_seen_seconds = last_update_time;
+    track.first_confirmed_now = false;
+    track.taken_over = false;
     track.life.born();
     track.strong_birth = config.strong_birth_range_cut > 0.0 &&
                          detection.score >= score_cut.range_point(config.strong_birth_range_cut);
@@ -410,21 +424,103 @@ struct Tracker::State {
   // ever confirmed) are removed.
   void settle_and_report() {
     reports.clear();
+    for (const int slot : order) {
+      Track& track = slots[slot];
+      const bool was_confirmed = track.life.ever_confirmed();
+      track.life.settle(track.matched_now() && confirmed(track));
+      track.first_confirmed_now = !was_confirmed && track.life.stage() == TrackStage::confirmed;
+    }
+    if (!departed.empty()) reidentify_newly_confirmed();
     std::size_t kept = 0;
     for (const int slot : order) {
       Track& track = slots[slot];
-      track.life.settle(track.matched_now() && confirmed(track));
+      if (track.taken_over) {
+        release(slot);
+        continue;
+      }
       if (track.life.stage() == TrackStage::confirmed) reports.push_back(report(track));
       const bool unproven_and_missed = config.tentative_dies_on_miss && !track.matched_now() &&
                                        track.life.stage() == TrackStage::tentative;
       if (unproven_and_missed || (track.frames_since_update > config.max_age + kFrameTolerance &&
                                   track.steps_since_update > config.min_coast_updates)) {
+        remember_departure(track);
         release(slot);
       } else {
         order[kept++] = slot;
       }
     }
     order.resize(kept);
+  }
+
+  // Re-identification (config.reid_gate): each track confirmed for the first time in this update
+  // may take the id of a lost track (still coasting) or of a removed one (`departed`). It happens
+  // before the track is first reported, so its id never changes in the output.
+  void reidentify_newly_confirmed() {
+    for (const int slot : order) {
+      Track& track = slots[slot];
+      if (!track.first_confirmed_now || !track.appearance.valid) continue;
+      const float gate = static_cast<float>(config.reid_gate);
+      float best = std::numeric_limits<float>::infinity();
+      float second = best;
+      int best_lost = -1;      // a slot
+      int best_departed = -1;  // an index into departed
+      const auto consider = [&](float distance, int lost, int gone) {
+        if (distance < best) {
+          second = best;
+          best = distance;
+          best_lost = lost;
+          best_departed = gone;
+        } else if (distance < second) {
+          second = distance;
+        }
+      };
+      for (const int other : order) {
+        const Track& lost = slots[other];
+        if (other == slot || lost.taken_over || lost.life.stage() != TrackStage::lost ||
+            !lost.appearance.valid || lost.class_id != track.class_id ||
+            !within_reach(lost.last_observation, lost.last_seen_seconds, track))
+          continue;
+        consider(appearance_distance(lost.appearance, track.appearance), other, -1);
+      }
+      for (int i = 0; i < static_cast<int>(departed.size()); ++i) {
+        const Departed& gone = departed[static_cast<std::size_t>(i)];
+        if (gone.id == 0 || gone.class_id != track.class_id ||
+            !within_reach(gone.last_box, gone.last_seen_seconds, track))
+          continue;
+        consider(appearance_distance(gone.appearance, track.appearance), -1, i);
+      }
+      if (best > gate || second < best + kReidMargin) continue;
+      if (best_lost >= 0) {
+        Track& lost = slots[best_lost];
+        track.id = lost.id;
+        lost.taken_over = true;
+      } else {
+        Departed& gone = departed[static_cast<std::size_t>(best_departed)];
+        track.id = gone.id;
+        gone.id = 0;
+      }
+    }
+  }
+
+  // Whether a person last seen in `box` at `seen_seconds` can be where `track` was born.
+  bool within_reach(const Box& box, double seen_seconds, const Track& track) const {
+    const double gap = last_update_time - seen_seconds;
+    if (!(gap >= 0.0) || gap > config.reid_max_gap_s) return false;
+    const Box& now = track.last_observation;
+    const double height = std::max(box.h, now.h);
+    const double dx = (box.x + box.w / 2.0) - (now.x + now.w / 2.0);
+    const double dy = (box.y + box.h / 2.0) - (now.y + now.h / 2.0);
+    const double reach = height * (1.0 + kReidHeightsPerSecond * gap);
+    return dx * dx + dy * dy <= reach * reach;
+  }
+
+  // A confirmed track with a model, removed: kept for re-identification (the oldest entry goes
+  // when the table is full; entries older than reid_max_gap_s are never taken).
+  void remember_departure(const Track& track) {
+    if (departed.empty() || !track.life.ever_confirmed() || !track.appearance.valid) return;
+    departed[next_departed] = Departed{track.id, track.class_id, track.last_observation,
+                                       track.last_seen_seconds, track.appearance};
+    next_departed = (next_departed + 1) % departed.size();
   }
 
   static TrackReport report(const Track& track) {
@@ -489,15 +585,25 @@ struct Tracker::State {
   // One update's detections by role, and the association rounds' workspace.
   std::vector<Detection> high;
   std::vector<Detection> low;
-  std::vector<char> high_taken;  // high[d] was matched by a round
+  std::vector<char> high_taken;    // high[d] was matched by a round
   std::vector<char> hidden_flags;  // high's, then low's: partly covered by another detection
-  std::vector<Detection> rest;   // the cascade's second level: detections left by the first
-  std::vector<int> rest_index;   // their index in `high`
-  std::vector<int> positions;    // the round's tracks, as indices into `order`
+  std::vector<Detection> rest;     // the cascade's second level: detections left by the first
+  std::vector<int> rest_index;     // their index in `high`
+  std::vector<int> positions;      // the round's tracks, as indices into `order`
   std::vector<AssociationCandidate> candidates;
   std::vector<AssociationMatch> round_matches;
   std::vector<TrackReport> reports;
   std::vector<TrackReport> table;  // track_table()'s
+  // Removed tracks re-identification may give their id back to (id 0: an empty entry), a ring.
+  struct Departed {
+    std::int32_t id{0};
+    std::int32_t class_id{0};
+    Box last_box;
+    double last_seen_seconds{0.0};
+    Appearance appearance;
+  };
+  std::vector<Departed> departed;  // sized max_tracks when re-identification is on, else empty
+  std::size_t next_departed{0};
   Associator associator;
   BoxNoise box_noise;
   ScoreCut score_cut;

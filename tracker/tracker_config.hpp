@@ -148,6 +148,12 @@ struct TrackerConfig {
   /// A track's appearance keeps this share of itself at each match by a detection that no other
   /// detection overlaps (a partly hidden person shows someone else's colours).
   double appearance_momentum{0.9};
+  /// Re-identification: a track confirmed for the first time takes the id of a track it looks
+  /// like (appearance distance at most this), of its class, lost (coasting) or removed at most
+  /// reid_max_gap_s before, whose last box lies within reach of a walker: the nearest in
+  /// appearance, when no other one is nearly as near. A lost one it takes over ends. 0 = off.
+  double reid_gate{0.0};
+  double reid_max_gap_s{5.0};
 
   // --- particle filter ---
   int particle_count{100};

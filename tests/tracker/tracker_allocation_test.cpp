@@ -3,6 +3,7 @@
 // allocations over the second half, for every predictor and affinity.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <memory>
 #include <vector>
 
@@ -20,7 +21,18 @@ class SteadyState : public ::testing::TestWithParam<std::tuple<PredictorKind, Af
 TEST_P(SteadyState, AllocatesNothingAfterWarmUp) {
   const auto dir = test::shared_path("data/mot15-train/ADL-Rundle-6");
   RTMOT_REQUIRE_FILE(dir / "det" / "det.txt");
-  const test::MotSequence sequence = test::load_mot_sequence(dir);
+  test::MotSequence sequence = test::load_mot_sequence(dir);
+  // Each detection an appearance (one bin by where it is: no images here), so that the gate, the
+  // preference and re-identification run too.
+  for (auto& frame : sequence.frames) {
+    for (Detection& detection : frame) {
+      const auto bin = static_cast<std::size_t>(std::abs(static_cast<int>(detection.box.x)) / 64 %
+                                                Appearance::kBins);
+      detection.appearance.bins.fill(0.F);
+      detection.appearance.bins[bin] = 1.F;
+      detection.appearance.valid = true;
+    }
+  }
   // Every option on: they must not allocate either.
   TrackerConfig config = with_every_option(TrackerConfig::sort_preset());
   config.predictor = std::get<0>(GetParam());

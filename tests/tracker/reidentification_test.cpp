@@ -1,0 +1,143 @@
+// Re-identification (TrackerConfig::reid_gate): a person the tracker lost, back under a new track,
+// gets the old id back when they look the same, could have walked there, and no one else who left
+// looks nearly as much like them; the id changes before the new track is first reported, and two
+// live tracks never share one.
+#include <gtest/gtest.h>
+
+#include <set>
+#include <vector>
+
+#include "tracker/presets.hpp"
+#include "tracker/tracker.hpp"
+
+namespace rtmot::tracker {
+namespace {
+
+constexpr double kFps = 10.0;
+
+Appearance colour(int bin) {
+  Appearance appearance;
+  appearance.bins[static_cast<std::size_t>(bin)] = 1.F;
+  appearance.valid = true;
+  return appearance;
+}
+
+Detection person(float x, float y, const Appearance& looks) {
+  Detection detection(Box{x, y, 40.F, 100.F}, 0.9F, 1);
+  detection.appearance = looks;
+  return detection;
+}
+
+TrackerConfig config(double reid_gate) {
+  TrackerConfig c = *find_preset("rtmot");
+  c.frame_rate = kFps;
+  c.max_age = 5;  // removed after half a second unseen
+  c.reid_gate = reid_gate;
+  c.reid_max_gap_s = 5.0;
+  return c;
+}
+
+// Runs `frames` (frame k's detections at time k / fps) and returns, per frame, the reported ids;
+// fails the test when two reports of one frame share an id.
+std::vector<std::vector<std::int32_t>> run(Tracker& tracker,
+                                           const std::vector<std::vector<Detection>>& frames) {
+  std::vector<std::vector<std::int32_t>> ids;
+  for (std::size_t k = 0; k < frames.size(); ++k) {
+    const auto& reports = tracker.update(frames[k], static_cast<double>(k) / kFps);
+    std::vector<std::int32_t> now;
+    std::set<std::int32_t> unique;
+    for (const TrackReport& r : reports) {
+      now.push_back(r.id);
+      EXPECT_TRUE(unique.insert(r.id).second) << "frame " << k << ": id " << r.id << " twice";
+    }
+    ids.push_back(now);
+  }
+  return ids;
+}
+
+// One person walks right 10 frames, is unseen `gap` frames, and comes back `jump` px further
+// along, walking on: the ids reported first and last.
+std::pair<std::int32_t, std::int32_t> back_after(double reid_gate, int gap, float jump,
+                                                 const Appearance& before,
+                                                 const Appearance& after) {
+  std::vector<std::vector<Detection>> frames;
+  float x = 100.F;
+  for (int k = 0; k < 10; ++k, x += 5.F) frames.push_back({person(x, 200.F, before)});
+  for (int k = 0; k < gap; ++k) frames.emplace_back();
+  x += jump;
+  for (int k = 0; k < 10; ++k, x += 5.F) frames.push_back({person(x, 200.F, after)});
+  Tracker tracker(config(reid_gate));
+  const auto ids = run(tracker, frames);
+  return {ids[5].at(0), ids.back().at(0)};
+}
+
+TEST(Reidentification, APersonBackAfterTheirTrackWasRemovedGetsTheirIdBack) {
+  // 2 s unseen: removed after 0.5 s; back 150 px on (within a walker's reach of 2 s).
+  const auto [first, last] = back_after(0.3, 20, 150.F, colour(3), colour(3));
+  EXPECT_EQ(last, first);
+  const auto [off_first, off_last] = back_after(0.0, 20, 150.F, colour(3), colour(3));
+  EXPECT_NE(off_last, off_first);  // re-identification off: a new id
+}
+
+TEST(Reidentification, SomeoneElseOrSomeoneTooFarOrTooLateGetsANewId) {
+  const auto [a, b] = back_after(0.3, 20, 150.F, colour(3), colour(9));  // other clothes
+  EXPECT_NE(b, a);
+  const auto [c, d] = back_after(0.3, 20, 2000.F, colour(3), colour(3));  // 2000 px in 2 s
+  EXPECT_NE(d, c);
+  const auto [e, f] = back_after(0.3, 60, 150.F, colour(3), colour(3));  // 6 s: past the 5 s
+  EXPECT_NE(f, e);
+}
+
+// The person's track still coasts (max_age 30: 3 s) when they come back away from its prediction
+// (they turned back): the new track takes the id over and the coasting one ends.
+TEST(Reidentification, ANewTrackTakesOverTheIdOfALostOneThatStillCoasts) {
+  TrackerConfig c = config(0.3);
+  c.max_age = 30;
+  std::vector<std::vector<Detection>> frames;
+  float x = 100.F;
+  for (int k = 0; k < 10; ++k, x += 10.F) frames.push_back({person(x, 200.F, colour(5))});
+  for (int k = 0; k < 5; ++k) frames.emplace_back();
+  x -= 60.F;  // back where they were five frames before, walking the other way
+  for (int k = 0; k < 10; ++k, x -= 10.F) frames.push_back({person(x, 200.F, colour(5))});
+  Tracker tracker(c);
+  const auto ids = run(tracker, frames);
+  ASSERT_EQ(ids[5].size(), 1U);
+  EXPECT_EQ(ids.back(), std::vector<std::int32_t>{ids[5][0]});
+  EXPECT_EQ(tracker.live_tracks(), 1);  // the coasting track ended when its id was taken over
+}
+
+// Two people who look alike leave; one comes back: which of them is not known, so neither id.
+TEST(Reidentification, TwoWhoLookAlikeGiveNeitherId) {
+  std::vector<std::vector<Detection>> frames;
+  for (int k = 0; k < 10; ++k) {
+    frames.push_back({person(100.F + 5.F * static_cast<float>(k), 200.F, colour(3)),
+                      person(400.F + 5.F * static_cast<float>(k), 200.F, colour(3))});
+  }
+  for (int k = 0; k < 20; ++k) frames.emplace_back();
+  for (int k = 0; k < 10; ++k) frames.push_back({person(250.F, 200.F, colour(3))});
+  Tracker tracker(config(0.3));
+  const auto ids = run(tracker, frames);
+  ASSERT_EQ(ids[5].size(), 2U);
+  ASSERT_EQ(ids.back().size(), 1U);
+  EXPECT_EQ(std::count(ids[5].begin(), ids[5].end(), ids.back()[0]), 0);
+}
+
+// And the one who looks like the newcomer gets it back, though the other left nearer.
+TEST(Reidentification, TheOneWhoLooksLikeThemIsChosenNotTheNearest) {
+  std::vector<std::vector<Detection>> frames;
+  for (int k = 0; k < 10; ++k) {
+    frames.push_back({person(100.F + 5.F * static_cast<float>(k), 200.F, colour(3)),
+                      person(400.F + 5.F * static_cast<float>(k), 200.F, colour(20))});
+  }
+  for (int k = 0; k < 20; ++k) frames.emplace_back();
+  for (int k = 0; k < 10; ++k) frames.push_back({person(160.F, 200.F, colour(20))});
+  Tracker tracker(config(0.3));
+  const auto ids = run(tracker, frames);
+  ASSERT_EQ(ids[5].size(), 2U);
+  ASSERT_EQ(ids.back().size(), 1U);
+  // Reports are in track order: the second person's track is the second reported.
+  EXPECT_EQ(ids.back()[0], ids[5][1]);
+}
+
+}  // namespace
+}  // namespace rtmot::tracker
