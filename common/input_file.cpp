@@ -87,6 +87,13 @@ std::size_t InputFile::read(void* data, std::size_t size) {
   return total;
 }
 
+void InputFile::skip(std::uint64_t bytes) {
+  if (::lseek(fd_, static_cast<off_t>(bytes), SEEK_CUR) < 0) {
+    throw InputError(path_.string(), 0, "", std::string("cannot seek: ") + std::strerror(errno),
+                     ExitCode::io_error);
+  }
+}
+
 std::string input_file_problem(const std::filesystem::path& path) {
   try {
     const InputFile file(path);

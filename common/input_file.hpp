@@ -28,6 +28,9 @@ class InputFile {
   /// Reads up to `size` bytes; fewer only at the end of the file. Throws InputError (io_error) on
   /// a failed read.
   std::size_t read(void* data, std::size_t size);
+  /// Moves `bytes` forward without reading them (the caller keeps within size()). Throws
+  /// InputError (io_error) when the file cannot seek.
+  void skip(std::uint64_t bytes);
   /// The size when it was opened.
   std::uint64_t size() const { return size_; }
   const std::filesystem::path& path() const { return path_; }

@@ -1,8 +1,10 @@
 #include "detector/onnx_metadata.hpp"
 
-#include <fstream>
+#include <array>
+#include <optional>
 
 #include "common/input_error.hpp"
+#include "common/input_file.hpp"
 
 namespace rtmot::detector {
 namespace {
@@ -15,22 +17,28 @@ namespace {
 constexpr std::uint32_t kMetadataPropsField = 14;
 constexpr std::uint32_t kEntryKeyField = 1;
 constexpr std::uint32_t kEntryValueField = 2;
+// Keys are short names; a longer one is not one this reader looks for.
+constexpr std::uint64_t kMaxKeyBytes = 256;
 
 enum WireType : std::uint32_t { varint = 0, fixed64 = 1, length_delimited = 2, fixed32 = 5 };
 
-// A protobuf wire-format reader over a file; `ok()` turns false on the first
-// malformed or truncated field, and every read after that is a no-op.
+// Protobuf's wire format read from a regular file (common/input_file.hpp: a FIFO or a device is
+// never opened for reading), buffered, with long fields skipped by seeking. `ok()` turns false on
+// the first malformed or truncated field, and every read after that is a no-op.
 class WireReader {
  public:
-  WireReader(std::istream& in, std::uint64_t size) : in_(in), size_(size) {}
+  explicit WireReader(InputFile& file) : file_(file) {}
 
   bool ok() const { return ok_; }
-  bool at_end() { return ok_ && in_.peek() == std::char_traits<char>::eof(); }
+  std::uint64_t position() const { return position_; }
+  bool at_end() const { return ok_ && position_ == file_.size(); }
+  void fail() { ok_ = false; }
+
   std::uint64_t read_varint() {
     std::uint64_t value = 0;
     for (int shift = 0; ok_ && shift < 64; shift += 7) {
-      const int byte = in_.get();
-      if (byte == std::char_traits<char>::eof()) break;
+      const int byte = next_byte();
+      if (byte < 0) break;
       value |= static_cast<std::uint64_t>(byte & 0x7f) << shift;
       if ((byte & 0x80) == 0) return value;
     }
@@ -39,20 +47,22 @@ class WireReader {
   }
   // Callers bound `length` first: it comes from the file.
   std::string read_bytes(std::uint64_t length) {
-    std::string bytes(length, '\0');
-    if (!in_.read(bytes.data(), static_cast<std::streamsize>(length))) ok_ = false;
+    if (!fits(length)) return {};
+    std::string bytes;
+    bytes.reserve(length);
+    for (std::uint64_t i = 0; i < length; ++i) bytes += static_cast<char>(next_byte());
     return bytes;
   }
-  void fail() { ok_ = false; }
-  // A seek past the end succeeds on a file: the size bounds it instead.
   void skip(std::uint64_t length) {
-    const auto position = static_cast<std::uint64_t>(in_.tellg());
-    if (!in_ || length > size_ - position) {
-      ok_ = false;
-      return;
+    if (!fits(length)) return;
+    const std::uint64_t buffered = filled_ - next_;
+    if (length <= buffered) {
+      next_ += length;
+    } else {
+      file_.skip(length - buffered);
+      next_ = filled_ = 0;
     }
-    in_.seekg(static_cast<std::streamoff>(length), std::ios::cur);
-    if (!in_) ok_ = false;
+    position_ += length;
   }
   // Skips the value of a field of `wire_type`; fails on a type no ONNX field uses (groups).
   void skip_value(std::uint32_t wire_type) {
@@ -75,13 +85,30 @@ class WireReader {
   }
 
  private:
-  std::istream& in_;
-  std::uint64_t size_;
+  bool fits(std::uint64_t length) {
+    if (ok_ && length > file_.size() - position_) ok_ = false;
+    return ok_;
+  }
+  int next_byte() {
+    if (next_ == filled_) {
+      filled_ = file_.read(buffer_.data(), buffer_.size());
+      next_ = 0;
+      if (filled_ == 0) {
+        ok_ = false;
+        return -1;
+      }
+    }
+    ++position_;
+    return static_cast<unsigned char>(buffer_[next_++]);
+  }
+
+  InputFile& file_;
+  std::array<char, 4096> buffer_{};
+  std::size_t next_{0};
+  std::size_t filled_{0};
+  std::uint64_t position_{0};
   bool ok_{true};
 };
-
-// Keys are short names; a longer one is not one this reader looks for.
-constexpr std::uint64_t kMaxKeyBytes = 256;
 
 struct Entry {
   std::string key;
@@ -91,12 +118,10 @@ struct Entry {
 
 // One StringStringEntryProto of `length` bytes at the reader's position; values longer than
 // `max_bytes` are skipped and flagged, so that a caller learns which key they belonged to.
-Entry read_entry(WireReader& reader, std::istream& in, std::uint64_t length,
-                 std::uint64_t max_bytes) {
+Entry read_entry(WireReader& reader, std::uint64_t length, std::uint64_t max_bytes) {
   Entry entry;
-  const std::streamoff end =
-      static_cast<std::streamoff>(in.tellg()) + static_cast<std::streamoff>(length);
-  while (reader.ok() && static_cast<std::streamoff>(in.tellg()) < end) {
+  const std::uint64_t end = reader.position() + length;
+  while (reader.ok() && reader.position() < end) {
     const std::uint64_t tag = reader.read_varint();
     const auto field = static_cast<std::uint32_t>(tag >> 3);
     const auto wire_type = static_cast<std::uint32_t>(tag & 7);
@@ -113,7 +138,7 @@ Entry read_entry(WireReader& reader, std::istream& in, std::uint64_t length,
     }
     (field == kEntryKeyField ? entry.key : entry.value) = reader.read_bytes(size);
   }
-  if (reader.ok() && static_cast<std::streamoff>(in.tellg()) != end) reader.fail();
+  if (reader.ok() && reader.position() != end) reader.fail();
   return entry;
 }
 
@@ -121,11 +146,13 @@ Entry read_entry(WireReader& reader, std::istream& in, std::uint64_t length,
 
 std::optional<std::string> onnx_metadata_value(const std::filesystem::path& path,
                                                const std::string& key, std::uint64_t max_bytes) {
-  std::error_code error;
-  const std::uint64_t size = std::filesystem::file_size(path, error);
-  std::ifstream in(path, std::ios::binary);
-  if (error || !in) return std::nullopt;
-  WireReader reader(in, size);
+  std::optional<InputFile> file;
+  try {
+    file.emplace(path);
+  } catch (const InputError&) {
+    return std::nullopt;  // not a regular readable file: the network's loader says what it is
+  }
+  WireReader reader(*file);
   std::optional<std::string> found;
   while (!reader.at_end()) {
     const std::uint64_t tag = reader.read_varint();
@@ -133,7 +160,7 @@ std::optional<std::string> onnx_metadata_value(const std::filesystem::path& path
     const auto wire_type = static_cast<std::uint32_t>(tag & 7);
     if (field == kMetadataPropsField && wire_type == length_delimited) {
       const std::uint64_t length = reader.read_varint();
-      const Entry entry = read_entry(reader, in, length, max_bytes);
+      const Entry entry = read_entry(reader, length, max_bytes);
       if (!reader.ok()) return std::nullopt;
       if (entry.key == key && entry.value_too_long) {
         throw InputError(path.string(), 0, "metadata " + key,

@@ -9,7 +9,8 @@
 namespace rtmot::detector {
 
 /// The value of metadata entry `key` of the ONNX file `path`, or nothing when the file has no
-/// such entry or is not a readable ONNX model (whoever loads the network reports that). Throws
+/// such entry, is not a regular readable file (a FIFO is never opened for reading: it would block)
+/// or is not a readable ONNX model (whoever loads the network reports those). Throws
 /// rtmot::InputError (ExitCode::bad_model) naming the file and the key when the value is longer
 /// than `max_bytes`.
 std::optional<std::string> onnx_metadata_value(const std::filesystem::path& path,

@@ -62,6 +62,8 @@ TEST(TrackerOptions, EveryKnobOfTheConfigCanBeSet) {
                                      {"appearance_gate", "0.7"},
                                      {"appearance_weight", "0.3"},
                                      {"appearance_momentum", "0.8"},
+                                     {"reid_gate", "0.45"},
+                                     {"reid_max_gap_s", "7.5"},
                                      {"particle_count", "33"},
                                      {"seed", "18446744073709551615"},
                                      {"max_tracks", "20"},
@@ -101,11 +103,13 @@ TEST(TrackerOptions, EveryKnobOfTheConfigCanBeSet) {
   EXPECT_DOUBLE_EQ(config.appearance_gate, 0.7);
   EXPECT_DOUBLE_EQ(config.appearance_weight, 0.3);
   EXPECT_DOUBLE_EQ(config.appearance_momentum, 0.8);
+  EXPECT_DOUBLE_EQ(config.reid_gate, 0.45);
+  EXPECT_DOUBLE_EQ(config.reid_max_gap_s, 7.5);
   EXPECT_EQ(config.particle_count, 33);
   EXPECT_EQ(config.seed, 18446744073709551615ULL);
   EXPECT_EQ(config.max_tracks, 20);
   EXPECT_EQ(config.max_detections, 30);
-  EXPECT_EQ(tracker_options().size(), 39U) << "a new TrackerConfig field needs a line here too";
+  EXPECT_EQ(tracker_options().size(), 41U) << "a new TrackerConfig field needs a line here too";
 }
 
 TEST(TrackerOptions, AnAffinityBringsItsUsualThresholdUnlessOneFollows) {
