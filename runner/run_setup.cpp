@@ -475,10 +475,10 @@ void check_run_files(const RunConfig& config) {
                                                : std::filesystem::path(detector.anchors),
                       "detector.anchors"});
     if (detector.backend == detector::BackendRequest::xnnpack_int8) {
-      inputs.push_back(
-          {detector.int8_ranges.empty() ? detector::default_activation_ranges_path(detector.model)
-                                        : std::filesystem::path(detector.int8_ranges),
-           "detector.int8_ranges"});
+      inputs.push_back({detector.int8_ranges.empty()
+                            ? detector::default_activation_ranges_path(detector.model)
+                            : std::filesystem::path(detector.int8_ranges),
+                        "detector.int8_ranges"});
     }
   }
   for (const SourceConfig& source : source_list(config)) {
