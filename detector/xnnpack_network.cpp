@@ -102,8 +102,8 @@ Quantization activation_quantization(const ActivationRange& range) {
   return {scale, static_cast<std::int32_t>(std::clamp(zero_point, -128L, 127L))};
 }
 
-/// Symmetric per-channel int8 weights: channel c of `channels`, its `per_channel` values found by
-/// at(c, k). Returns the scales; fills `out` in the same order as `at` is asked (c outer).
+/// Symmetric per-channel int8 weights: channel c's `per_channel` values are at(c, k), each stored
+/// at out[where(c, k)] (XNNPACK's layout). Returns the channels' scales.
 template <typename Weight, typename Slot>
 std::vector<float> quantize_per_channel(std::size_t channels, std::size_t per_channel, Weight at,
                                         Slot where, std::vector<std::int8_t>& out) {
@@ -339,6 +339,7 @@ class SubgraphBuilder {
 
   uint32_t define_quantized(const std::string& name, const std::vector<std::size_t>& xnn_dims,
                             Quantization q) {
+    check_size(name, xnn_dims);
     uint32_t id = XNN_INVALID_VALUE_ID;
     check(xnn_define_quantized_tensor_value(subgraph_, xnn_datatype_qint8, q.zero_point, q.scale,
                                             xnn_dims.size(), xnn_dims.data(), nullptr,
@@ -469,13 +470,18 @@ class SubgraphBuilder {
     return id;
   }
 
-  /// A computed tensor: an external output when it is (a piece of) a graph output.
-  uint32_t define_computed(const std::string& name, const std::vector<std::size_t>& xnn_dims) {
+  /// Every tensor the builder defines is bounded (fp32 or int8).
+  void check_size(const std::string& name, const std::vector<std::size_t>& xnn_dims) const {
     if (xnn_dims.empty() || product(xnn_dims, 1) > kMaxTensorFloatsPerImage) {
       throw model_error("the tensor '" + name + "' would be " + shape_text(xnn_dims) +
                         " floats; at most " + std::to_string(kMaxTensorFloatsPerImage) +
                         " an image (damaged model? run scripts/fetch_model.sh again)");
     }
+  }
+
+  /// A computed tensor: an external output when it is (a piece of) a graph output, or recorded.
+  uint32_t define_computed(const std::string& name, const std::vector<std::size_t>& xnn_dims) {
+    check_size(name, xnn_dims);
     uint32_t external = XNN_INVALID_VALUE_ID;
     uint32_t flags = 0;
     const auto found = external_ids_.find(name);
