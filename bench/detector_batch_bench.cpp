@@ -9,7 +9,8 @@
 // the min and median of individual calls, per image, for a table (docs/gpu.md,
 // docs/cpu-detector.md).
 //
-// Run: detector_batch_bench [--backends cpu,xnnpack,cuda,cuda-fp16] [--batches 1,2,4,8]
+// Run: detector_batch_bench [--backends cpu,xnnpack,xnnpack-int8,cuda,cuda-fp16] [--batches
+// 1,2,4,8]
 //                           [--threads 1,2] [--iterations N] [--model PATH] [--vary]
 //                           [--tiles off,3x2]
 // Backends default to every one this build has (cpu is OpenCV DNN; a backend the machine lacks is
@@ -51,7 +52,10 @@ using rtmot::detector::Fp16Request;
 
 std::vector<std::string> built_backends() {
   std::vector<std::string> names{"cpu"};
-  if (rtmot::detector::xnnpack_built()) names.emplace_back("xnnpack");
+  if (rtmot::detector::xnnpack_built()) {
+    names.emplace_back("xnnpack");
+    names.emplace_back("xnnpack-int8");
+  }
   names.emplace_back("cuda");
   names.emplace_back("cuda-fp16");
   return names;
@@ -108,9 +112,10 @@ Options parse(int argc, char** argv) {
         options.tiles.push_back(*request);
       }
     } else {
-      std::cerr << "usage: detector_batch_bench [--backends cpu,xnnpack,cuda,cuda-fp16] "
-                   "[--batches 1,2,4,8] [--threads 1,2] [--iterations N] [--model PATH] "
-                   "[--vary] [--tiles off,3x2]\n";
+      std::cerr
+          << "usage: detector_batch_bench [--backends cpu,xnnpack,xnnpack-int8,cuda,cuda-fp16] "
+             "[--batches 1,2,4,8] [--threads 1,2] [--iterations N] [--model PATH] "
+             "[--vary] [--tiles off,3x2]\n";
       std::exit(2);
     }
   }
@@ -150,9 +155,12 @@ std::unique_ptr<rtmot::detector::SsdDetector> make_ssd(const Options& options,
                                                        int batch) {
   rtmot::detector::SsdConfig config;
   config.model_path = options.model;
-  config.backend = backend == "xnnpack" ? BackendRequest::xnnpack
-                   : backend == "cpu"   ? BackendRequest::cpu
-                                        : BackendRequest::cuda;
+  config.backend = backend == "xnnpack"        ? BackendRequest::xnnpack
+                   : backend == "xnnpack-int8" ? BackendRequest::xnnpack_int8
+                   : backend == "cpu"          ? BackendRequest::cpu
+                                               : BackendRequest::cuda;
+  // The model is named by absolute path here; its committed ranges too (the default is relative).
+  if (options.model == RTMOT_MODEL_PATH) config.int8_ranges = RTMOT_INT8_RANGES_PATH;
   config.fp16 = backend == "cuda-fp16" ? Fp16Request::on : Fp16Request::off;
   config.threads = threads;
   config.max_batch = batch;
@@ -184,9 +192,10 @@ int main(int argc, char** argv) {
   rtmot::platform::configure_logging(rtmot::platform::LogFormat::text, "");  // stderr: the table
   const Options options = parse(argc, argv);
   for (const auto& backend : options.backends) {
-    if (backend != "cpu" && backend != "xnnpack" && backend != "cuda" && backend != "cuda-fp16") {
+    if (backend != "cpu" && backend != "xnnpack" && backend != "xnnpack-int8" &&
+        backend != "cuda" && backend != "cuda-fp16") {
       std::cerr << "detector_batch_bench: unknown backend '" << backend
-                << "' (cpu, xnnpack, cuda, cuda-fp16)\n";
+                << "' (cpu, xnnpack, xnnpack-int8, cuda, cuda-fp16)\n";
       return 2;
     }
   }

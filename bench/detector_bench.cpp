@@ -38,16 +38,19 @@ void BM_SsdDetect(benchmark::State& state) {
     state.SkipWithError(("no frames: " + frames().error).c_str());
     return;
   }
-  const bool xnnpack = state.range(0) == 1;
-  if (xnnpack && !rtmot::detector::xnnpack_built()) {
+  // 0 OpenCV's cpu path, 1 XNNPACK fp32, 2 XNNPACK int8 (the committed calibration).
+  const auto engine = state.range(0);
+  if (engine > 0 && !rtmot::detector::xnnpack_built()) {
     state.SkipWithError("this build has no XNNPACK backend");
     return;
   }
-  state.SetLabel(xnnpack ? "xnnpack" : "opencv-cpu");
+  state.SetLabel(engine == 2 ? "xnnpack-int8" : engine == 1 ? "xnnpack" : "opencv-cpu");
   rtmot::detector::SsdConfig config;
   config.model_path = RTMOT_MODEL_PATH;
-  config.backend =
-      xnnpack ? rtmot::detector::BackendRequest::xnnpack : rtmot::detector::BackendRequest::cpu;
+  config.int8_ranges = RTMOT_INT8_RANGES_PATH;
+  config.backend = engine == 2   ? rtmot::detector::BackendRequest::xnnpack_int8
+                   : engine == 1 ? rtmot::detector::BackendRequest::xnnpack
+                                 : rtmot::detector::BackendRequest::cpu;
   config.threads = static_cast<int>(state.range(1));
   std::unique_ptr<rtmot::detector::SsdDetector> detector;
   try {
@@ -70,7 +73,7 @@ void BM_SsdDetect(benchmark::State& state) {
 }
 BENCHMARK(BM_SsdDetect)
     ->ArgNames({"backend", "threads"})
-    ->ArgsProduct({{0, 1}, {1, 2}})
+    ->ArgsProduct({{0, 1, 2}, {1, 2}})
     ->Unit(benchmark::kMillisecond)
     ->MinTime(3.0)
     ->UseRealTime();

@@ -43,11 +43,14 @@ BackendChoice choose_backend(BackendRequest backend, Fp16Request fp16,
                          " (build OpenCV with scripts/build_opencv.sh --cuda: docs/gpu.md)",
                      ExitCode::usage);
   }
-  if (backend == BackendRequest::xnnpack && !caps.xnnpack_built) {
+  const bool xnnpack_asked =
+      backend == BackendRequest::xnnpack || backend == BackendRequest::xnnpack_int8;
+  if (xnnpack_asked && !caps.xnnpack_built) {
     throw InputError("detector", 0, "backend",
-                     "xnnpack was requested but this build has no XNNPACK backend (install "
-                     "libxnnpack-dev and libonnx-dev, scripts/install_deps.sh, and rebuild: "
-                     "docs/cpu-detector.md)",
+                     std::string(kBackendNames.name(backend)) +
+                         " was requested but this build has no XNNPACK backend (install "
+                         "libxnnpack-dev and libonnx-dev, scripts/install_deps.sh, and rebuild: "
+                         "docs/cpu-detector.md)",
                      ExitCode::usage);
   }
   const bool use_cuda =
@@ -60,6 +63,9 @@ BackendChoice choose_backend(BackendRequest backend, Fp16Request fp16,
     }
     if (backend == BackendRequest::xnnpack) {
       return {Engine::xnnpack, 0, 0, "xnnpack", "xnnpack requested"};
+    }
+    if (backend == BackendRequest::xnnpack_int8) {
+      return {Engine::xnnpack, 0, 0, "xnnpack-int8", "xnnpack-int8 requested", false, true};
     }
     if (backend == BackendRequest::automatic && caps.xnnpack_built) {
       return {Engine::xnnpack,

@@ -8,13 +8,14 @@
 
 namespace rtmot::detector {
 
-enum class BackendRequest { automatic, cpu, cuda, xnnpack };
+enum class BackendRequest { automatic, cpu, cuda, xnnpack, xnnpack_int8 };
 /// The one table of backend names, for parsing, messages and docs/config.md.
 inline constexpr auto kBackendNames = tracker::make_enum_names<BackendRequest>(
     std::pair{BackendRequest::automatic, std::string_view("auto")},
     std::pair{BackendRequest::cpu, std::string_view("cpu")},
     std::pair{BackendRequest::cuda, std::string_view("cuda")},
-    std::pair{BackendRequest::xnnpack, std::string_view("xnnpack")});
+    std::pair{BackendRequest::xnnpack, std::string_view("xnnpack")},
+    std::pair{BackendRequest::xnnpack_int8, std::string_view("xnnpack-int8")});
 
 enum class Fp16Request { automatic, on, off };
 /// The one table of fp16 names, for parsing, messages and docs/config.md.
@@ -34,12 +35,15 @@ struct BackendChoice {
   Engine engine{Engine::opencv};
   int backend{0};      // cv::dnn::Backend
   int target{0};       // cv::dnn::Target
-  std::string name;    // "cpu", "cuda", "cuda-fp16", "xnnpack"
+  std::string name;    // "cpu", "cuda", "cuda-fp16", "xnnpack", "xnnpack-int8"
   std::string reason;  // why, for the log
   /// Backend auto on the CPU with XNNPACK built: which CPU engine is faster depends on the
   /// processor and on what else runs on its cores, so SsdDetector times both at start (a few
   /// passes each) and keeps the faster; engine is xnnpack until then.
   bool measure{false};
+  /// XNNPACK's int8 engine on calibrated activation ranges (only when asked: its numbers differ
+  /// from fp32's, within the tolerance docs/cpu-detector.md documents, so auto never picks it).
+  bool int8{false};
 };
 
 /// What this machine offers that the SSD can use.

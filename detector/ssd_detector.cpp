@@ -189,6 +189,12 @@ std::unique_ptr<XnnpackNetwork> SsdDetector::build_xnnpack() {
     xnn.logit_output = description_.score_output;
     xnn.max_batch = config_.max_batch;
     xnn.threads = config_.threads;
+    if (backend_.int8) {
+      xnn.int8_ranges = config_.int8_ranges.empty()
+                            ? default_activation_ranges_path(config_.model_path)
+                            : config_.int8_ranges;
+    }
+    xnn.record_ranges = config_.record_ranges;
     try {
       return std::make_unique<XnnpackNetwork>(xnn);
     } catch (const std::bad_alloc&) {

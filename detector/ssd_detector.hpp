@@ -43,6 +43,11 @@ struct SsdConfig {
   int max_batch{1};
   /// Check the files listed in the model's .sha256 (written by fetch_model.sh) before loading.
   bool verify_checksums{true};
+  /// backend xnnpack-int8: the calibrated activation ranges; empty = the committed file of the
+  /// model (default_activation_ranges_path).
+  std::filesystem::path int8_ranges;
+  /// backend xnnpack (fp32) only: record every tensor's range (`rtmot model calibrate`).
+  bool record_ranges{false};
 };
 
 /// The largest max_batch accepted: 64 images are 69 MB of input blob, far past where batching
@@ -96,6 +101,13 @@ class SsdDetector : public Detector {
   const BackendChoice& backend() const { return backend_; }
   /// On XNNPACK with a pool: how its passes ran (pool or caller's thread), for benchmarks.
   std::string xnnpack_pool_use() const { return xnn_ ? xnn_->pool_use() : std::string(); }
+  /// With record_ranges: each tensor's range over the detections since the last clear.
+  ActivationRanges recorded_ranges() const {
+    return xnn_ ? xnn_->recorded_ranges() : ActivationRanges{};
+  }
+  void clear_recorded_ranges() {
+    if (xnn_) xnn_->clear_recorded_ranges();
+  }
 
  private:
   /// Layout deltas: decoded against the anchors file; decoded: sized at the first pass.

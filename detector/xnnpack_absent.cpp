@@ -52,5 +52,9 @@ std::string XnnpackNetwork::summary() const {
 std::string XnnpackNetwork::pool_use() const {
   return {};
 }
+ActivationRanges XnnpackNetwork::recorded_ranges() const {
+  return {};
+}
+void XnnpackNetwork::clear_recorded_ranges() {}
 
 }  // namespace rtmot::detector

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "common/input_error.hpp"
+#include "detector/model_checksum.hpp"
 #include "detector/model_files.hpp"
 #include "detector/pool_governor.hpp"
 
@@ -64,7 +65,61 @@ struct Value {
   bool xnn_shape{true};
   /// Set on a Concat's result: the external outputs it joins, in order (host side).
   std::vector<uint32_t> pieces;
+  /// Signed 8-bit (the int8 engine): real = scale * (q - zero_point).
+  bool qs8{false};
+  float scale{1.F};
+  std::int32_t zero_point{0};
 };
+
+/// The int8 engine's weights in XNNPACK's formats, made once per model and shared by every
+/// runtime (XNNPACK keeps pointers to them and to the per-channel scales).
+struct QuantizedWeights {
+  std::map<std::string, std::vector<std::int8_t>> filters;
+  std::map<std::string, std::vector<std::int32_t>> biases;
+  std::map<std::string, std::vector<float>> scales;
+};
+
+/// What the builder does besides fp32: quantize (ranges set) or record ranges (probes set).
+struct BuildMode {
+  const ActivationRanges* ranges{nullptr};
+  const std::filesystem::path* ranges_path{nullptr};
+  QuantizedWeights* quantized{nullptr};
+  std::map<std::string, uint32_t>* probes{nullptr};  // tensor -> its external id
+};
+
+struct Quantization {
+  float scale;
+  std::int32_t zero_point;
+};
+
+/// Asymmetric int8 over the calibrated range widened to hold 0 (zero padding must be exact).
+Quantization activation_quantization(const ActivationRange& range) {
+  const float low = std::min(range.min, 0.F);
+  const float high = std::max(range.max, 0.F);
+  // XNNPACK wants a normal positive scale; a tensor that was always 0 gets any.
+  const float scale = std::max((high - low) / 255.F, 1e-8F);
+  const long zero_point = std::lround(-128.F - low / scale);
+  return {scale, static_cast<std::int32_t>(std::clamp(zero_point, -128L, 127L))};
+}
+
+/// Symmetric per-channel int8 weights: channel c's `per_channel` values are at(c, k), each stored
+/// at out[where(c, k)] (XNNPACK's layout). Returns the channels' scales.
+template <typename Weight, typename Slot>
+std::vector<float> quantize_per_channel(std::size_t channels, std::size_t per_channel, Weight at,
+                                        Slot where, std::vector<std::int8_t>& out) {
+  std::vector<float> scales(channels, 1.F);
+  out.assign(channels * per_channel, 0);
+  for (std::size_t c = 0; c < channels; ++c) {
+    float largest = 0.F;
+    for (std::size_t k = 0; k < per_channel; ++k) largest = std::max(largest, std::fabs(at(c, k)));
+    scales[c] = largest > 0.F ? largest / 127.F : 1.F;
+    for (std::size_t k = 0; k < per_channel; ++k) {
+      const long q = std::lround(at(c, k) / scales[c]);
+      out[where(c, k)] = static_cast<std::int8_t>(std::clamp(q, -127L, 127L));
+    }
+  }
+  return scales;
+}
 
 // Every size the file declares (tensor dimensions, kernel sizes, pads, strides, dilations, groups)
 // is bounded before anything is computed or allocated from it, and so is every tensor the builder
@@ -123,13 +178,14 @@ class SubgraphBuilder {
   SubgraphBuilder(const std::filesystem::path& path, const onnx::GraphProto& graph,
                   std::map<std::string, std::vector<float>>& weights,
                   const std::map<std::string, uint32_t>& external_ids, std::size_t batch,
-                  std::size_t input_size)
+                  std::size_t input_size, BuildMode mode)
       : path_(path),
         graph_(graph),
         weights_(weights),
         external_ids_(external_ids),
         batch_(batch),
-        input_size_(input_size) {
+        input_size_(input_size),
+        mode_(mode) {
     for (const auto& tensor : graph_.initializer()) initializers_[tensor.name()] = &tensor;
     for (int index = 0; index < graph_.node_size(); ++index) {
       for (const auto& input : graph_.node(index).input()) {
@@ -144,8 +200,11 @@ class SubgraphBuilder {
   SubgraphPtr build(std::map<std::string, Value>& outputs,
                     std::map<uint32_t, std::size_t>& external_sizes) {
     xnn_subgraph_t raw = nullptr;
-    check(xnn_create_subgraph(static_cast<uint32_t>(external_ids_.size()) + 1, 0, &raw),
-          "create the subgraph");
+    // Recording ranges makes every computed tensor an external output: at most one a node.
+    const auto externals = static_cast<uint32_t>(external_ids_.size()) + 1 +
+                           (mode_.probes ? static_cast<uint32_t>(graph_.node_size()) : 0U);
+    next_probe_id_ = static_cast<uint32_t>(external_ids_.size()) + 1;
+    check(xnn_create_subgraph(externals, 0, &raw), "create the subgraph");
     SubgraphPtr subgraph(raw);
     subgraph_ = raw;
     define_input();
@@ -244,6 +303,79 @@ class SubgraphBuilder {
     value.shape = {batch_, 3, input_size_, input_size_};
     value.nchw = true;
     values_[input->name()] = value;
+    if (mode_.probes) (*mode_.probes)[input->name()] = kInputExternalId;
+  }
+
+  // --- the int8 engine ---
+
+  Quantization quantization_of(const std::string& tensor) const {
+    const auto found = mode_.ranges->tensors.find(tensor);
+    if (found == mode_.ranges->tensors.end()) {
+      throw InputError(mode_.ranges_path->string(), 0, "range",
+                       "no range for the model's tensor '" + tensor +
+                           "' (made for another model? calibrate with scripts/calibrate_int8.sh)",
+                       ExitCode::bad_model);
+    }
+    return activation_quantization(found->second);
+  }
+
+  /// The tensor as int8: itself, or (the fp32 input, an fp32 graph output read again) converted
+  /// once per subgraph.
+  Value quantized(const std::string& tensor, const Value& value) {
+    if (value.qs8) return value;
+    const auto done = converted_.find(tensor);
+    if (done != converted_.end()) return done->second;
+    const Quantization q = quantization_of(tensor);
+    Value result = value;
+    result.qs8 = true;
+    result.scale = q.scale;
+    result.zero_point = q.zero_point;
+    result.id = define_quantized(tensor, xnn_dims(value), q);
+    check(xnn_define_convert(subgraph_, value.id, result.id, 0),
+          "convert '" + tensor + "' to int8");
+    converted_[tensor] = result;
+    return result;
+  }
+
+  uint32_t define_quantized(const std::string& name, const std::vector<std::size_t>& xnn_dims,
+                            Quantization q) {
+    check_size(name, xnn_dims);
+    uint32_t id = XNN_INVALID_VALUE_ID;
+    check(xnn_define_quantized_tensor_value(subgraph_, xnn_datatype_qint8, q.zero_point, q.scale,
+                                            xnn_dims.size(), xnn_dims.data(), nullptr,
+                                            XNN_INVALID_VALUE_ID, 0, &id),
+          "define the int8 tensor '" + name + "'");
+    return id;
+  }
+
+  /// An int8 node's result `name`: its int8 tensor (defined here, into `into`), and the value the
+  /// graph reads, which is fp32 (converted) where the tensor is an output the host reads.
+  Value quantized_result(const std::string& name, const std::vector<std::size_t>& onnx_shape,
+                         bool nchw, uint32_t& into) {
+    Value value;
+    value.shape = onnx_shape;
+    value.nchw = nchw;
+    const auto dims = xnn_dims(value);
+    const Quantization q = quantization_of(name);
+    into = define_quantized(name, dims, q);
+    if (external_ids_.count(name)) {
+      value.id = define_computed(name, dims);
+      pending_converts_.emplace_back(into, value.id);
+      return value;
+    }
+    value.id = into;
+    value.qs8 = true;
+    value.scale = q.scale;
+    value.zero_point = q.zero_point;
+    return value;
+  }
+
+  /// The converts to fp32 outputs, defined after their producer (XNNPACK runs nodes in order).
+  void flush_converts(const std::string& what) {
+    for (const auto& [from, to] : pending_converts_) {
+      check(xnn_define_convert(subgraph_, from, to, 0), "convert " + what + " to fp32");
+    }
+    pending_converts_.clear();
   }
 
   const Value& value_of(const onnx::NodeProto& node, int input) const {
@@ -338,18 +470,29 @@ class SubgraphBuilder {
     return id;
   }
 
-  /// A computed tensor: an external output when it is (a piece of) a graph output.
-  uint32_t define_computed(const std::string& name, const std::vector<std::size_t>& xnn_dims) {
+  /// Every tensor the builder defines is bounded (fp32 or int8).
+  void check_size(const std::string& name, const std::vector<std::size_t>& xnn_dims) const {
     if (xnn_dims.empty() || product(xnn_dims, 1) > kMaxTensorFloatsPerImage) {
       throw model_error("the tensor '" + name + "' would be " + shape_text(xnn_dims) +
                         " floats; at most " + std::to_string(kMaxTensorFloatsPerImage) +
                         " an image (damaged model? run scripts/fetch_model.sh again)");
     }
+  }
+
+  /// A computed tensor: an external output when it is (a piece of) a graph output, or recorded.
+  uint32_t define_computed(const std::string& name, const std::vector<std::size_t>& xnn_dims) {
+    check_size(name, xnn_dims);
     uint32_t external = XNN_INVALID_VALUE_ID;
     uint32_t flags = 0;
     const auto found = external_ids_.find(name);
     if (found != external_ids_.end()) {
       external = found->second;
+      if (mode_.probes) (*mode_.probes)[name] = external;
+    } else if (mode_.probes) {
+      external = next_probe_id_++;
+      (*mode_.probes)[name] = external;
+    }
+    if (external != XNN_INVALID_VALUE_ID) {
       flags = XNN_VALUE_FLAG_EXTERNAL_OUTPUT;
       external_sizes_[external] = product(xnn_dims, 1);
     }
@@ -448,11 +591,38 @@ class SubgraphBuilder {
     const std::string& out_name = activation ? activation->output(0) : node.output(0);
     const std::vector<std::size_t> out_nhwc{batch_, static_cast<std::size_t>(oh),
                                             static_cast<std::size_t>(ow), out_channels};
+    const auto u32 = [](auto v) { return static_cast<uint32_t>(v); };
+    const bool depthwise = group_in == 1 && groups == in_channels && groups > 1;
+    const std::vector<std::size_t> out_nchw{batch_, out_channels, static_cast<std::size_t>(oh),
+                                            static_cast<std::size_t>(ow)};
+    if (mode_.ranges) {
+      const Value in = quantized(node.input(0), input);
+      uint32_t output = XNN_INVALID_VALUE_ID;
+      Value value = quantized_result(out_name, out_nchw, true, output);
+      const auto [filter_id, bias_id] =
+          quantized_weights(node, weights, bias, in.scale, depthwise, w);
+      if (depthwise) {
+        check(xnn_define_depthwise_convolution_2d(
+                  subgraph_, u32(pads[0]), u32(pads[3]), u32(pads[2]), u32(pads[1]), u32(kh),
+                  u32(kw), u32(strides[0]), u32(strides[1]), u32(dilations[0]), u32(dilations[1]),
+                  u32(out_channels / in_channels), in_channels, low, high, in.id, filter_id,
+                  bias_id, output, 0),
+              "build node '" + node.name() + "' (int8)");
+      } else {
+        check(xnn_define_convolution_2d(subgraph_, u32(pads[0]), u32(pads[3]), u32(pads[2]),
+                                        u32(pads[1]), u32(kh), u32(kw), u32(strides[0]),
+                                        u32(strides[1]), u32(dilations[0]), u32(dilations[1]),
+                                        u32(groups), group_in, out_channels / groups, low, high,
+                                        in.id, filter_id, bias_id, output, 0),
+              "build node '" + node.name() + "' (int8)");
+      }
+      flush_converts("node '" + node.name() + "'");
+      values_[out_name] = value;
+      return;
+    }
     const uint32_t output = define_computed(out_name, out_nhwc);
     const uint32_t bias_id =
         define_static(node.input(1) + "#bias", {out_channels}, bias);  // keyed by the weights
-    const auto u32 = [](auto v) { return static_cast<uint32_t>(v); };
-    const bool depthwise = group_in == 1 && groups == in_channels && groups > 1;
     if (depthwise) {
       // ONNX [C*m, 1, KH, KW] -> XNNPACK [1, KH, KW, C*m].
       std::vector<float> filter(weights.size());
@@ -495,9 +665,81 @@ class SubgraphBuilder {
     values_[out_name] = value;
   }
 
+  /// A convolution's weights for the int8 engine, in XNNPACK's layouts (as the fp32 ones below):
+  /// int8 per output channel, and the bias as int32 at scale input_scale * channel_scale.
+  std::pair<uint32_t, uint32_t> quantized_weights(const onnx::NodeProto& node,
+                                                  const std::vector<float>& weights,
+                                                  const std::vector<float>& bias, float input_scale,
+                                                  bool depthwise,
+                                                  const std::vector<std::size_t>& w) {
+    const std::size_t out_channels = w[0];
+    const std::size_t group_in = w[1];
+    const std::size_t taps = w[2] * w[3];
+    QuantizedWeights& store = *mode_.quantized;
+    const std::string key = node.input(1);
+    auto& filter = store.filters[key];
+    auto& scales = store.scales[key];
+    if (filter.empty()) {
+      // ONNX [O, I/g, KH, KW]: channel o's values are contiguous; XNNPACK's depthwise filter is
+      // [1, KH, KW, O], the others [O, KH, KW, I/g].
+      const auto weight = [&](std::size_t o, std::size_t k) {
+        return weights[o * taps * group_in + k];
+      };
+      const auto slot = [&](std::size_t o, std::size_t k) {
+        if (depthwise) return k * out_channels + o;
+        const std::size_t i = k / taps;
+        return (o * taps + k % taps) * group_in + i;
+      };
+      scales = quantize_per_channel(out_channels, taps * group_in, weight, slot, filter);
+    }
+    // The bias's scale depends on the input's, one calibrated value per tensor: keyed by both.
+    auto& bias_scales = store.scales[key + "#bias@" + node.input(0)];
+    auto& bias_q = store.biases[key + "#bias@" + node.input(0)];
+    if (bias_q.empty()) {
+      bias_scales.resize(out_channels);
+      bias_q.resize(out_channels);
+      for (std::size_t o = 0; o < out_channels; ++o) {
+        bias_scales[o] = input_scale * scales[o];
+        const double q = std::round(static_cast<double>(bias[o]) / bias_scales[o]);
+        bias_q[o] = static_cast<std::int32_t>(std::clamp(q, -2147483647.0, 2147483647.0));
+      }
+    }
+    const std::vector<std::size_t> filter_dims =
+        depthwise ? std::vector<std::size_t>{1, w[2], w[3], out_channels}
+                  : std::vector<std::size_t>{out_channels, w[2], w[3], group_in};
+    uint32_t filter_id = XNN_INVALID_VALUE_ID;
+    check(xnn_define_channelwise_quantized_tensor_value(
+              subgraph_, xnn_datatype_qcint8, scales.data(), filter_dims.size(), depthwise ? 3 : 0,
+              filter_dims.data(), filter.data(), XNN_INVALID_VALUE_ID, 0, &filter_id),
+          "define the int8 weights '" + key + "'");
+    const std::size_t bias_dims[] = {out_channels};
+    uint32_t bias_id = XNN_INVALID_VALUE_ID;
+    check(xnn_define_channelwise_quantized_tensor_value(
+              subgraph_, xnn_datatype_qcint32, bias_scales.data(), 1, 0, bias_dims, bias_q.data(),
+              XNN_INVALID_VALUE_ID, 0, &bias_id),
+          "define the int32 bias of '" + key + "'");
+    return {filter_id, bias_id};
+  }
+
   void clamp(const onnx::NodeProto& node) {
-    const Value& input = xnn_value_of(node, 0);
     const auto [low, high] = clamp_bounds(node);
+    if (mode_.ranges) {
+      // A clamp keeps its input's quantization: it only cuts values off.
+      const Value in = quantized(node.input(0), xnn_value_of(node, 0));
+      Value value = in;
+      value.id = define_quantized(node.output(0), xnn_dims(in), {in.scale, in.zero_point});
+      check(xnn_define_clamp(subgraph_, low, high, in.id, value.id, 0),
+            "build node '" + node.name() + "' (int8)");
+      if (external_ids_.count(node.output(0))) {
+        const uint32_t q = value.id;
+        value.qs8 = false;
+        value.id = define_computed(node.output(0), xnn_dims(in));
+        check(xnn_define_convert(subgraph_, q, value.id, 0), "convert a clamp to fp32");
+      }
+      values_[node.output(0)] = value;
+      return;
+    }
+    const Value& input = xnn_value_of(node, 0);
     Value value = input;
     value.id = define_computed(node.output(0), xnn_dims(input));
     check(xnn_define_clamp(subgraph_, low, high, input.id, value.id, 0),
@@ -511,6 +753,17 @@ class SubgraphBuilder {
     if (a.shape != b.shape || a.nchw != b.nchw) {
       throw error(node, "adds " + shape_text(a.shape) + " and " + shape_text(b.shape) +
                             "; the xnnpack backend adds tensors of one shape");
+    }
+    if (mode_.ranges) {
+      const Value qa = quantized(node.input(0), a);
+      const Value qb = quantized(node.input(1), b);
+      uint32_t output = XNN_INVALID_VALUE_ID;
+      Value value = quantized_result(node.output(0), a.shape, a.nchw, output);
+      check(xnn_define_add2(subgraph_, kNoMin, kNoMax, qa.id, qb.id, output, 0),
+            "build node '" + node.name() + "' (int8)");
+      flush_converts("node '" + node.name() + "'");
+      values_[node.output(0)] = value;
+      return;
     }
     Value value = a;
     value.id = define_computed(node.output(0), xnn_dims(a));
@@ -612,6 +865,10 @@ class SubgraphBuilder {
   const std::map<std::string, uint32_t>& external_ids_;
   std::size_t batch_;
   std::size_t input_size_;
+  BuildMode mode_;
+  uint32_t next_probe_id_{0};
+  std::map<std::string, Value> converted_;  // int8 copies of fp32 tensors, by tensor name
+  std::vector<std::pair<uint32_t, uint32_t>> pending_converts_;
   std::map<std::string, const onnx::TensorProto*> initializers_;
   std::map<std::string, int> consumers_;
   std::map<std::string, int> reader_;  // a node reading the tensor (the only one where it matters)
@@ -668,7 +925,14 @@ struct JoinedOutput {
 struct XnnpackNetwork::Impl {
   XnnpackNetworkConfig config;
   onnx::ModelProto model;
-  std::map<std::string, std::vector<float>> weights;  // outlives the runtimes (declared first)
+  std::map<std::string, std::vector<float>> weights;  // outlive the runtimes (declared first)
+  QuantizedWeights quantized_weights;
+  ActivationRanges ranges;  // the int8 engine's calibration (empty: fp32)
+  std::string model_sha256;
+  // Recording ranges: each recorded tensor's external id, its buffer and what it held so far.
+  std::map<std::string, uint32_t> probes;
+  std::map<uint32_t, std::vector<float>> probe_data;
+  std::map<std::string, ActivationRange> recorded;
   PoolPtr pool;
   std::vector<float> input;
   std::vector<Piece> pieces;
@@ -707,8 +971,24 @@ XnnpackNetwork::XnnpackNetwork(const XnnpackNetworkConfig& config)
   if (!impl.model.ParseFromString(bytes)) {
     throw model_error("not an ONNX model (truncated or corrupt? run scripts/fetch_model.sh again)");
   }
+  const bool int8 = !config.int8_ranges.empty();
+  if (int8 && config.record_ranges) {
+    throw model_error("ranges are recorded on the fp32 engine, not the int8 one");
+  }
+  if (int8 || config.record_ranges) impl.model_sha256 = sha256_hex(bytes);
+  if (int8) {
+    impl.ranges = read_activation_ranges(config.int8_ranges);
+    check_ranges_belong_to(impl.ranges, config.int8_ranges, impl.model_sha256);
+  }
   bytes = std::string();
   const onnx::GraphProto& graph = impl.model.graph();
+  BuildMode mode;
+  if (int8) {
+    mode.ranges = &impl.ranges;
+    mode.ranges_path = &config.int8_ranges;
+    mode.quantized = &impl.quantized_weights;
+  }
+  if (config.record_ranges) mode.probes = &impl.probes;
   const auto external_ids = external_outputs(graph);
 
   const auto max_batch = static_cast<std::size_t>(std::max(1, config.max_batch));
@@ -728,7 +1008,7 @@ XnnpackNetwork::XnnpackNetwork(const XnnpackNetworkConfig& config)
   std::map<uint32_t, std::size_t> piece_sizes;  // floats per image of each external output
   const auto make_runtime = [&](std::size_t batch, std::map<std::string, Value>& outputs,
                                 pthreadpool_t pool) {
-    SubgraphBuilder builder(path, graph, impl.weights, external_ids, batch, input_size);
+    SubgraphBuilder builder(path, graph, impl.weights, external_ids, batch, input_size, mode);
     SubgraphPtr subgraph = builder.build(outputs, piece_sizes);
     xnn_runtime_t raw = nullptr;
     // Workers sleep once a forward is done instead of spinning until the next frame arrives: the
@@ -791,6 +1071,13 @@ XnnpackNetwork::XnnpackNetwork(const XnnpackNetworkConfig& config)
   // The buffers never move: set up once, each run only invokes.
   std::vector<xnn_external_value> externals{{kInputExternalId, impl.input.data()}};
   for (Piece& piece : impl.pieces) externals.push_back({piece.id, piece.data.data()});
+  for (const auto& [name, id] : impl.probes) {
+    (void)name;
+    if (id == kInputExternalId || piece_of.count(id)) continue;  // buffers of their own
+    auto& data = impl.probe_data[id];
+    data.assign(max_batch * piece_sizes.at(id), 0.F);
+    externals.push_back({id, data.data()});
+  }
   for (xnn_runtime_t runtime : {impl.single_pooled.get(), impl.single_inline.get(),
                                 impl.batched_pooled.get(), impl.batched_inline.get()}) {
     if (runtime &&
@@ -807,8 +1094,10 @@ XnnpackNetwork::XnnpackNetwork(const XnnpackNetworkConfig& config)
     text << (first ? "" : ", ") << n << " " << op;
     first = false;
   }
-  text << "), batch 1" << (max_batch > 1 ? " and " + std::to_string(max_batch) : std::string())
-       << ", " << threads << " thread(s)"
+  text << ")" << (int8 ? ", int8 (ranges " + config.int8_ranges.string() + ")" : std::string())
+       << (config.record_ranges ? ", recording ranges" : "") << ", batch 1"
+       << (max_batch > 1 ? " and " + std::to_string(max_batch) : std::string()) << ", " << threads
+       << " thread(s)"
        << (config.threads > threads
                ? " (" + std::to_string(config.threads) + " asked; the CPUs this process may use)"
                : std::string())
@@ -839,6 +1128,7 @@ void XnnpackNetwork::run(int count) {
                         std::chrono::steady_clock::now() - start)
                         .count());
   }
+  if (!impl.probes.empty()) record_ranges(count);
   // The concatenation the graph ends with, image by image.
   for (JoinedOutput* joined : {&impl.boxes, &impl.logits}) {
     for (int image = 0; image < count; ++image) {
@@ -850,6 +1140,49 @@ void XnnpackNetwork::run(int count) {
       }
     }
   }
+}
+
+void XnnpackNetwork::record_ranges(int count) {
+  Impl& impl = *impl_;
+  const auto image_floats =
+      static_cast<std::size_t>(impl.config.input_size) * impl.config.input_size * 3;
+  for (const auto& [name, id] : impl.probes) {
+    const float* data = nullptr;
+    std::size_t size = 0;
+    if (id == kInputExternalId) {
+      data = impl.input.data();
+      size = image_floats;
+    } else if (const auto probe = impl.probe_data.find(id); probe != impl.probe_data.end()) {
+      data = probe->second.data();
+      size = probe->second.size() / static_cast<std::size_t>(std::max(1, impl.config.max_batch));
+    } else {
+      for (const Piece& piece : impl.pieces) {
+        if (piece.id == id) {
+          data = piece.data.data();
+          size = piece.per_image;
+        }
+      }
+    }
+    if (!data || size == 0) continue;
+    const auto [low, high] =
+        std::minmax_element(data, data + size * static_cast<std::size_t>(count));
+    auto [range, fresh] = impl.recorded.try_emplace(name, ActivationRange{*low, *high});
+    if (!fresh) {
+      range->second.min = std::min(range->second.min, *low);
+      range->second.max = std::max(range->second.max, *high);
+    }
+  }
+}
+
+ActivationRanges XnnpackNetwork::recorded_ranges() const {
+  ActivationRanges ranges;
+  ranges.model_sha256 = impl_->model_sha256;
+  ranges.tensors = impl_->recorded;
+  return ranges;
+}
+
+void XnnpackNetwork::clear_recorded_ranges() {
+  impl_->recorded.clear();
 }
 
 const float* XnnpackNetwork::boxes() const {

@@ -7,6 +7,7 @@
 #include <memory>
 #include <string>
 
+#include "detector/activation_ranges.hpp"
 #include "detector/model_contract.hpp"
 
 namespace rtmot::detector {
@@ -31,6 +32,14 @@ struct XnnpackNetworkConfig {
   int threads{0};
   std::string box_output{kBoxOutputName};
   std::string logit_output{kClassOutputName};
+  /// Non-empty: the int8 engine (backend xnnpack-int8). Convolutions and additions run on signed
+  /// 8-bit activations (per-tensor scale and zero point from these calibrated ranges) with int8
+  /// weights quantized per output channel; the input and the outputs stay fp32 (converted at the
+  /// edges). The file must belong to this model (its SHA-256): activation_ranges.hpp.
+  std::filesystem::path int8_ranges;
+  /// fp32 only: also record every computed tensor's min and max over the runs (calibration,
+  /// recorded_ranges()). Slower; for `rtmot model calibrate`, not for detection.
+  bool record_ranges{false};
 };
 
 /// One thread at a time. Two runtimes of fixed shape share the repacked weights and the thread
@@ -62,8 +71,14 @@ class XnnpackNetwork {
   /// How the passes so far ran (on the pool or on the caller's thread, and each way's current
   /// estimate), for benchmarks; empty without a pool.
   std::string pool_use() const;
+  /// With record_ranges: the range of every tensor (the input's too) over the runs so far, and the
+  /// model file's SHA-256 (frames left 0 for the caller).
+  ActivationRanges recorded_ranges() const;
+  /// Forgets what was recorded (the start-up passes, before the sample frames).
+  void clear_recorded_ranges();
 
  private:
+  void record_ranges(int count);
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };

@@ -60,6 +60,8 @@ struct DetectorConfig {
   DetectorKind kind{DetectorKind::ssd};
   std::string model;    // ssd: model file
   std::string anchors;  // ssd: anchors CSV; empty = beside the model
+  /// backend xnnpack-int8: the calibrated activation ranges; empty = the model's committed file.
+  std::string int8_ranges;
   detector::BackendRequest backend{detector::BackendRequest::automatic};
   detector::Fp16Request fp16{detector::Fp16Request::automatic};
   float score_threshold{detector::kDefaultScoreThreshold};  // before the tracker sees anything

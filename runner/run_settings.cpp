@@ -240,6 +240,10 @@ std::vector<RunSetting> detector_settings() {
            [](RunConfig& c) -> std::string& { return c.detector.model; }),
       text("detector.anchors", "", "ssd: the anchors CSV; empty = beside the model",
            [](RunConfig& c) -> std::string& { return c.detector.anchors; }),
+      text("detector.int8_ranges", "",
+           "backend xnnpack-int8: the calibrated activation ranges; empty = "
+           "configs/int8/<model name>.ranges",
+           [](RunConfig& c) -> std::string& { return c.detector.int8_ranges; }),
       named("detector.backend", "--backend", "the engine that runs the model",
             detector::kBackendNames,
             Field<detector::BackendRequest>(

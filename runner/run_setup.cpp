@@ -118,6 +118,7 @@ std::unique_ptr<detector::Detector> build_detector(const RunConfig& config, bool
   detector::SsdConfig ssd;
   ssd.model_path = wanted.model;
   ssd.anchors_path = wanted.anchors;
+  ssd.int8_ranges = wanted.int8_ranges;
   ssd.score_threshold = wanted.score_threshold;
   ssd.nms_iou = wanted.nms_threshold;
   ssd.classes = resolve_classes(config, *run_labels(config));
@@ -474,6 +475,12 @@ void check_run_files(const RunConfig& config) {
     inputs.push_back({detector.anchors.empty() ? detector::default_anchors_path(detector.model)
                                                : std::filesystem::path(detector.anchors),
                       "detector.anchors"});
+    if (detector.backend == detector::BackendRequest::xnnpack_int8) {
+      inputs.push_back({detector.int8_ranges.empty()
+                            ? detector::default_activation_ranges_path(detector.model)
+                            : std::filesystem::path(detector.int8_ranges),
+                        "detector.int8_ranges"});
+    }
   }
   for (const SourceConfig& source : source_list(config)) {
     if (is_sequence_uri(source.uri)) {

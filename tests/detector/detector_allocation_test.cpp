@@ -198,8 +198,8 @@ void* xnn_counted_aligned(void* /*context*/, std::size_t alignment, std::size_t 
   return posix_memalign(&pointer, alignment, size) == 0 ? pointer : nullptr;
 }
 
-TEST(DetectorAllocation, XnnpackAllocatesNothingInSteadyState) {
-  if (!xnnpack_runs_here()) GTEST_SKIP() << "XNNPACK does not initialize on this processor";
+// fp32 and int8 (the int8 engine's converts and requantization must not allocate either).
+void expect_no_xnnpack_allocation_in_steady_state(BackendRequest backend) {
   const auto model = test::source_path("models/ssdlite_mobilenet_v2_coco.onnx");
   if (!std::filesystem::exists(model)) {
     FAIL() << "missing model " << model << ": run scripts/fetch_model.sh";
@@ -214,7 +214,8 @@ TEST(DetectorAllocation, XnnpackAllocatesNothingInSteadyState) {
   }
   SsdConfig config;
   config.model_path = model;
-  config.backend = BackendRequest::xnnpack;
+  config.backend = backend;
+  config.int8_ranges = test::source_path("configs/int8/ssdlite_mobilenet_v2_coco.ranges");
   config.threads = 2;  // the thread pool's hand-over must not allocate either
   config.max_batch = 4;
   SsdDetector detector(config);
@@ -253,6 +254,16 @@ TEST(DetectorAllocation, XnnpackAllocatesNothingInSteadyState) {
   std::cout << xnnpack_allocations.load() << " XNNPACK allocations\n";
   EXPECT_EQ(xnnpack_allocations.load(), 0);
   EXPECT_LT(largest, kImageBytes);
+}
+
+TEST(DetectorAllocation, XnnpackAllocatesNothingInSteadyState) {
+  if (!xnnpack_runs_here()) GTEST_SKIP() << "XNNPACK does not initialize on this processor";
+  expect_no_xnnpack_allocation_in_steady_state(BackendRequest::xnnpack);
+}
+
+TEST(DetectorAllocation, XnnpackInt8AllocatesNothingInSteadyState) {
+  if (!xnnpack_runs_here()) GTEST_SKIP() << "XNNPACK does not initialize on this processor";
+  expect_no_xnnpack_allocation_in_steady_state(BackendRequest::xnnpack_int8);
 }
 #endif
 

@@ -176,6 +176,29 @@ TEST(DnnBackend, AutomaticMeasuresBothCpuEnginesWithoutCuda) {
   EXPECT_EQ(kBackendNames.parse("xnnpack"), BackendRequest::xnnpack);
 }
 
+// int8 only when asked (its numbers differ from fp32's): auto never picks it.
+TEST(DnnBackend, Int8IsXnnpackInInt8AndOnlyWhenAsked) {
+  BackendCapabilities xnnpack{};
+  xnnpack.xnnpack_built = true;
+  EXPECT_EQ(kBackendNames.parse("xnnpack-int8"), BackendRequest::xnnpack_int8);
+  const auto int8 = choose_backend(BackendRequest::xnnpack_int8, Fp16Request::automatic, xnnpack);
+  EXPECT_EQ(int8.engine, Engine::xnnpack);
+  EXPECT_TRUE(int8.int8);
+  EXPECT_FALSE(int8.measure);
+  EXPECT_EQ(int8.name, "xnnpack-int8");
+  EXPECT_FALSE(choose_backend(BackendRequest::automatic, Fp16Request::automatic, xnnpack).int8);
+  EXPECT_FALSE(choose_backend(BackendRequest::xnnpack, Fp16Request::automatic, xnnpack).int8);
+  try {
+    choose_backend(BackendRequest::xnnpack_int8, Fp16Request::automatic, BackendCapabilities{});
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.exit_code(), ExitCode::usage);
+    EXPECT_EQ(e.field(), "backend");
+    EXPECT_NE(std::string(e.what()).find("xnnpack-int8 was requested"), std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(DnnBackend, ForcingWhatCannotBeHadIsAClearError) {
   const BackendCapabilities none{};
   try {
