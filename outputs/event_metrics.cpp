@@ -121,4 +121,30 @@ void EventMetrics::render(std::string& out) const {
   }
 }
 
+nlohmann::json EventMetrics::status() const {
+  nlohmann::json sources = nlohmann::json::array();
+  for (const auto& c : counters_) {
+    nlohmann::json lines = nlohmann::json::array();
+    for (std::size_t l = 0; l < c.source.lines.size(); ++l) {
+      lines.push_back({{"name", replace_invalid_utf8(c.source.lines[l])},
+                       {"in", c.lines[2 * l].load(relaxed)},
+                       {"out", c.lines[2 * l + 1].load(relaxed)}});
+    }
+    nlohmann::json zones = nlohmann::json::array();
+    for (std::size_t z = 0; z < c.source.zones.size(); ++z) {
+      const std::atomic<std::uint64_t>* zone = &c.zones[kZoneFields * z];
+      const auto entered = zone[0].load(relaxed);
+      const auto exited = zone[1].load(relaxed);
+      zones.push_back({{"name", replace_invalid_utf8(c.source.zones[z])},
+                       {"enter", entered},
+                       {"exit", exited},
+                       {"lost", zone[2].load(relaxed)},
+                       {"dwell", zone[3].load(relaxed)},
+                       {"occupancy", entered >= exited ? entered - exited : 0}});
+    }
+    sources.push_back({{"stream", c.source.stream_id}, {"lines", lines}, {"zones", zones}});
+  }
+  return sources;
+}
+
 }  // namespace rtmot::outputs

@@ -6,6 +6,7 @@
 #include <atomic>
 #include <cstdint>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -27,6 +28,9 @@ class EventMetrics {
   void observe(const messages::FrameResult& result);
   /// Appends the families (text exposition 0.0.4).
   void render(std::string& out) const;
+  /// Any thread: the same counts for the web page: per source, each line's in/out and each
+  /// zone's enter/exit/lost/dwell/occupancy, by name in the configuration's order.
+  nlohmann::json status() const;
 
  private:
   struct Counters {

@@ -9,6 +9,7 @@
 #include <opencv2/core/utility.hpp>
 
 #include "common/input_error.hpp"
+#include "common/utf8.hpp"
 #include "detector/dnn_backend.hpp"
 #include "detector/model_checksum.hpp"
 #include "detector/replay_detector.hpp"
@@ -315,6 +316,31 @@ std::vector<std::unique_ptr<detector::Detector>> make_detectors(
 
 namespace {
 void check_run_files(const RunConfig& config);  // below, with prepare_video_output
+
+// What the page draws over a source's picture: its size and its lines and zones, in pixels.
+nlohmann::json web_geometry(const pipeline::PipelineInput& input) {
+  const auto point = [](const events::Point& p) { return nlohmann::json::array({p.x, p.y}); };
+  nlohmann::json lines = nlohmann::json::array();
+  for (const auto& line : input.events.lines) {
+    lines.push_back({{"name", replace_invalid_utf8(line.name)},
+                     {"from", point(line.segment.from)},
+                     {"to", point(line.segment.to)},
+                     {"in", line.in_is_left ? "left" : "right"}});
+  }
+  nlohmann::json zones = nlohmann::json::array();
+  for (const auto& zone : input.events.zones) {
+    nlohmann::json points = nlohmann::json::array();
+    for (const auto& p : zone.polygon) points.push_back(point(p));
+    zones.push_back({{"name", replace_invalid_utf8(zone.name)}, {"points", points}});
+  }
+  const platform::SourceInfo& info = input.source->info();
+  return {{"stream", input.stream_id},
+          {"uri", replace_invalid_utf8(info.uri)},
+          {"width", info.width},
+          {"height", info.height},
+          {"lines", lines},
+          {"zones", zones}};
+}
 }  // namespace
 
 RunOutputs make_outputs(const RunConfig& config, std::vector<pipeline::PipelineInput>& inputs) {
@@ -414,7 +440,29 @@ RunOutputs make_outputs(const RunConfig& config, std::vector<pipeline::PipelineI
     outputs.destinations.push_back(file_line("report", output.report_file));
   }
   outputs.deliveries = probes;  // for the final report
-  if (output.metrics_port > 0) {
+  if (output.web_port > 0) {
+    std::vector<outputs::LivePicture*> pictures;
+    outputs.web_sources = nlohmann::json::array();
+    // The live picture shows the tracks; the page draws the lines and zones itself (and the
+    // frame rate and latency from the status), so that a line drawn shows at once.
+    outputs::OverlayFlags flags = output.overlay;
+    flags.bits &= ~static_cast<unsigned>(outputs::OverlayFlag::stats);
+    for (auto& input : inputs) {
+      auto picture = std::make_unique<outputs::LivePicture>(input.stream_id, flags, label_of);
+      if (input.tap != nullptr) {
+        outputs.taps.push_back(std::make_unique<pipeline::TapFanout>(
+            std::vector<pipeline::FrameTap*>{input.tap, picture.get()}));
+        input.tap = outputs.taps.back().get();
+      } else {
+        input.tap = picture.get();
+      }
+      pictures.push_back(picture.get());
+      outputs.pictures.push_back(std::move(picture));
+      outputs.web_sources.push_back(web_geometry(input));
+    }
+    sinks.push_back(std::make_unique<outputs::LivePictureSink>(std::move(pictures)));
+  }
+  if (output.metrics_port > 0 || output.web_port > 0) {
     std::vector<std::uint32_t> streams;
     for (const auto& input : inputs) streams.push_back(input.stream_id);
     outputs.metrics = std::make_unique<outputs::PipelineMetrics>(std::move(probes), streams);
@@ -431,10 +479,12 @@ RunOutputs make_outputs(const RunConfig& config, std::vector<pipeline::PipelineI
       outputs.metrics->set_event_metrics(outputs.event_metrics.get());
       sinks.push_back(std::make_unique<outputs::EventMetricsSink>(*outputs.event_metrics));
     }
-    outputs.metrics_server = std::make_unique<outputs::MetricsServer>(
-        *outputs.metrics, output.metrics_bind, static_cast<std::uint16_t>(output.metrics_port));
+    if (output.metrics_port > 0) {
+      outputs.metrics_server = std::make_unique<outputs::MetricsServer>(
+          *outputs.metrics, output.metrics_bind, static_cast<std::uint16_t>(output.metrics_port));
+      outputs.destinations.push_back("metrics -> " + outputs.metrics_server->url());
+    }
     sinks.push_back(std::make_unique<outputs::MetricsSink>(*outputs.metrics));
-    outputs.destinations.push_back("metrics -> " + outputs.metrics_server->url());
   }
   outputs.consumers = pipeline::as_consumers(std::move(sinks));
   if (mot_results) outputs.consumers.push_back(std::move(mot_results));
@@ -443,10 +493,23 @@ RunOutputs make_outputs(const RunConfig& config, std::vector<pipeline::PipelineI
   return outputs;
 }
 
+void start_web_server(const RunConfig& config, RunOutputs& outputs, const std::string& detector) {
+  if (config.output.web_port <= 0) return;
+  outputs::WebContent content;
+  content.metrics = outputs.metrics.get();
+  for (const auto& picture : outputs.pictures) content.pictures.push_back(picture.get());
+  content.sources = outputs.web_sources;
+  content.detector = detector;
+  outputs.web_server = std::make_unique<outputs::WebServer>(
+      std::move(content), config.output.web_bind,
+      static_cast<std::uint16_t>(config.output.web_port), outputs::find_static_dir());
+}
+
 std::vector<std::unique_ptr<messages::TrackSink>> make_sinks(const RunConfig& config) {
   RunConfig messages_only = config;
   messages_only.output.video.reset();
   messages_only.output.metrics_port = 0;
+  messages_only.output.web_port = 0;
   messages_only.output.mot_results.clear();
   messages_only.stats_interval_s = 0.0;
   std::vector<std::unique_ptr<messages::TrackSink>> sinks;
