@@ -44,6 +44,16 @@ int respond_error(mg_connection* connection, int status, const char* reason,
                  nlohmann::json{{"error", why}}.dump());
 }
 
+// Compares without stopping at the first difference: the time taken says nothing about how much of
+// a guessed token was right.
+bool same_secret(const std::string& given, const std::string& expected) {
+  unsigned char difference = given.size() == expected.size() ? 0 : 1;
+  for (std::size_t i = 0; i < given.size(); ++i) {
+    difference |= static_cast<unsigned char>(given[i] ^ expected[i % expected.size()]);
+  }
+  return difference == 0;
+}
+
 // The request's path, decoded ("" when the request names no path on this server).
 std::string request_path(mg_connection* connection) {
   const char* path = mg_get_request_info(connection)->local_uri_raw;
@@ -112,6 +122,7 @@ WebServer::WebServer(WebContent content, const std::string& bind_address, std::u
   }
   // civetweb tries exact URIs first, then "/video" as a prefix ("/video/..."), then the pattern.
   mg_set_request_handler(context_, "/api/status", &WebServer::serve_status, this);
+  mg_set_request_handler(context_, "/api/events", &WebServer::serve_events, this);
   mg_set_request_handler(context_, "/video", &WebServer::serve_video, this);
   mg_set_request_handler(context_, "**", &WebServer::serve_static, this);
 }
@@ -138,10 +149,14 @@ int WebServer::serve_static(mg_connection* connection, void* self) {
 }
 
 int WebServer::serve_status(mg_connection* connection, void* self) {
-  const auto& server = *static_cast<WebServer*>(self);
+  auto& server = *static_cast<WebServer*>(self);
   nlohmann::json status = server.content_.metrics->status();
   status["detector"] = server.content_.detector;
-  status["geometry"] = server.content_.sources;
+  {
+    const std::lock_guard<std::mutex> lock(server.geometry_mutex_);
+    status["geometry"] = server.content_.sources;
+  }
+  status["writes"] = !server.content_.token.empty() && server.content_.save_events != nullptr;
   // Per source, the pictures encoded so far: 0 until someone first watches (nobody watching costs
   // nothing; the system test checks it).
   nlohmann::json encoded = nlohmann::json::array();
@@ -196,6 +211,63 @@ int WebServer::stream_video(mg_connection* connection, LivePicture& picture) {
     }
   }
   return 200;
+}
+
+int WebServer::serve_events(mg_connection* connection, void* self) {
+  auto& server = *static_cast<WebServer*>(self);
+  const mg_request_info* request = mg_get_request_info(connection);
+  if (request->request_method == nullptr || std::strcmp(request->request_method, "POST") != 0) {
+    return respond_error(connection, 405, "Method Not Allowed", "POST the events section here");
+  }
+  // The token before anything else is looked at: without it nothing of the request is read.
+  if (server.content_.token.empty() || !server.content_.save_events) {
+    return respond_error(connection, 403, "Forbidden",
+                         "writes are off: start rtmot run with --web-token-file (docs/web.md)");
+  }
+  const char* authorization = mg_get_header(connection, "Authorization");
+  const std::string bearer = "Bearer ";
+  if (authorization == nullptr || std::strncmp(authorization, bearer.c_str(), bearer.size()) != 0) {
+    return respond_error(connection, 401, "Unauthorized",
+                         "a write needs the header Authorization: Bearer TOKEN");
+  }
+  if (!same_secret(authorization + bearer.size(), server.content_.token)) {
+    return respond_error(connection, 403, "Forbidden", "wrong token");
+  }
+  if (request->content_length < 0) {
+    return respond_error(connection, 411, "Length Required", "the body's length is required");
+  }
+  if (request->content_length > kMaxBody) {
+    return respond_error(connection, 413, "Payload Too Large",
+                         fmt::format("the body may be at most {} bytes", kMaxBody));
+  }
+  std::string body(static_cast<std::size_t>(request->content_length), '\0');
+  std::size_t got = 0;
+  while (got < body.size()) {
+    const int n = mg_read(connection, body.data() + got, body.size() - got);
+    if (n <= 0) return respond_error(connection, 400, "Bad Request", "the body was cut short");
+    got += static_cast<std::size_t>(n);
+  }
+  const char* query = request->query_string;
+  char number[16] = {};
+  if (query == nullptr ||
+      mg_get_var(query, std::strlen(query), "source", number, sizeof number) <= 0) {
+    return respond_error(connection, 400, "Bad Request", "which source: ?source=N");
+  }
+  char* end = nullptr;
+  const unsigned long index = std::strtoul(number, &end, 10);
+  if (end == number || *end != '\0') {
+    return respond_error(connection, 400, "Bad Request", "source: not a number");
+  }
+  SaveAnswer answer = server.content_.save_events(index, body);
+  if (answer.status == 200 && index < server.content_.sources.size()) {
+    const std::lock_guard<std::mutex> lock(server.geometry_mutex_);
+    server.content_.sources[index] = std::move(answer.geometry);
+  }
+  const char* reason = answer.status == 200   ? "OK"
+                       : answer.status == 400 ? "Bad Request"
+                       : answer.status == 404 ? "Not Found"
+                                              : "Internal Server Error";
+  return respond(connection, answer.status, reason, "application/json", answer.body.dump());
 }
 
 }  // namespace rtmot::outputs

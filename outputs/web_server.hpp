@@ -10,10 +10,14 @@
 //                          health and counts (PipelineMetrics::status(): the Prometheus facts)
 //   GET /video/N.mjpg      source N's live annotated picture, multipart/x-mixed-replace JPEG
 //                          (outputs/live_picture.hpp: encoded only while someone watches)
+//   POST /api/events?source=N  source N's new lines and zones (the events section, YAML or JSON),
+//                          with "Authorization: Bearer TOKEN"; the body at most kMaxBody bytes
 #include <atomic>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <map>
+#include <mutex>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -26,12 +30,24 @@ struct mg_connection;
 
 namespace rtmot::outputs {
 
+/// The answer to a save: an HTTP status, its JSON body, and on success (200) the source's new
+/// geometry (as WebContent::sources' element).
+struct SaveAnswer {
+  int status{500};
+  nlohmann::json body;
+  nlohmann::json geometry;
+};
+
 /// What the page shows. Pointers not owned: each outlives the server.
 struct WebContent {
   const PipelineMetrics* metrics{nullptr};
   std::vector<LivePicture*> pictures;  // one per source, in the run's order
   nlohmann::json sources;              // per source: stream, uri, width, height, lines, zones
   std::string detector;                // the detector's description (backend)
+  /// Saves source N's events section (body); null: saving is off.
+  std::function<SaveAnswer(std::size_t source, const std::string& body)> save_events;
+  /// What a write must carry ("Authorization: Bearer TOKEN"); empty: writes are refused.
+  std::string token;
 };
 
 /// The page's files: next to an installed binary (<prefix>/share/rtmot/web), else the source
@@ -44,6 +60,8 @@ class WebServer {
   /// Most MJPEG clients at once (every source together); one more is answered 503. Each holds a
   /// worker; the rest of the workers serve the page and the status.
   static constexpr int kMaxWatchers = 4;
+  /// The largest body a write may send (an events section of many lines and zones fits).
+  static constexpr long long kMaxBody = 64 * 1024;
 
   /// Reads the static folder and listens on `bind_address`:`port` at once; throws InputError
   /// (ExitCode::network) if it cannot listen, (ExitCode::input) if the folder cannot be read.
@@ -66,9 +84,11 @@ class WebServer {
   static int serve_static(mg_connection* connection, void* self);
   static int serve_status(mg_connection* connection, void* self);
   static int serve_video(mg_connection* connection, void* self);
+  static int serve_events(mg_connection* connection, void* self);
   int stream_video(mg_connection* connection, LivePicture& picture);
 
   WebContent content_;
+  std::mutex geometry_mutex_;                // guards content_.sources (HTTP workers only)
   std::map<std::string, StaticFile> files_;  // by request path ("/" is index.html)
   std::string url_;
   std::filesystem::path static_dir_;

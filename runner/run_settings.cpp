@@ -371,6 +371,10 @@ std::vector<RunSetting> output_settings() {
                           "threat model first)",
                           "an IPv4 or IPv6 address", platform::parse_bind_address,
                           [](RunConfig& c) -> std::string& { return c.output.web_bind; }),
+      text("output.web_token_file", "--web-token-file",
+           "a file holding the token the page's writes (saving lines and zones) must carry; "
+           "without it the page only reads",
+           [](RunConfig& c) -> std::string& { return c.output.web_token_file; }),
   };
 }
 

@@ -4,11 +4,13 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <filesystem>
 #include <opencv2/core/utility.hpp>
 
 #include "common/input_error.hpp"
+#include "common/input_file.hpp"
 #include "common/utf8.hpp"
 #include "detector/dnn_backend.hpp"
 #include "detector/model_checksum.hpp"
@@ -35,6 +37,7 @@
 #include "runner/sequence_clock_source.hpp"
 #include "runner/source_factory.hpp"
 #include "runner/tiling_choice.hpp"
+#include "runner/web_geometry.hpp"
 #include "tracker/score_scale.hpp"
 #include "vision/appearance_detector.hpp"
 
@@ -317,30 +320,6 @@ std::vector<std::unique_ptr<detector::Detector>> make_detectors(
 namespace {
 void check_run_files(const RunConfig& config);  // below, with prepare_video_output
 
-// What the page draws over a source's picture: its size and its lines and zones, in pixels.
-nlohmann::json web_geometry(const pipeline::PipelineInput& input) {
-  const auto point = [](const events::Point& p) { return nlohmann::json::array({p.x, p.y}); };
-  nlohmann::json lines = nlohmann::json::array();
-  for (const auto& line : input.events.lines) {
-    lines.push_back({{"name", replace_invalid_utf8(line.name)},
-                     {"from", point(line.segment.from)},
-                     {"to", point(line.segment.to)},
-                     {"in", line.in_is_left ? "left" : "right"}});
-  }
-  nlohmann::json zones = nlohmann::json::array();
-  for (const auto& zone : input.events.zones) {
-    nlohmann::json points = nlohmann::json::array();
-    for (const auto& p : zone.polygon) points.push_back(point(p));
-    zones.push_back({{"name", replace_invalid_utf8(zone.name)}, {"points", points}});
-  }
-  const platform::SourceInfo& info = input.source->info();
-  return {{"stream", input.stream_id},
-          {"uri", replace_invalid_utf8(info.uri)},
-          {"width", info.width},
-          {"height", info.height},
-          {"lines", lines},
-          {"zones", zones}};
-}
 }  // namespace
 
 RunOutputs make_outputs(const RunConfig& config, std::vector<pipeline::PipelineInput>& inputs) {
@@ -458,7 +437,15 @@ RunOutputs make_outputs(const RunConfig& config, std::vector<pipeline::PipelineI
       }
       pictures.push_back(picture.get());
       outputs.pictures.push_back(std::move(picture));
-      outputs.web_sources.push_back(web_geometry(input));
+      outputs.mailboxes.push_back(std::make_unique<pipeline::EventsMailbox>());
+      input.events_mailbox = outputs.mailboxes.back().get();
+      const platform::SourceInfo& info = input.source->info();
+      outputs.web_sources.push_back(
+          web_geometry(input.events, input.stream_id, info.uri, info.width, info.height));
+      outputs.editable.push_back({input.stream_id, info.uri,
+                                  static_cast<int>(input.tracker.image_width),
+                                  static_cast<int>(input.tracker.image_height),
+                                  input.events.frame_period_seconds, input.events_mailbox});
     }
     sinks.push_back(std::make_unique<outputs::LivePictureSink>(std::move(pictures)));
   }
@@ -468,7 +455,9 @@ RunOutputs make_outputs(const RunConfig& config, std::vector<pipeline::PipelineI
     outputs.metrics = std::make_unique<outputs::PipelineMetrics>(std::move(probes), streams);
     std::vector<outputs::EventMetrics::Source> counted;
     for (const auto& input : inputs) {
-      if (input.events.lines.empty() && input.events.zones.empty()) continue;
+      // With the page every source is counted: its lines may be drawn while it runs.
+      if (input.events.lines.empty() && input.events.zones.empty() && output.web_port <= 0)
+        continue;
       outputs::EventMetrics::Source source{input.stream_id, {}, {}};
       for (const auto& line : input.events.lines) source.lines.push_back(line.name);
       for (const auto& zone : input.events.zones) source.zones.push_back(zone.name);
@@ -500,6 +489,22 @@ void start_web_server(const RunConfig& config, RunOutputs& outputs, const std::s
   for (const auto& picture : outputs.pictures) content.pictures.push_back(picture.get());
   content.sources = outputs.web_sources;
   content.detector = detector;
+  if (!config.output.web_token_file.empty()) {
+    std::string token = read_text_file(config.output.web_token_file);
+    while (!token.empty() && std::isspace(static_cast<unsigned char>(token.back())))
+      token.pop_back();
+    if (token.size() < 16) {
+      throw InputError(config.output.web_token_file, 0, "output.web_token_file",
+                       "a token of at least 16 characters is needed (e.g. openssl rand -hex 16)");
+    }
+    content.token = std::move(token);
+    outputs.events_editor = std::make_unique<EventsEditor>(outputs.editable, *outputs.event_metrics,
+                                                           config.file, !config.sources.empty());
+    content.save_events = [editor = outputs.events_editor.get()](std::size_t source,
+                                                                 const std::string& body) {
+      return editor->save(source, body);
+    };
+  }
   outputs.web_server = std::make_unique<outputs::WebServer>(
       std::move(content), config.output.web_bind,
       static_cast<std::uint16_t>(config.output.web_port), outputs::find_static_dir());

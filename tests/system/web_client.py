@@ -6,6 +6,9 @@ Usage: web_client.py BASE_URL COMMAND [ARGS]
   jpeg                       read /video/0.mjpg until one whole JPEG arrived; print its size
   watchers-bounded MAX       hold MAX streams open; the next one is answered 503
   get PATH                   print "STATUS LENGTH" of a GET with the path sent as is
+  post SOURCE TOKEN BODY     POST BODY to /api/events?source=SOURCE as the page does (TOKEN "-":
+                             no Authorization header; BODY "@N": N bytes); print "STATUS JSON"
+  wait-count NAME            wait until source 0's line NAME counted a crossing (300 s at most)
 """
 import http.client
 import json
@@ -81,5 +84,30 @@ elif command == "get":
     response = connection.getresponse()
     body = response.read()
     print(response.status, len(body), b"cmake_minimum_required" in body)
+elif command == "post":
+    source, token, body = sys.argv[3], sys.argv[4], sys.argv[5]
+    data = (b"x" * int(body[1:])) if body.startswith("@") else body.encode()
+    headers = {"Content-Type": "application/json"}
+    if token != "-":
+        headers["Authorization"] = "Bearer " + token
+    connection = http.client.HTTPConnection(host.hostname, host.port, timeout=60)
+    try:
+        connection.request("POST", "/api/events?source=" + source, body=data, headers=headers)
+        response = connection.getresponse()
+        print(response.status, response.read().decode())
+    except (BrokenPipeError, ConnectionResetError):
+        # The server answers an oversize body at once and closes; what it said may be lost.
+        print(0, "{}")
+elif command == "wait-count":
+    name = sys.argv[3]
+    deadline = time.monotonic() + 300
+    while True:
+        lines = {l["name"]: l for l in status()["events"][0]["lines"]}
+        if name in lines and lines[name]["in"] + lines[name]["out"] > 0:
+            print(json.dumps(lines[name]))
+            break
+        if time.monotonic() > deadline:
+            sys.exit("FAIL: line %s counted nothing" % name)
+        time.sleep(0.2)
 else:
     sys.exit("unknown command " + command)

@@ -4,7 +4,11 @@
 # names the source, its line and its health and counts, and no picture was encoded before anyone
 # watched; the MJPEG stream delivers a whole JPEG; more watchers than the bound get 503; no path
 # outside the page's files is served (.., %2e%2e, a file of the source tree); SIGINT ends the run
-# cleanly (exit 0). Waits on events (the log line, the frames processed), never on a fixed time.
+# cleanly (exit 0). Saving lines as the page does (POST /api/events): without the token, with a
+# wrong one, with an oversize body: refused, nothing changed; a valid line: applied while running
+# (the status shows it, it counts crossings, counts restarted) and written into the configuration
+# file, which still loads; a broken polygon: 400 naming its field, the saved line still counted.
+# Waits on events (the log line, frames processed, a count), never on a fixed time.
 # Usage: web_view.sh RTMOT SOURCE_DIR SHARED_DIR
 set -euo pipefail
 rtmot=$1 source_dir=$2 shared_dir=$3
@@ -23,9 +27,22 @@ cleanup() {
 trap cleanup EXIT
 fail() { echo "FAIL: $*"; cat "$work/run.err"; exit 1; }
 
+token=0123456789abcdef0123
+printf '%s\n' "$token" >"$work/token"
+cat >"$work/run.yaml" <<YAML
+source:
+  uri: $video
+  loop: -1
+  events:
+    lines:
+      - {name: door, from: [380, 0], to: [380, 576]}
+detector:
+  model: $model
+playback:
+  mode: realtime
+YAML
 port=$(python3 -c 'import socket; s = socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')
-"$rtmot" run --source "$video" --model "$model" --playback realtime --input-loop -1 \
-  --web-port "$port" --events '{lines: [{name: door, from: [380, 0], to: [380, 576]}]}' \
+"$rtmot" run --config "$work/run.yaml" --web-port "$port" --web-token-file "$work/token" \
   2>"$work/run.err" &
 pid=$!
 for _ in $(seq 1200); do  # up to 120 s for the model to load (it measures its engines first)
@@ -74,10 +91,55 @@ done
 [[ $(curl -s -o /dev/null -w '%{http_code}' -X DELETE "${base}app.js") == 405 ]] ||
   fail "DELETE /app.js was not refused"
 
+# Writes: refused without the token, with a wrong one, with an oversize body.
+line='{lines: [{name: hall, from: [0, 300], to: [768, 300]}]}'
+read -r code _ < <(client post 0 - "$line")
+[[ $code == 401 ]] || fail "a save without a token answered $code"
+read -r code _ < <(client post 0 wrong-token-wrong-token "$line")
+[[ $code == 403 ]] || fail "a save with a wrong token answered $code"
+read -r code _ < <(client post 0 "$token" @70000)
+[[ $code == 413 || $code == 0 ]] || fail "an oversize save answered $code"
+read -r code _ < <(client post 9 "$token" "$line")
+[[ $code == 404 ]] || fail "a save for source 9 answered $code"
+grep -q "hall" "$work/run.yaml" && fail "a refused save reached the file"
+
+# A valid line: applied while running, counted from zero, written into the file.
+read -r code answer < <(client post 0 "$token" "$line")
+[[ $code == 200 ]] || fail "a valid save answered $code $answer"
+client wait-count hall >/dev/null || fail "the saved line counted nothing"
+client status >"$work/saved.json"
+python3 - "$work/saved.json" <<'PY' || fail "the status does not show the saved line"
+import json, sys
+s = json.load(open(sys.argv[1]))
+assert [l["name"] for l in s["geometry"][0]["lines"]] == ["hall"], s["geometry"]
+assert [l["name"] for l in s["events"][0]["lines"]] == ["hall"], s["events"]
+assert s["events"][0]["generation"] == 1, s["events"]
+PY
+grep -q "name: hall" "$work/run.yaml" || { cat "$work/run.yaml"; fail "the line was not written to the file"; }
+
+# A broken polygon (its sides cross): refused with its field; the saved line still counts.
+read -r code answer < <(client post 0 "$token" '{zones: [{name: bow, points: [[0, 0], [100, 100], [100, 0], [0, 100]]}]}')
+[[ $code == 400 ]] || fail "a self-crossing zone answered $code $answer"
+[[ $answer == *'"field":"source.events.zones[0].points"'* || $answer == *'zones[0]'* ]] ||
+  fail "the error does not name the zone's field: $answer"
+client status >"$work/after.json"
+python3 - "$work/after.json" <<'PY' || fail "the broken save changed the running configuration"
+import json, sys
+s = json.load(open(sys.argv[1]))
+assert [l["name"] for l in s["geometry"][0]["lines"]] == ["hall"], s["geometry"]
+assert s["events"][0]["generation"] == 1 and s["events"][0]["zones"] == [], s["events"]
+PY
+grep -q "bow" "$work/run.yaml" && fail "a refused save reached the file"
+
 kill -INT "$pid"
 status=0
 wait "$pid" || status=$?
 pid=
 [[ $status == 0 ]] || fail "rtmot run exited $status after SIGINT"
+# The file written back still reads as a configuration.
+"$rtmot" run --config "$work/run.yaml" --max-frames 1 --playback every-frame 2>"$work/reread.err" ||
+  { cat "$work/reread.err"; fail "the written configuration does not load"; }
 echo "PASS: page, files, status (counts, health, geometry), a $size-byte JPEG, 503 past 4 watchers," \
-  "no picture encoded before a watcher, no traversal, exit 0 on SIGINT"
+  "no picture encoded before a watcher, no traversal; saves: 401/403/413/404 refused, a line applied" \
+  "while running and counted, written to the file (which loads), a broken zone refused with its field;" \
+  "exit 0 on SIGINT"
