@@ -92,7 +92,7 @@ done
   fail "DELETE /app.js was not refused"
 
 # Writes: refused without the token, with a wrong one, with an oversize body.
-line='{lines: [{name: hall, from: [0, 300], to: [768, 300]}]}'
+line='{lines: [{name: hall, from: [400, 0], to: [400, 576], in: right}]}'
 read -r code _ < <(client post 0 - "$line")
 [[ $code == 401 ]] || fail "a save without a token answered $code"
 read -r code _ < <(client post 0 wrong-token-wrong-token "$line")
