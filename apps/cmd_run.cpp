@@ -77,6 +77,11 @@ int run(const RunCommand& command) {
   }
   auto detectors = runner::make_detectors(config, runner::source_infos(inputs));
   spdlog::info("detector: {}", detectors.front()->describe());
+  runner::start_web_server(config, outputs, detectors.front()->describe());
+  if (outputs.web_server) {
+    spdlog::info("web: the operator's page at {} (its files from {})", outputs.web_server->url(),
+                 outputs.web_server->static_dir().string());
+  }
   pipeline::Pipeline pipeline(std::move(inputs), std::move(detectors), std::move(outputs.consumers),
                               runner::make_options(config));
   const pipeline::PipelineReport report = pipeline.run(signals.stop_flag());

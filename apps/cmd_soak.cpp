@@ -81,6 +81,7 @@ void refuse_outputs_of_a_run(const runner::RunConfig& config) {
   if (!output.report_file.empty()) refuse("output.report_file");
   if (output.video) refuse("output.video_file");
   if (output.metrics_port > 0) refuse("output.metrics_port");
+  if (output.web_port > 0) refuse("output.web_port");
 }
 
 int run_soak(const SoakOptions& options) {

@@ -8,6 +8,8 @@
 #   P/share/rtmot/configs/*.yaml         run configurations (jetson-csi.yaml is the service's)
 #   P/share/rtmot/models/*               the SSD model, when it was fetched before the install
 #                                        (scripts/fetch_model.sh); configs name it ../models/...
+#   P/share/rtmot/web/*                  the operator's page (index.html, app.js, style.css; found
+#                                        from the binary: outputs/web_server.hpp, docs/web.md)
 #   P/share/doc/rtmot/*.md, README.md    the product's documentation (not the study's tables/plots)
 #   P/lib/systemd/system/rtmot.service   the service, ExecStart=P/bin/rtmot --config P/share/...
 #                                        (written at install time from the prefix actually used)
@@ -48,13 +50,15 @@ install(CODE "${rtmot_ship_opencv}")
 
 install(DIRECTORY "${PROJECT_SOURCE_DIR}/configs/" DESTINATION "${CMAKE_INSTALL_DATADIR}/rtmot/configs"
         FILES_MATCHING PATTERN "*.yaml" PATTERN "*.yml")
+install(DIRECTORY "${PROJECT_SOURCE_DIR}/web/" DESTINATION "${CMAKE_INSTALL_DATADIR}/rtmot/web"
+        FILES_MATCHING PATTERN "*.html" PATTERN "*.js" PATTERN "*.css")
 # The model: absent until scripts/fetch_model.sh ran (then a config names it with --model or an
 # absolute path, as before).
 install(DIRECTORY "${PROJECT_SOURCE_DIR}/models/" DESTINATION "${CMAKE_INSTALL_DATADIR}/rtmot/models" OPTIONAL
         FILES_MATCHING PATTERN "*.onnx" PATTERN "*.anchors.csv" PATTERN "*.sha256")
 # What an operator of a board reads; the research (study, scoring, results) stays in the source tree.
 install(FILES "${PROJECT_SOURCE_DIR}/README.md" DESTINATION "${CMAKE_INSTALL_DOCDIR}" OPTIONAL)
-foreach(doc architecture config cross-and-deploy exit-codes gpu message-format model reliability sources)
+foreach(doc architecture config cross-and-deploy exit-codes gpu message-format model reliability sources web)
   install(FILES "${PROJECT_SOURCE_DIR}/docs/${doc}.md" DESTINATION "${CMAKE_INSTALL_DOCDIR}")
 endforeach()
 

@@ -43,6 +43,9 @@ struct FrameResult {
   std::vector<tracker::TrackReport> tracks;  // reserved once; never grows in steady state
   /// Line crossings and zone visits decided in this frame (events/, docs/events.md); reserved once.
   std::vector<events::Event> events;
+  /// Which events configuration of the stream `events` refer to (their indexes): 0 the run's own,
+  /// then 1, 2, ... as the web page saves new ones (pipeline/events_mailbox.hpp). Not sent.
+  std::uint32_t events_generation{0};
 };
 
 /// This process's run id: random and nonzero, the same for every call (drawn once).

@@ -35,22 +35,56 @@ std::unique_ptr<std::atomic<std::uint64_t>[]> zeroed(std::size_t n) {
 
 }  // namespace
 
+std::unique_ptr<EventMetrics::Counters> EventMetrics::make_counters(Source source,
+                                                                    std::uint32_t generation) {
+  auto counters = std::make_unique<Counters>();
+  counters->lines = zeroed(2 * source.lines.size());
+  counters->zones = zeroed(kZoneFields * source.zones.size());
+  counters->source = std::move(source);
+  counters->generation = generation;
+  return counters;
+}
+
 EventMetrics::EventMetrics(std::vector<Source> sources) {
   for (auto& source : sources) {
-    Counters counters;
-    counters.lines = zeroed(2 * source.lines.size());
-    counters.zones = zeroed(kZoneFields * source.zones.size());
-    counters.source = std::move(source);
-    counters_.push_back(std::move(counters));
+    auto stream = std::make_unique<Stream>();
+    stream->stream_id = source.stream_id;
+    kept_.push_back(make_counters(std::move(source), 0));
+    stream->current.store(kept_.back().get(), relaxed);  // before any other thread exists
+    streams_.push_back(std::move(stream));
   }
 }
 
+bool EventMetrics::post(Source source, std::uint32_t generation) {
+  const auto found = std::find_if(streams_.begin(), streams_.end(),
+                                  [&](const auto& s) { return s->stream_id == source.stream_id; });
+  if (found == streams_.end()) return false;
+  const std::lock_guard<std::mutex> lock(posters_);
+  kept_.push_back(make_counters(std::move(source), generation));
+  // release: the zeroed counters and the names are whole before the sink thread acquires them.
+  (*found)->pending.store(kept_.back().get(), std::memory_order_release);
+  return true;
+}
+
+std::vector<const EventMetrics::Counters*> EventMetrics::current() const {
+  std::vector<const Counters*> sets;
+  for (const auto& stream : streams_) {
+    sets.push_back(stream->current.load(std::memory_order_acquire));
+  }
+  return sets;
+}
+
 void EventMetrics::observe(const messages::FrameResult& result) {
-  if (result.events.empty()) return;
-  const auto found = std::find_if(counters_.begin(), counters_.end(), [&](const Counters& c) {
-    return c.source.stream_id == result.stream_id;
-  });
-  if (found == counters_.end()) return;
+  const auto stream = std::find_if(streams_.begin(), streams_.end(),
+                                   [&](const auto& s) { return s->stream_id == result.stream_id; });
+  if (stream == streams_.end()) return;
+  Counters* found = (*stream)->current.load(relaxed);  // this thread is its only writer
+  if (found->generation != result.events_generation) {
+    Counters* next = (*stream)->pending.load(std::memory_order_acquire);
+    if (next == nullptr || next->generation != result.events_generation) return;
+    (*stream)->current.store(next, std::memory_order_release);  // for the readers
+    found = next;
+  }
   for (const auto& event : result.events) {
     const std::size_t index = event.index;
     switch (event.kind) {
@@ -78,12 +112,14 @@ void EventMetrics::observe(const messages::FrameResult& result) {
 }
 
 void EventMetrics::render(std::string& out) const {
-  if (counters_.empty()) return;
+  if (streams_.empty()) return;
+  const std::vector<const Counters*> sets = current();
   auto to = std::back_inserter(out);
   fmt::format_to(to,
                  "# HELP rtmot_line_crossings_total Tracks that crossed a counting line, by "
                  "direction (docs/events.md).\n# TYPE rtmot_line_crossings_total counter\n");
-  for (const auto& c : counters_) {
+  for (const Counters* set : sets) {
+    const Counters& c = *set;
     for (std::size_t l = 0; l < c.source.lines.size(); ++l) {
       for (const int direction : {0, 1}) {
         fmt::format_to(
@@ -98,7 +134,8 @@ void EventMetrics::render(std::string& out) const {
       "# HELP rtmot_zone_events_total Zone enters, exits (lost: of tracks that died "
       "inside, counted in exit too) and dwells.\n# TYPE rtmot_zone_events_total counter\n");
   static constexpr const char* kNames[kZoneFields] = {"enter", "exit", "lost", "dwell"};
-  for (const auto& c : counters_) {
+  for (const Counters* set : sets) {
+    const Counters& c = *set;
     for (std::size_t z = 0; z < c.source.zones.size(); ++z) {
       for (std::size_t f = 0; f < kZoneFields; ++f) {
         fmt::format_to(to, "rtmot_zone_events_total{{stream=\"{}\",zone=\"{}\",event=\"{}\"}} {}\n",
@@ -110,7 +147,8 @@ void EventMetrics::render(std::string& out) const {
   fmt::format_to(to,
                  "# HELP rtmot_zone_occupancy Tracks inside a zone now (enters minus exits).\n"
                  "# TYPE rtmot_zone_occupancy gauge\n");
-  for (const auto& c : counters_) {
+  for (const Counters* set : sets) {
+    const Counters& c = *set;
     for (std::size_t z = 0; z < c.source.zones.size(); ++z) {
       const auto entered = c.zones[kZoneFields * z].load(relaxed);
       const auto exited = c.zones[kZoneFields * z + 1].load(relaxed);
@@ -119,6 +157,38 @@ void EventMetrics::render(std::string& out) const {
                      entered >= exited ? entered - exited : 0);
     }
   }
+}
+
+nlohmann::json EventMetrics::status() const {
+  nlohmann::json sources = nlohmann::json::array();
+  const std::vector<const Counters*> sets = current();
+  for (const Counters* set : sets) {
+    const Counters& c = *set;
+    nlohmann::json lines = nlohmann::json::array();
+    for (std::size_t l = 0; l < c.source.lines.size(); ++l) {
+      lines.push_back({{"name", replace_invalid_utf8(c.source.lines[l])},
+                       {"in", c.lines[2 * l].load(relaxed)},
+                       {"out", c.lines[2 * l + 1].load(relaxed)}});
+    }
+    nlohmann::json zones = nlohmann::json::array();
+    for (std::size_t z = 0; z < c.source.zones.size(); ++z) {
+      const std::atomic<std::uint64_t>* zone = &c.zones[kZoneFields * z];
+      const auto entered = zone[0].load(relaxed);
+      const auto exited = zone[1].load(relaxed);
+      zones.push_back({{"name", replace_invalid_utf8(c.source.zones[z])},
+                       {"enter", entered},
+                       {"exit", exited},
+                       {"lost", zone[2].load(relaxed)},
+                       {"dwell", zone[3].load(relaxed)},
+                       {"occupancy", entered >= exited ? entered - exited : 0}});
+    }
+    // generation > 0: the page saved these lines and zones, and their counts began then.
+    sources.push_back({{"stream", c.source.stream_id},
+                       {"generation", c.generation},
+                       {"lines", lines},
+                       {"zones", zones}});
+  }
+  return sources;
 }
 
 }  // namespace rtmot::outputs

@@ -2,27 +2,17 @@
 
 #include <civetweb.h>
 
-#include <mutex>
-
 #include "common/input_error.hpp"
+#include "outputs/civetweb_library.hpp"
 #include "platform/host_port.hpp"
 
 namespace rtmot::outputs {
-namespace {
-
-// mg_init_library must run once per process before the first server.
-void ensure_library() {
-  static std::once_flag once;
-  std::call_once(once, [] { mg_init_library(0); });
-}
-
-}  // namespace
 
 MetricsServer::MetricsServer(const PipelineMetrics& metrics, const std::string& bind_address,
                              std::uint16_t port)
     : metrics_(metrics),
       url_("http://" + platform::format_host_port(bind_address, port) + "/metrics") {
-  ensure_library();
+  ensure_civetweb_library();
   const std::string ports = platform::format_host_port(bind_address, port);
   // A client that connects and sends nothing, or half a request, holds a worker until the request
   // timeout: with civetweb's one worker and 30 s, one idle connection stopped every scrape

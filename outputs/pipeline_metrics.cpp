@@ -38,6 +38,41 @@ void LatencyBuckets::render(const std::string& name, const std::string& labels,
   fmt::format_to(to, "{}_count{{{}}} {}\n", name, labels, cumulative);
 }
 
+double LatencyBuckets::quantile_ms(double q) const {
+  std::array<std::uint64_t, bounds_ms.size() + 1> counts{};
+  std::uint64_t total = 0;
+  for (std::size_t i = 0; i < counts.size(); ++i) {
+    counts[i] = counts_[i].load(relaxed);
+    total += counts[i];
+  }
+  if (total == 0) return 0.0;
+  const double rank = std::clamp(q, 0.0, 1.0) * static_cast<double>(total);
+  double below = 0.0;
+  for (std::size_t i = 0; i < bounds_ms.size(); ++i) {
+    const auto in_bucket = static_cast<double>(counts[i]);
+    if (below + in_bucket >= rank && in_bucket > 0.0) {
+      const double lower = i == 0 ? 0.0 : bounds_ms[i - 1];
+      return lower + (bounds_ms[i] - lower) * (rank - below) / in_bucket;
+    }
+    below += in_bucket;
+  }
+  return bounds_ms.back();
+}
+
+std::uint64_t PipelineMetrics::captured(const StreamCounters& s) {
+  return static_cast<std::uint64_t>(std::max<std::int64_t>(0, s.frames_captured.load(relaxed)));
+}
+
+double PipelineMetrics::fps(const StreamCounters& s) {
+  // Pictures = messages - ticks. Two relaxed loads of two counters may straddle a frame: off by
+  // one for one scrape, never below zero.
+  const std::uint64_t messages = s.frames_processed.load(relaxed);
+  const std::uint64_t ticks = s.outage_frames.load(relaxed);
+  const auto pictures = static_cast<std::int64_t>(messages > ticks ? messages - ticks : 0);
+  return pipeline::output_rate(pictures, s.first_captured_ns.load(relaxed),
+                               s.last_sent_ns.load(relaxed));
+}
+
 PipelineMetrics::PipelineMetrics(std::vector<OutputProbe> outputs,
                                  std::vector<std::uint32_t> streams)
     : probes_(std::move(outputs)),
@@ -106,10 +141,7 @@ std::string PipelineMetrics::render() const {
     }
   };
   per_stream("rtmot_frames_captured_total", "counter",
-             "Frames the source produced (its frame number).", [](const StreamCounters& s) {
-               return static_cast<std::uint64_t>(
-                   std::max<std::int64_t>(0, s.frames_captured.load(relaxed)));
-             });
+             "Frames the source produced (its frame number).", &PipelineMetrics::captured);
   per_stream("rtmot_frames_processed_total", "counter",
              "Frames through detector, tracker and outputs (outage ticks included).",
              [](const StreamCounters& s) { return s.frames_processed.load(relaxed); });
@@ -136,17 +168,7 @@ std::string PipelineMetrics::render() const {
   per_stream("rtmot_fps", "gauge",
              "Frames processed per second since the source's first frame (outage ticks not "
              "counted): the report's fps.",
-             [](const StreamCounters& s) {
-               // Pictures = messages - ticks. Two relaxed loads of two counters may straddle a
-               // frame: off by one for one scrape, never below zero.
-               const std::uint64_t messages = s.frames_processed.load(relaxed);
-               const std::uint64_t ticks = s.outage_frames.load(relaxed);
-               const auto pictures =
-                   static_cast<std::int64_t>(messages > ticks ? messages - ticks : 0);
-               return fmt::format("{:.3f}",
-                                  pipeline::output_rate(pictures, s.first_captured_ns.load(relaxed),
-                                                        s.last_sent_ns.load(relaxed)));
-             });
+             [](const StreamCounters& s) { return fmt::format("{:.3f}", fps(s)); });
   fmt::format_to(to,
                  "# HELP rtmot_stage_latency_seconds Time per pipeline stage, every source "
                  "(queue: captured->detector, end_to_end: captured->sent).\n"
@@ -166,6 +188,38 @@ std::string PipelineMetrics::render() const {
   }
   if (events_ != nullptr) events_->render(out);
   return out;
+}
+
+nlohmann::json PipelineMetrics::status() const {
+  nlohmann::json sources = nlohmann::json::array();
+  for (std::size_t i = 0; i < streams_.size(); ++i) {
+    const StreamCounters& s = streams_[i];
+    sources.push_back({{"stream", stream_ids_[i]},
+                       {"up", s.up.load(relaxed)},
+                       {"fps", fps(s)},
+                       {"frames_captured", captured(s)},
+                       {"frames_processed", s.frames_processed.load(relaxed)},
+                       {"frames_skipped", s.frames_skipped.load(relaxed)},
+                       {"outages", s.outages.load(relaxed)},
+                       {"tracks", s.tracks_last_frame.load(relaxed)}});
+  }
+  nlohmann::json stages = nlohmann::json::object();
+  for (const auto& [stage, name] : pipeline::kStageNames.entries()) {
+    const LatencyBuckets& buckets = stages_[static_cast<std::size_t>(stage)];
+    stages[std::string(name)] = {{"p50_ms", buckets.quantile_ms(0.5)},
+                                 {"p99_ms", buckets.quantile_ms(0.99)}};
+  }
+  nlohmann::json outputs = nlohmann::json::array();
+  for (std::size_t i = 0; i < probes_.size(); ++i) {
+    outputs.push_back({{"output", probes_[i].name},
+                       {"sent", outputs_[i].sent.load(relaxed)},
+                       {"dropped", outputs_[i].dropped.load(relaxed)}});
+  }
+  return {{"version", RTMOT_VERSION},
+          {"sources", std::move(sources)},
+          {"latency", std::move(stages)},
+          {"outputs", std::move(outputs)},
+          {"events", events_ != nullptr ? events_->status() : nlohmann::json::array()}};
 }
 
 }  // namespace rtmot::outputs

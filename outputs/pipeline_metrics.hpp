@@ -18,6 +18,7 @@
 #include <atomic>
 #include <cstdint>
 #include <functional>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -48,6 +49,11 @@ class LatencyBuckets {
   /// stage="detect"). _count is the +Inf bucket as read, so the two always agree, as Prometheus
   /// requires; _sum may lag or lead them by the frame being recorded.
   void render(const std::string& name, const std::string& labels, std::string& out) const;
+  /// Any thread: the latency below which a fraction `q` (0..1) of the frames fell, in ms,
+  /// interpolated inside its bucket as Prometheus' histogram_quantile does (the web page's
+  /// p50/p99: the same buckets a dashboard queries); 0 before the first frame; the largest finite
+  /// bound when it falls in the +Inf bucket.
+  double quantile_ms(double q) const;
 
  private:
   std::array<std::atomic<std::uint64_t>, bounds_ms.size() + 1> counts_{};  // last: +Inf
@@ -80,6 +86,10 @@ class PipelineMetrics {
   void sources_ended();
   /// Any thread: the Prometheus text exposition (version 0.0.4).
   std::string render() const;
+  /// Any thread: the same facts for the web page (outputs/web_server.hpp, docs/web.md): per source
+  /// the counters and fps of render(), per stage p50/p99 in ms, per output sent/dropped, and the
+  /// events' counts (EventMetrics::status()).
+  nlohmann::json status() const;
   /// The events' series (outputs/event_metrics.hpp), rendered after these; set before the run.
   void set_event_metrics(const EventMetrics* events) { events_ = events; }
 
@@ -103,6 +113,10 @@ class PipelineMetrics {
     std::atomic<std::int64_t> last_sent_ns{0};       // the last picture's (not a tick's)
     bool in_outage{false};                           // sink stage only
   };
+
+  // One definition of each derived fact, for render() and status().
+  static std::uint64_t captured(const StreamCounters& s);
+  static double fps(const StreamCounters& s);
 
   std::vector<OutputProbe> probes_;
   std::vector<OutputCounters> outputs_;

@@ -72,7 +72,7 @@ struct Pipeline::Stages {
       captures.back()->set_tap(input.tap);
       captures.back()->set_outage_board(outage_board.get());
       slots.push_back(&captures.back()->slot());
-      trackers.push_back({input.tracker, input.events, input.stream_id});
+      trackers.push_back({input.tracker, input.events, input.stream_id, input.events_mailbox});
       stream_ids.push_back(input.stream_id);
       max_detections =
           std::max(max_detections, static_cast<std::size_t>(input.tracker.max_detections));

@@ -16,6 +16,7 @@
 #include "detector/detector.hpp"
 #include "events/events_config.hpp"
 #include "messages/frame_result.hpp"
+#include "pipeline/events_mailbox.hpp"
 #include "pipeline/frame_consumer.hpp"
 #include "pipeline/frame_tap.hpp"
 #include "pipeline/pipeline_report.hpp"
@@ -67,6 +68,9 @@ struct PipelineInput {
   std::uint32_t stream_id{0};
   /// Sees every frame of this source (pipeline/frame_tap.hpp); not owned, must outlive run().
   FrameTap* tap{nullptr};
+  /// Where new lines and zones for this source arrive while running (not owned, must outlive
+  /// run()); null: never.
+  EventsMailbox* events_mailbox{nullptr};
 };
 
 class Pipeline {

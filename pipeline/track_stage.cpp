@@ -33,6 +33,7 @@ void TrackStage::Stream::stamp(messages::FrameResult& result, std::int64_t frame
   result.frame_number = frame_number;
   result.pts_ns = pts_ns;
   result.frames_dropped = frames_dropped;
+  result.events_generation = events_generation;
 }
 
 TrackStage::TrackStage(const std::vector<TrackInput>& inputs, SpscQueue<DetectedFrame>& input,
@@ -50,6 +51,7 @@ TrackStage::TrackStage(const std::vector<TrackInput>& inputs, SpscQueue<Detected
     Stream stream;
     stream.tracker = std::make_unique<tracker::Tracker>(wanted.tracker);
     stream.stream_id = wanted.stream_id;
+    stream.events_mailbox = wanted.events_mailbox;
     if (!wanted.events.lines.empty() || !wanted.events.zones.empty())
       stream.counter = std::make_unique<events::EventCounter>(wanted.events);
     streams_.push_back(std::move(stream));
@@ -67,6 +69,17 @@ void TrackStage::run(const std::atomic<bool>& abort) {
     messages::FrameResult& result = out->result;
     result.tracks.assign(reports.begin(), reports.end());  // within the reserved capacity
     result.events.clear();
+    if (stream.events_mailbox != nullptr) {
+      if (const PostedEvents* posted = stream.events_mailbox->take()) {
+        // A new configuration counts from zero from this frame on (docs/web.md). Building the
+        // counter allocates, once per save.
+        const events::EventsConfig& config = posted->config;
+        stream.counter = config.lines.empty() && config.zones.empty()
+                             ? nullptr
+                             : std::make_unique<events::EventCounter>(config);
+        stream.events_generation = posted->generation;
+      }
+    }
     if (stream.counter && !in->outage) {
       // Counted on the pipeline's timestamps, so dwell and the lost timeout run on time.
       const auto& decided = stream.counter->update(reports, seconds);

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "events/event_counter.hpp"
+#include "pipeline/events_mailbox.hpp"
 #include "pipeline/spsc_queue.hpp"
 #include "pipeline/stage_items.hpp"
 #include "tracker/tracker.hpp"
@@ -19,6 +20,8 @@ struct TrackInput {
   /// Lines and zones counted on this source's tracks (docs/events.md); none: nothing counted.
   events::EventsConfig events;
   std::uint32_t stream_id{0};
+  /// Where a new events configuration may arrive while running (not owned); null: never.
+  EventsMailbox* events_mailbox{nullptr};
 };
 
 class TrackStage {
@@ -43,6 +46,8 @@ class TrackStage {
   struct Stream {
     std::unique_ptr<tracker::Tracker> tracker;
     std::unique_ptr<events::EventCounter> counter;  // null: no lines or zones
+    EventsMailbox* events_mailbox{nullptr};
+    std::uint32_t events_generation{0};  // of the configuration counted now (0: the run's own)
     std::uint32_t stream_id{0};
     std::int64_t messages{0};          // frames and outage ticks sent
     std::int64_t frames_processed{0};  // real frames

@@ -100,6 +100,9 @@ struct OutputConfig {
   int metrics_port{0};                        // Prometheus endpoint on this TCP port, 0 = off
   std::string metrics_bind{"127.0.0.1"};      // an IP literal the endpoint listens on
   double metrics_linger_s{0.0};               // the final metrics served this long after the run
+  int web_port{0};                            // the operator's page on this TCP port, 0 = off
+  std::string web_bind{"127.0.0.1"};          // an IP literal the page listens on
+  std::string web_token_file;                 // the token writes need; empty: writes are off
   /// MOTChallenge results per source, in this folder (runner/mot_results_output.hpp); empty = off.
   std::string mot_results;
   /// A message for every camera frame, predicted where the detector skipped (docs/full-rate.md).

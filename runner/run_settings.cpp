@@ -366,6 +366,19 @@ std::vector<RunSetting> output_settings() {
                    "sees the last counts; SIGINT/SIGTERM ends it); 0 = off",
                    {0.0, 86'400.0},
                    [](RunConfig& c) -> double& { return c.output.metrics_linger_s; }),
+      integer<int>("output.web_port", "--web-port",
+                   "serve the operator's page (live picture, counts, health; docs/web.md) on this "
+                   "TCP port; 0 = off",
+                   {0, 65535}, [](RunConfig& c) -> int& { return c.output.web_port; }),
+      parsed<std::string>("output.web_bind", "--web-bind",
+                          "the address the page listens on (0.0.0.0: every network; docs/web.md's "
+                          "threat model first)",
+                          "an IPv4 or IPv6 address", platform::parse_bind_address,
+                          [](RunConfig& c) -> std::string& { return c.output.web_bind; }),
+      text("output.web_token_file", "--web-token-file",
+           "a file holding the token the page's writes (saving lines and zones) must carry; "
+           "without it the page only reads",
+           [](RunConfig& c) -> std::string& { return c.output.web_token_file; }),
   };
 }
 

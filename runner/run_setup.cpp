@@ -4,11 +4,14 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <filesystem>
 #include <opencv2/core/utility.hpp>
 
 #include "common/input_error.hpp"
+#include "common/input_file.hpp"
+#include "common/utf8.hpp"
 #include "detector/dnn_backend.hpp"
 #include "detector/model_checksum.hpp"
 #include "detector/replay_detector.hpp"
@@ -34,6 +37,7 @@
 #include "runner/sequence_clock_source.hpp"
 #include "runner/source_factory.hpp"
 #include "runner/tiling_choice.hpp"
+#include "runner/web_geometry.hpp"
 #include "tracker/score_scale.hpp"
 #include "vision/appearance_detector.hpp"
 
@@ -317,6 +321,7 @@ std::vector<std::unique_ptr<detector::Detector>> make_detectors(
 
 namespace {
 void check_run_files(const RunConfig& config);  // below, with prepare_video_output
+
 }  // namespace
 
 RunOutputs make_outputs(const RunConfig& config, std::vector<pipeline::PipelineInput>& inputs) {
@@ -416,13 +421,45 @@ RunOutputs make_outputs(const RunConfig& config, std::vector<pipeline::PipelineI
     outputs.destinations.push_back(file_line("report", output.report_file));
   }
   outputs.deliveries = probes;  // for the final report
-  if (output.metrics_port > 0) {
+  if (output.web_port > 0) {
+    std::vector<outputs::LivePicture*> pictures;
+    outputs.web_sources = nlohmann::json::array();
+    // The live picture shows the tracks; the page draws the lines and zones itself (and the
+    // frame rate and latency from the status), so that a line drawn shows at once.
+    outputs::OverlayFlags flags = output.overlay;
+    flags.bits &= ~static_cast<unsigned>(outputs::OverlayFlag::stats);
+    for (auto& input : inputs) {
+      auto picture = std::make_unique<outputs::LivePicture>(input.stream_id, flags, label_of);
+      if (input.tap != nullptr) {
+        outputs.taps.push_back(std::make_unique<pipeline::TapFanout>(
+            std::vector<pipeline::FrameTap*>{input.tap, picture.get()}));
+        input.tap = outputs.taps.back().get();
+      } else {
+        input.tap = picture.get();
+      }
+      pictures.push_back(picture.get());
+      outputs.pictures.push_back(std::move(picture));
+      outputs.mailboxes.push_back(std::make_unique<pipeline::EventsMailbox>());
+      input.events_mailbox = outputs.mailboxes.back().get();
+      const platform::SourceInfo& info = input.source->info();
+      outputs.web_sources.push_back(
+          web_geometry(input.events, input.stream_id, info.uri, info.width, info.height));
+      outputs.editable.push_back({input.stream_id, info.uri,
+                                  static_cast<int>(input.tracker.image_width),
+                                  static_cast<int>(input.tracker.image_height),
+                                  input.events.frame_period_seconds, input.events_mailbox});
+    }
+    sinks.push_back(std::make_unique<outputs::LivePictureSink>(std::move(pictures)));
+  }
+  if (output.metrics_port > 0 || output.web_port > 0) {
     std::vector<std::uint32_t> streams;
     for (const auto& input : inputs) streams.push_back(input.stream_id);
     outputs.metrics = std::make_unique<outputs::PipelineMetrics>(std::move(probes), streams);
     std::vector<outputs::EventMetrics::Source> counted;
     for (const auto& input : inputs) {
-      if (input.events.lines.empty() && input.events.zones.empty()) continue;
+      // With the page every source is counted: its lines may be drawn while it runs.
+      if (input.events.lines.empty() && input.events.zones.empty() && output.web_port <= 0)
+        continue;
       outputs::EventMetrics::Source source{input.stream_id, {}, {}};
       for (const auto& line : input.events.lines) source.lines.push_back(line.name);
       for (const auto& zone : input.events.zones) source.zones.push_back(zone.name);
@@ -433,10 +470,12 @@ RunOutputs make_outputs(const RunConfig& config, std::vector<pipeline::PipelineI
       outputs.metrics->set_event_metrics(outputs.event_metrics.get());
       sinks.push_back(std::make_unique<outputs::EventMetricsSink>(*outputs.event_metrics));
     }
-    outputs.metrics_server = std::make_unique<outputs::MetricsServer>(
-        *outputs.metrics, output.metrics_bind, static_cast<std::uint16_t>(output.metrics_port));
+    if (output.metrics_port > 0) {
+      outputs.metrics_server = std::make_unique<outputs::MetricsServer>(
+          *outputs.metrics, output.metrics_bind, static_cast<std::uint16_t>(output.metrics_port));
+      outputs.destinations.push_back("metrics -> " + outputs.metrics_server->url());
+    }
     sinks.push_back(std::make_unique<outputs::MetricsSink>(*outputs.metrics));
-    outputs.destinations.push_back("metrics -> " + outputs.metrics_server->url());
   }
   outputs.consumers = pipeline::as_consumers(std::move(sinks));
   if (mot_results) outputs.consumers.push_back(std::move(mot_results));
@@ -445,10 +484,39 @@ RunOutputs make_outputs(const RunConfig& config, std::vector<pipeline::PipelineI
   return outputs;
 }
 
+void start_web_server(const RunConfig& config, RunOutputs& outputs, const std::string& detector) {
+  if (config.output.web_port <= 0) return;
+  outputs::WebContent content;
+  content.metrics = outputs.metrics.get();
+  for (const auto& picture : outputs.pictures) content.pictures.push_back(picture.get());
+  content.sources = outputs.web_sources;
+  content.detector = detector;
+  if (!config.output.web_token_file.empty()) {
+    std::string token = read_text_file(config.output.web_token_file);
+    while (!token.empty() && std::isspace(static_cast<unsigned char>(token.back())))
+      token.pop_back();
+    if (token.size() < 16) {
+      throw InputError(config.output.web_token_file, 0, "output.web_token_file",
+                       "a token of at least 16 characters is needed (e.g. openssl rand -hex 16)");
+    }
+    content.token = std::move(token);
+    outputs.events_editor = std::make_unique<EventsEditor>(outputs.editable, *outputs.event_metrics,
+                                                           config.file, !config.sources.empty());
+    content.save_events = [editor = outputs.events_editor.get()](std::size_t source,
+                                                                 const std::string& body) {
+      return editor->save(source, body);
+    };
+  }
+  outputs.web_server = std::make_unique<outputs::WebServer>(
+      std::move(content), config.output.web_bind,
+      static_cast<std::uint16_t>(config.output.web_port), outputs::find_static_dir());
+}
+
 std::vector<std::unique_ptr<messages::TrackSink>> make_sinks(const RunConfig& config) {
   RunConfig messages_only = config;
   messages_only.output.video.reset();
   messages_only.output.metrics_port = 0;
+  messages_only.output.web_port = 0;
   messages_only.output.mot_results.clear();
   messages_only.stats_interval_s = 0.0;
   std::vector<std::unique_ptr<messages::TrackSink>> sinks;

@@ -7,10 +7,13 @@
 
 #include "detector/detector.hpp"
 #include "messages/frame_result.hpp"
+#include "outputs/live_picture.hpp"
 #include "outputs/metrics_server.hpp"
 #include "outputs/pipeline_metrics.hpp"
+#include "outputs/web_server.hpp"
 #include "pipeline/pipeline.hpp"
 #include "platform/video_source.hpp"
+#include "runner/events_editor.hpp"
 #include "runner/run_config.hpp"
 
 namespace rtmot::runner {
@@ -41,6 +44,16 @@ struct RunOutputs {
   std::unique_ptr<outputs::PipelineMetrics> metrics;
   std::unique_ptr<outputs::EventMetrics> event_metrics;  // with metrics_port and lines or zones
   std::unique_ptr<outputs::MetricsServer> metrics_server;
+  /// With output.web_port: each source's live picture, the taps that feed them (with the video's
+  /// on the first source), and what the page shows of each source's geometry; the server itself
+  /// starts with start_web_server(). Declared in this order so that the server goes first.
+  std::vector<std::unique_ptr<outputs::LivePicture>> pictures;
+  std::vector<std::unique_ptr<pipeline::TapFanout>> taps;
+  std::vector<std::unique_ptr<pipeline::EventsMailbox>> mailboxes;  // the sources' new lines
+  std::vector<EventsEditor::Source> editable;                       // what a save needs of each
+  nlohmann::json web_sources;
+  std::unique_ptr<EventsEditor> events_editor;
+  std::unique_ptr<outputs::WebServer> web_server;
   /// One line per destination ("udp -> [::1]:5600", "jsonl -> tracks.jsonl (replaces an existing
   /// file)"), for the start-up log.
   std::vector<std::string> destinations;
@@ -51,6 +64,10 @@ struct RunOutputs {
 /// `inputs` (opened) give the progress line its total (a file's frame count) and the video its
 /// rate; the video sets the first input's tap (every source frame reaches it).
 RunOutputs make_outputs(const RunConfig& config, std::vector<pipeline::PipelineInput>& inputs);
+/// With output.web_port: the operator's page (outputs/web_server.hpp), listening at once;
+/// `detector` is the detector's description it shows. Call after make_outputs, before the run.
+/// Throws InputError if it cannot listen or its files are missing.
+void start_web_server(const RunConfig& config, RunOutputs& outputs, const std::string& detector);
 /// Only the message sinks (UDP, binary, MQTT, JSON lines), for runs without video or metrics.
 std::vector<std::unique_ptr<messages::TrackSink>> make_sinks(const RunConfig& config);
 

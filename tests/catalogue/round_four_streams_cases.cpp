@@ -378,7 +378,8 @@ std::vector<CatalogueCase> round_four_streams_cases() {
   const std::vector<std::pair<std::string, std::string>> run_outputs = {
       {"mot_results", "  mot_results: OUT/res\n"},
       {"report_file", "  report_file: OUT/report.json\n"},
-      {"metrics_port", "  metrics_port: 9\n"}};
+      {"metrics_port", "  metrics_port: 9\n"},
+      {"web_port", "  web_port: 9\n"}};
   for (const auto& [field, yaml] : run_outputs) {
     cases.push_back({"soak_with_" + field,
                      "soak over a configuration with output." + field + " (silently not written)",

@@ -99,6 +99,16 @@ TEST(EventMetrics, SeriesEqualTheEventsSentAndTheCountersTotals) {
   EXPECT_GT(zone("dwell"), 0.0);
   EXPECT_EQ(value_of(text, R"(rtmot_zone_occupancy{stream="3",zone="left"})"),
             counter.zone_counts()[0].occupancy);
+  // The web page's status (docs/web.md) reads the same counters.
+  const nlohmann::json status = metrics.status()["events"].at(0);
+  EXPECT_EQ(status["stream"], 3);
+  EXPECT_EQ(status["lines"][0]["name"], "middle \"m\"");
+  EXPECT_EQ(status["lines"][0]["in"].get<double>(), line_series(R"(middle \"m\")", "in"));
+  EXPECT_EQ(status["lines"][0]["out"].get<double>(), line_series(R"(middle \"m\")", "out"));
+  EXPECT_EQ(status["lines"][1]["in"].get<double>(), line_series("low", "in"));
+  EXPECT_EQ(status["zones"][0]["enter"].get<double>(), zone("enter"));
+  EXPECT_EQ(status["zones"][0]["dwell"].get<double>(), zone("dwell"));
+  EXPECT_EQ(status["zones"][0]["occupancy"], counter.zone_counts()[0].occupancy);
 }
 
 // A name made without the YAML reader's UTF-8 check (a caller of its own) cannot break the page:

@@ -171,6 +171,33 @@ TEST(Metrics, EverySourceHasItsOwnSeries) {
     ++type_lines;
   }
   EXPECT_EQ(type_lines, 1U);
+  // The web page's status (docs/web.md) says the same facts.
+  const nlohmann::json status = metrics.status();
+  ASSERT_EQ(status["sources"].size(), 2U);
+  const nlohmann::json& six = status["sources"][1];
+  EXPECT_EQ(six["stream"], 6);
+  EXPECT_EQ(six["frames_captured"].get<double>(), 2 * last);
+  EXPECT_EQ(six["frames_processed"], 60);
+  EXPECT_EQ(six["frames_skipped"].get<double>(), last);
+  EXPECT_EQ(six["up"], false);
+  EXPECT_EQ(status["sources"][0]["up"], true);
+  EXPECT_EQ(six["outages"], 1);
+  EXPECT_NEAR(status["sources"][0]["fps"].get<double>(), value_of(text, R"(rtmot_fps{stream="5"})"),
+              1e-3);
+}
+
+// The page's p50/p99 are read from the buckets as histogram_quantile does: linear inside the
+// bucket that holds the rank.
+TEST(Metrics, QuantilesInterpolateInsideTheirBucket) {
+  LatencyBuckets buckets;
+  EXPECT_EQ(buckets.quantile_ms(0.5), 0.0);                // no frame yet
+  for (int i = 0; i < 99; ++i) buckets.record(2'500'000);  // 2.5 ms: the (2, 3] bucket
+  buckets.record(400'000'000);                             // 400 ms: (300, 500]
+  EXPECT_DOUBLE_EQ(buckets.quantile_ms(0.5), 2.0 + 50.0 / 99.0);
+  EXPECT_DOUBLE_EQ(buckets.quantile_ms(0.99), 3.0);
+  EXPECT_DOUBLE_EQ(buckets.quantile_ms(1.0), 500.0);
+  buckets.record(10'000'000'000);  // 10 s: past the last bound
+  EXPECT_DOUBLE_EQ(buckets.quantile_ms(1.0), LatencyBuckets::bounds_ms.back());
 }
 
 // The latency buckets are fine where the latencies are: a true p95 of 36.9 ms is bracketed by
