@@ -15,6 +15,7 @@ trap 'rm -rf "$work"' EXIT
 # tolerance of 2 points is about 20 of the ~1000 true boxes, room for another CPU's rounding to
 # flip a detection at the score cut, not for a changed tracker.
 tolerance=2.0
+cd "$source_dir"  # the default configuration's model path is relative to the checkout
 BUILD=$build FRAMES=150 SEQUENCES=PETS09-S2L1 bash "$source_dir/scripts/score_video.sh" \
   "$work" short every,250 --tiles off --backend xnnpack --detector-threads 1 >"$work/score.log" 2>&1 ||
   { cat "$work/score.log"; echo "FAIL: score_video.sh"; exit 1; }
