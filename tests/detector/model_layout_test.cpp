@@ -105,35 +105,48 @@ class ModelLayout : public ::testing::Test {
 
 using test::box_deviation;
 
+// How far `found`'s detections lie from `expected`'s on vtest.avi's frames `numbers`: both sorted
+// best first, so detection i of one is detection i of the other (equal scores keep their order:
+// the same candidates, the same NMS); a frame with another count or class fails the test.
+struct Agreement {
+  std::size_t compared{0};
+  float worst_box{0.F};
+  float worst_score{0.F};
+};
+
+Agreement agreement(SsdDetector& expected_detector, SsdDetector& found_detector,
+                    const std::set<int>& numbers) {
+  Agreement result;
+  const auto frames = test::vtest_frames(numbers);
+  EXPECT_EQ(frames.size(), numbers.size());
+  for (const auto& [number, image] : frames) {
+    std::vector<tracker::Detection> expected;
+    std::vector<tracker::Detection> found;
+    expected_detector.detect(image, number, expected);
+    found_detector.detect(image, number, found);
+    EXPECT_EQ(found.size(), expected.size()) << "frame " << number;
+    for (std::size_t i = 0; i < std::min(expected.size(), found.size()); ++i) {
+      EXPECT_EQ(found[i].class_id, expected[i].class_id) << "frame " << number;
+      result.worst_box = std::max(result.worst_box, box_deviation(found[i].box, expected[i].box));
+      result.worst_score =
+          std::max(result.worst_score, std::abs(found[i].score - expected[i].score));
+      ++result.compared;
+    }
+  }
+  return result;
+}
+
 TEST_F(ModelLayout, DecodedLayoutFindsWhatTheBundledModelFinds) {
   SsdDetector reference(config_for(bundled(), BackendRequest::cpu));
   SsdDetector decoded(config_for(fixture(), BackendRequest::cpu));
   EXPECT_EQ(decoded.description().layout, OutputLayout::decoded);
-  const auto frames = test::vtest_frames({1, 51, 101, 151});
-  ASSERT_EQ(frames.size(), 4U);
-  std::size_t compared = 0;
-  float worst_box = 0.F;
-  float worst_score = 0.F;
-  for (const auto& [number, image] : frames) {
-    std::vector<tracker::Detection> expected;
-    std::vector<tracker::Detection> found;
-    reference.detect(image, number, expected);
-    decoded.detect(image, number, found);
-    ASSERT_EQ(found.size(), expected.size()) << "frame " << number;
-    for (std::size_t i = 0; i < expected.size(); ++i) {
-      // Both sorted best first; equal scores keep their order (the same candidates, same NMS).
-      EXPECT_EQ(found[i].class_id, expected[i].class_id) << "frame " << number;
-      worst_box = std::max(worst_box, box_deviation(found[i].box, expected[i].box));
-      worst_score = std::max(worst_score, std::abs(found[i].score - expected[i].score));
-      ++compared;
-    }
-  }
-  std::cout << "decoded layout vs bundled, OpenCV cpu: " << compared
-            << " detections, worst box deviation " << worst_box << " px, worst score deviation "
-            << worst_score << "\n";
-  EXPECT_GE(compared, 20U);
-  EXPECT_LE(worst_box, 0.05F);
-  EXPECT_LE(worst_score, 1e-4F);
+  const Agreement agreed = agreement(reference, decoded, {1, 51, 101, 151});
+  std::cout << "decoded layout vs bundled, OpenCV cpu: " << agreed.compared
+            << " detections, worst box deviation " << agreed.worst_box
+            << " px, worst score deviation " << agreed.worst_score << "\n";
+  EXPECT_GE(agreed.compared, 20U);
+  EXPECT_LE(agreed.worst_box, 0.05F);
+  EXPECT_LE(agreed.worst_score, 1e-4F);
 }
 
 // Scored against PETS09-S2L1's ground truth (vtest.avi is that sequence) on 16 frames spread over
@@ -209,28 +222,13 @@ TEST_F(ModelLayout, XnnpackRunsAnotherInputSizeAsOpenCvDoes) {
   if (!xnnpack_runs_here()) GTEST_SKIP() << "XNNPACK does not run on this CPU";
   SsdDetector opencv(config_for(resized(), BackendRequest::cpu));
   SsdDetector xnnpack(config_for(resized(), BackendRequest::xnnpack));
-  std::size_t compared = 0;
-  float worst_box = 0.F;
-  float worst_score = 0.F;
-  for (const auto& [number, image] : test::vtest_frames({1, 101})) {
-    std::vector<tracker::Detection> expected;
-    std::vector<tracker::Detection> found;
-    opencv.detect(image, number, expected);
-    xnnpack.detect(image, number, found);
-    ASSERT_EQ(found.size(), expected.size()) << "frame " << number;
-    for (std::size_t i = 0; i < expected.size(); ++i) {
-      EXPECT_EQ(found[i].class_id, expected[i].class_id) << "frame " << number;
-      worst_box = std::max(worst_box, box_deviation(found[i].box, expected[i].box));
-      worst_score = std::max(worst_score, std::abs(found[i].score - expected[i].score));
-      ++compared;
-    }
-  }
-  std::cout << "320 px input, XNNPACK vs OpenCV cpu: " << compared
-            << " detections, worst box deviation " << worst_box << " px, worst score deviation "
-            << worst_score << "\n";
-  EXPECT_GE(compared, 10U);
-  EXPECT_LE(worst_box, 0.1F);
-  EXPECT_LE(worst_score, 1e-3F);
+  const Agreement agreed = agreement(opencv, xnnpack, {1, 101});
+  std::cout << "320 px input, XNNPACK vs OpenCV cpu: " << agreed.compared
+            << " detections, worst box deviation " << agreed.worst_box
+            << " px, worst score deviation " << agreed.worst_score << "\n";
+  EXPECT_GE(agreed.compared, 10U);
+  EXPECT_LE(agreed.worst_box, 0.1F);
+  EXPECT_LE(agreed.worst_score, 1e-3F);
 }
 
 // A file beside the model wins over the description inside it: a user corrects a model's own
