@@ -1,19 +1,26 @@
 #pragma once
 // One source's live annotated picture for the web page (outputs/web_server.hpp, docs/web.md), as
-// JPEG, made only while someone watches. The pipeline pays one relaxed atomic load per frame when
-// nobody does: the capture thread (a FrameTap) and the sink thread (observe()) look at the watcher
-// count and return. While someone watches, the capture thread copies the frame into a LatestSlot
-// (pipeline/latest_slot.hpp, latest mode: it never waits, a frame not yet taken is replaced) and
-// the sink thread copies the tracks into another; this object's own encoder thread takes the
-// newest of each, draws the tracks (outputs/overlay.hpp) and encodes the JPEG. The HTTP workers
-// wait for the next JPEG under this object's mutex, which the pipeline's threads never take.
+// JPEG, made only while someone watches and at most kMaxPicturesPerSecond. The pipeline pays one
+// relaxed atomic load per frame when nobody watches: the capture thread (a FrameTap) looks at the
+// watcher count, the sink thread (observe()) at the encoder's request, and each returns. While
+// someone watches, this object's own encoder thread asks for one frame at a time: the capture
+// thread copies the next frame into a LatestSlot (pipeline/latest_slot.hpp, latest mode: it never
+// waits) only when asked, and the sink thread copies the tracks of the first message at or after
+// that frame into another. So the boxes are drawn on the picture they were found in (or, for a
+// frame the detector skipped, on the frame just before the next one it processed), and a watcher
+// costs the pipeline a few frame copies a second, not one per frame. The HTTP workers wait for the
+// next JPEG under this object's mutex, which the pipeline's threads never take.
 //
-// The tracks drawn are the last processed frame's on the newest captured picture: behind it by
-// the capture-to-sent latency (tens of ms on a CPU), which a person watching does not see.
+// Hand-off of the two requests (frame_wanted_, result_from_): the encoder sets each; the capture
+// or sink thread clears it and then answers by publishing into its slot (a release); the encoder
+// takes the answer (an acquire) before it sets the next request. So the clear happens before the
+// next set, each flag has one writer at a time, and relaxed order on the flags is enough: the
+// slots carry the data's ordering.
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <mutex>
 #include <thread>
@@ -31,6 +38,10 @@ using Jpeg = std::shared_ptr<const std::vector<unsigned char>>;
 
 class LivePicture final : public pipeline::FrameTap {
  public:
+  /// A watcher sees motion at this rate; more would cost the detector's cores (a JPEG of 768x576
+  /// takes a few ms) for little a person notices (docs/web.md, "what it costs").
+  static constexpr int kMaxPicturesPerSecond = 8;
+
   LivePicture(std::uint32_t stream_id, OverlayFlags flags, messages::ClassLabelFn labels);
   ~LivePicture() override;
   LivePicture(const LivePicture&) = delete;
@@ -71,6 +82,10 @@ class LivePicture final : public pipeline::FrameTap {
   // A hint, not a hand-off: a frame copied just after the last watcher left, or missed just after
   // the first came, costs or loses one picture; relaxed is enough.
   std::atomic<int> watchers_{0};
+  // The encoder's requests (see the header's comment for their order).
+  static constexpr std::int64_t kNoRequest = std::numeric_limits<std::int64_t>::max();
+  std::atomic<bool> frame_wanted_{false};
+  std::atomic<std::int64_t> result_from_{kNoRequest};
   pipeline::LatestSlot<SideFrame> frames_{pipeline::SlotMode::latest};
   pipeline::LatestSlot<messages::FrameResult> results_{pipeline::SlotMode::latest};
   std::atomic<bool> stop_{false};
@@ -78,9 +93,10 @@ class LivePicture final : public pipeline::FrameTap {
   Overlay overlay_;  // encoder thread only
   std::mutex mutex_;
   std::condition_variable fresh_;
-  Jpeg jpeg_;                  // guarded by mutex_
-  std::uint64_t sequence_{0};  // guarded by mutex_
-  std::thread encoder_;        // last: starts after every member above exists
+  std::condition_variable pace_;  // the encoder waits here between pictures; stop_ ends the wait
+  Jpeg jpeg_;                     // guarded by mutex_
+  std::uint64_t sequence_{0};     // guarded by mutex_
+  std::thread encoder_;           // last: starts after every member above exists
 };
 
 /// The sink that hands every message to each source's picture (on the sink thread).

@@ -6,6 +6,8 @@
 #include <iterator>
 #include <opencv2/core/version.hpp>
 
+#include "common/frame_rate.hpp"
+
 namespace rtmot::outputs {
 namespace {
 
@@ -116,6 +118,10 @@ void PipelineMetrics::observe(const messages::FrameResult& result) {
     for (const auto& [stage, name] : pipeline::kStageNames.entries()) {
       stages_[static_cast<std::size_t>(stage)].record(pipeline::stage_span_ns(stage, t));
     }
+    // A batch's frames share their stamps: the first counts its time, the others add none.
+    detector_busy_.add(t.detect_start_ns, t.detected_ns);
+    detected_frames_.fetch_add(1, relaxed);
+    detector_busy_ns_.store(detector_busy_.busy_ns(), relaxed);
   }
   for (std::size_t i = 0; i < probes_.size(); ++i) {
     if (probes_[i].sent) outputs_[i].sent.store(probes_[i].sent(), relaxed);
@@ -170,6 +176,12 @@ std::string PipelineMetrics::render() const {
              "counted): the report's fps.",
              [](const StreamCounters& s) { return fmt::format("{:.3f}", fps(s)); });
   fmt::format_to(to,
+                 "# HELP rtmot_detector_capacity_fps Frames the detector alone could process a "
+                 "second (every source): frames detected over the time it was busy, the report's "
+                 "capacity.\n# TYPE rtmot_detector_capacity_fps gauge\nrtmot_detector_capacity_fps "
+                 "{:.3f}\n",
+                 detector_capacity_fps());
+  fmt::format_to(to,
                  "# HELP rtmot_stage_latency_seconds Time per pipeline stage, every source "
                  "(queue: captured->detector, end_to_end: captured->sent).\n"
                  "# TYPE rtmot_stage_latency_seconds histogram\n");
@@ -188,6 +200,11 @@ std::string PipelineMetrics::render() const {
   }
   if (events_ != nullptr) events_->render(out);
   return out;
+}
+
+double PipelineMetrics::detector_capacity_fps() const {
+  // Two relaxed loads may pair a count with a busy time one frame apart: a statistic.
+  return frames_per_second(detected_frames_.load(relaxed), detector_busy_ns_.load(relaxed));
 }
 
 nlohmann::json PipelineMetrics::status() const {
@@ -217,6 +234,7 @@ nlohmann::json PipelineMetrics::status() const {
   }
   return {{"version", RTMOT_VERSION},
           {"sources", std::move(sources)},
+          {"detector_capacity_fps", detector_capacity_fps()},
           {"latency", std::move(stages)},
           {"outputs", std::move(outputs)},
           {"events", events_ != nullptr ? events_->status() : nlohmann::json::array()}};

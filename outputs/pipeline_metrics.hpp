@@ -24,6 +24,7 @@
 
 #include "messages/frame_result.hpp"
 #include "outputs/event_metrics.hpp"
+#include "pipeline/busy_time.hpp"
 #include "pipeline/pipeline_report.hpp"
 
 namespace rtmot::outputs {
@@ -117,12 +118,19 @@ class PipelineMetrics {
   // One definition of each derived fact, for render() and status().
   static std::uint64_t captured(const StreamCounters& s);
   static double fps(const StreamCounters& s);
+  /// What the detector alone could process a second (every source): frames detected over the
+  /// time it was busy (pipeline::BusyTime of the messages' detect stamps), as the report's
+  /// detector_fps ("capacity").
+  double detector_capacity_fps() const;
 
   std::vector<OutputProbe> probes_;
   std::vector<OutputCounters> outputs_;
   std::vector<std::uint32_t> stream_ids_;
   std::vector<StreamCounters> streams_;                       // parallel to stream_ids_
   std::array<LatencyBuckets, pipeline::kStageCount> stages_;  // in pipeline::kStageNames' order
+  pipeline::BusyTime detector_busy_;                          // sink stage only
+  std::atomic<std::int64_t> detected_frames_{0};
+  std::atomic<std::int64_t> detector_busy_ns_{0};
   const EventMetrics* events_{nullptr};
 };
 

@@ -97,12 +97,8 @@ bool DetectStage::hand_on(DetectLane& lane, const std::atomic<bool>& abort) {
   if (!batch.pictures.empty()) {
     counts_.frames += static_cast<std::int64_t>(batch.pictures.size());
     ++counts_.batches;
-    // The union of the lanes' intervals, taken in batch order (a batch starts after the one
-    // before it was submitted, so the intervals come sorted by start but for the few microseconds
-    // between two lanes waking up).
-    const std::int64_t from = std::max(batch.start_ns, busy_until_ns_);
-    if (batch.end_ns > from) counts_.busy_ns += batch.end_ns - from;
-    busy_until_ns_ = std::max(busy_until_ns_, batch.end_ns);
+    busy_.add(batch.start_ns, batch.end_ns);
+    counts_.busy_ns = busy_.busy_ns();
   }
   std::size_t picture = 0;
   for (std::size_t i = 0; i < batch.count; ++i) {

@@ -29,6 +29,7 @@
 #include <vector>
 
 #include "detector/detector.hpp"
+#include "pipeline/busy_time.hpp"
 #include "pipeline/detect_lane.hpp"
 #include "pipeline/latest_frame_slot.hpp"
 #include "pipeline/spsc_queue.hpp"
@@ -93,7 +94,7 @@ class DetectStage {
   std::size_t in_flight_{0};
   bool gathering_{false};  // some frame is fresh and the gather window runs until gather_until_
   std::chrono::steady_clock::time_point gather_until_;
-  std::int64_t busy_until_ns_{0};  // end of the union of the lanes' busy intervals so far
+  BusyTime busy_;  // the union of the lanes' busy intervals so far
   DetectCounts counts_;
 };
 

@@ -237,6 +237,7 @@ RunConfig load_run_config(const std::string& path) {
   std::string tried;
   const std::string found = resolve_input_path(path, {}, "configs", tried);
   RunConfig config = parse_run_config(read_text_file(found, kMaxConfigBytes), found);
+  config.loaded_from = found;
   resolve_input_paths(config);
   return config;
 }

@@ -111,6 +111,9 @@ struct OutputConfig {
 
 struct RunConfig {
   std::string file;  // where it was read from (for messages)
+  /// The configuration file it was loaded from (--config), where the page's saves go; empty when
+  /// the run has none (defaults and flags only: `file` then says "(command line)").
+  std::string loaded_from;
   /// The line each setting was read from in `file` ("detector.classes" -> 3), for checks made
   /// once every setting is known; a flag that overrides one removes its line.
   std::map<std::string, int> lines;

@@ -214,9 +214,8 @@ class CostProbe {
 // The image's work is done only where the tracker will use it.
 bool measures_appearance(const RunConfig& config) {
   const tracker::TrackerConfig& tracker = config.tracker;
-  return config.detector.appearance &&
-         (tracker.appearance_weight > 0.0 || tracker.appearance_gate < 1.0 ||
-          tracker.reid_gate > 0.0);
+  return config.detector.appearance && (tracker.appearance_weight > 0.0 ||
+                                        tracker.appearance_gate < 1.0 || tracker.reid_gate > 0.0);
 }
 
 bool runs_on_cpu(const detector::Detector& detector) {
@@ -500,8 +499,8 @@ void start_web_server(const RunConfig& config, RunOutputs& outputs, const std::s
                        "a token of at least 16 characters is needed (e.g. openssl rand -hex 16)");
     }
     content.token = std::move(token);
-    outputs.events_editor = std::make_unique<EventsEditor>(outputs.editable, *outputs.event_metrics,
-                                                           config.file, !config.sources.empty());
+    outputs.events_editor = std::make_unique<EventsEditor>(
+        outputs.editable, *outputs.event_metrics, config.loaded_from, !config.sources.empty());
     content.save_events = [editor = outputs.events_editor.get()](std::size_t source,
                                                                  const std::string& body) {
       return editor->save(source, body);

@@ -5,7 +5,7 @@
 'use strict';
 
 const sourcesEl = document.getElementById('sources');
-const cards = new Map();  // stream index -> elements
+const cards = new Map();  // stream index -> elements and its Editor (editor.js)
 
 function el(tag, attrs, text) {
   const e = ['svg', 'line', 'polygon', 'text', 'circle'].includes(tag)
@@ -25,80 +25,33 @@ function card(index, geometry) {
   const svg = el('svg', {viewBox: '0 0 ' + geometry.width + ' ' + geometry.height,
                          preserveAspectRatio: 'none'});
   picture.append(img, svg);
-  const editor = el('form', {class: 'editor'});
-  editor.innerHTML =
-    '<b>Draw a line:</b> click its two ends on the picture (its "in" side is the left of ' +
-    'first → second), name it, save. <br>' +
-    '<input name="name" placeholder="name" required> ' +
-    '<input name="token" type="password" placeholder="token" required> ' +
-    '<button type="submit" disabled>save</button> <button type="button" name="clear">clear</button> ' +
-    '<span class="message"></span>';
   const health = el('table', {class: 'health'});
   const counts = el('table', {class: 'counts'});
-  box.append(picture, editor, health, counts);
+  const c = {svg, health, counts, drawn: '', geometry};
+  c.redraw = () => { c.drawn = ''; drawGeometry(c, c.geometry); };
+  c.editor = new Editor(index, c);
+  box.append(picture, c.editor.form, health, counts);
   sourcesEl.append(box);
-  const c = {svg, health, counts, drawn: '', clicks: [], geometry};
-  setupEditor(index, c, svg, editor);
   cards.set(index, c);
   return c;
 }
 
-// Clicks on the picture become the new line's ends, in the picture's pixels. The saved section
-// holds the lines the source has plus the new one, with the zones unchanged (docs/web.md).
-function setupEditor(index, c, svg, form) {
-  const save = form.querySelector('button[type=submit]');
-  const message = form.querySelector('.message');
-  svg.addEventListener('click', event => {
-    const box = svg.getBoundingClientRect();
-    const x = Math.round((event.clientX - box.left) / box.width * c.geometry.width);
-    const y = Math.round((event.clientY - box.top) / box.height * c.geometry.height);
-    if (c.clicks.length === 2) c.clicks = [];
-    c.clicks.push([x, y]);
-    save.disabled = c.clicks.length !== 2;
-    c.drawn = '';
-    drawGeometry(c, c.geometry);
-  });
-  form.querySelector('button[name=clear]').addEventListener('click', () => {
-    c.clicks = []; save.disabled = true; c.drawn = ''; drawGeometry(c, c.geometry);
-  });
-  form.addEventListener('submit', async event => {
-    event.preventDefault();
-    const line = {name: form.name.value, from: c.clicks[0], to: c.clicks[1], in: 'left'};
-    const section = {
-      lines: [...c.geometry.lines.map(l => ({name: l.name, from: l.from, to: l.to, in: l.in})), line],
-      zones: c.geometry.zones.map(z => ({name: z.name, points: z.points})),
-    };
-    const response = await fetch('api/events?source=' + index, {
-      method: 'POST', body: JSON.stringify(section),
-      headers: {'Authorization': 'Bearer ' + form.token.value, 'Content-Type': 'application/json'},
-    });
-    const answer = await response.json();
-    message.textContent = response.ok
-      ? 'saved' + (answer.saved_to ? ' to ' + answer.saved_to : ' (not to a file)') + '; counts restart from zero'
-      : (answer.field ? answer.field + ': ' : '') + (answer.problem || answer.error);
-    message.className = 'message ' + (response.ok ? 'up' : 'down');
-    if (response.ok) { c.clicks = []; save.disabled = true; }
-  });
-}
-
 function drawGeometry(c, geometry) {
   c.geometry = geometry;
-  const key = JSON.stringify([geometry.lines, geometry.zones, c.clicks]);
+  const key = JSON.stringify([geometry.lines, geometry.zones, c.editor ? c.editor.clicks : []]);
   if (key === c.drawn) return;
   c.drawn = key;
   c.svg.replaceChildren();
-  for (const p of c.clicks) c.svg.append(el('circle', {cx: p[0], cy: p[1], r: 6, class: 'click'}));
-  if (c.clicks.length === 2) {
-    c.svg.append(el('line', {x1: c.clicks[0][0], y1: c.clicks[0][1], x2: c.clicks[1][0], y2: c.clicks[1][1], class: 'new'}));
-  }
   for (const z of geometry.zones) {
     c.svg.append(el('polygon', {points: z.points.map(p => p.join(',')).join(' ')}));
     c.svg.append(el('text', {x: z.points[0][0] + 4, y: z.points[0][1] + 20}, z.name));
   }
   for (const l of geometry.lines) {
     c.svg.append(el('line', {x1: l.from[0], y1: l.from[1], x2: l.to[0], y2: l.to[1]}));
+    c.svg.append(el('line', {...inSideArrow(l, l.in, 24), class: 'arrow'}));
     c.svg.append(el('text', {x: (l.from[0] + l.to[0]) / 2 + 6, y: (l.from[1] + l.to[1]) / 2 - 6}, l.name));
   }
+  if (c.editor) c.svg.append(...c.editor.draft(el));
 }
 
 function rows(table, head, list) {
@@ -109,7 +62,8 @@ function rows(table, head, list) {
   for (const r of list) {
     const row = el('tr');
     for (const [i, v] of r.entries()) {
-      const td = el('td', {}, String(v));
+      const td = v instanceof Element ? el('td') : el('td', {}, String(v));
+      if (v instanceof Element) td.append(v);
       if (i === 1 && (v === 'up' || v === 'down')) td.className = v;
       row.append(td);
     }
@@ -117,8 +71,17 @@ function rows(table, head, list) {
   }
 }
 
+function removeButton(c, kind, name) {
+  const button = el('button', {type: 'button', class: 'remove', title: 'remove ' + name + ' (needs the token)'}, 'remove');
+  button.addEventListener('click', () => c.editor.remove(kind, name));
+  return button;
+}
+
 function show(status) {
-  document.getElementById('detector').textContent = 'rtmot ' + status.version + ' · ' + status.detector;
+  // The detector's first words in the header, its whole description (engine choice, why) on hover.
+  const detector = document.getElementById('detector');
+  detector.textContent = 'rtmot ' + status.version + ' · ' + status.detector.split(' (')[0];
+  detector.title = status.detector;
   status.geometry.forEach((geometry, index) => {
     const c = card(index, geometry);
     drawGeometry(c, geometry);
@@ -128,11 +91,13 @@ function show(status) {
       ['output rate (fps)', (s.fps || 0).toFixed(1)],
       ['frames captured', s.frames_captured], ['frames processed', s.frames_processed],
       ['frames skipped (detector busy)', s.frames_skipped], ['outages', s.outages],
-      ['tracks now', s.tracks]]);
+      ['tracks now', s.tracks],
+      ['detector capacity (fps, every source)', (status.detector_capacity_fps || 0).toFixed(1)]]);
     const e = status.events.find(x => x.stream === geometry.stream) || {lines: [], zones: []};
-    rows(c.counts, [e.generation > 0 ? 'counted since the last save' : 'counted', 'in', 'out'], [
-      ...e.lines.map(l => ['line ' + l.name, l.in, l.out]),
-      ...e.zones.map(z => ['zone ' + z.name + ' (inside ' + z.occupancy + ')', z.enter, z.exit])]);
+    rows(c.counts, [e.generation > 0 ? 'counted since the last save' : 'counted', 'in', 'out', ''], [
+      ...e.lines.map(l => ['line ' + l.name, l.in, l.out, removeButton(c, 'lines', l.name)]),
+      ...e.zones.map(z => ['zone ' + z.name + ' (inside ' + z.occupancy + ')', z.enter, z.exit,
+                           removeButton(c, 'zones', z.name)])]);
   });
   const tbody = document.querySelector('#latency tbody');
   tbody.replaceChildren();

@@ -186,6 +186,29 @@ TEST(Metrics, EverySourceHasItsOwnSeries) {
               1e-3);
 }
 
+// The detector's capacity (the page's health, rtmot_detector_capacity_fps): frames over the union
+// of the detector's busy intervals, as the run's report counts it. Frames of one batch share their
+// stamps (counted once); a second lane's batch overlapping the first adds only its own part.
+TEST(Metrics, DetectorCapacityCountsABatchOnceAndOverlappingLanesAsTheirUnion) {
+  auto frames = test::frames_from_detections("TUD-Stadtmitte", 5);
+  PipelineMetrics metrics({}, {frames.front().stream_id});
+  MetricsSink sink(metrics);
+  EXPECT_EQ(metrics.status()["detector_capacity_fps"], 0.0);  // nothing detected yet
+  constexpr std::int64_t ms = 1'000'000;
+  const std::int64_t t0 = frames.front().times.detect_start_ns;
+  // Frames 0 and 1: one batch of 40 ms; 2: a lane from 30 to 70 ms (overlaps by 10); 3: an outage
+  // tick (no picture, not detected); 4: 100 to 120 ms. Busy 40 + 30 + 20 = 90 ms for 4 frames.
+  const std::int64_t intervals[5][2] = {{0, 40}, {0, 40}, {30, 70}, {70, 70}, {100, 120}};
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    frames[i].times.detect_start_ns = t0 + intervals[i][0] * ms;
+    frames[i].times.detected_ns = t0 + intervals[i][1] * ms;
+    frames[i].source_outage = i == 3;
+    sink.write(frames[i]);
+  }
+  EXPECT_NEAR(metrics.status()["detector_capacity_fps"].get<double>(), 4 / 0.090, 1e-6);
+  EXPECT_NEAR(value_of(metrics.render(), "rtmot_detector_capacity_fps"), 4 / 0.090, 1e-3);
+}
+
 // The page's p50/p99 are read from the buckets as histogram_quantile does: linear inside the
 // bucket that holds the rank.
 TEST(Metrics, QuantilesInterpolateInsideTheirBucket) {

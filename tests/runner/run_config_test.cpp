@@ -83,6 +83,8 @@ TEST(RunConfig, EveryShippedConfigLoadsAndValidates) {
     if (entry.path().extension() != ".yaml") continue;
     SCOPED_TRACE(entry.path().string());
     runner::RunConfig config = runner::load_run_config(entry.path().string());
+    // Where the web page's saves go: the file itself (the defaults have none: below).
+    EXPECT_EQ(config.loaded_from, entry.path().string());
     if (config.source.uri.empty() && config.sources.empty()) {
       // A config for data rtmot does not ship (mot.yaml: MOTChallenge's) says in its header what
       // to pass; with that it validates.
@@ -97,6 +99,8 @@ TEST(RunConfig, EveryShippedConfigLoadsAndValidates) {
     ++count;
   }
   EXPECT_GE(count, 5) << "desktop, jetson-csi, jetson-usb, tx1-replay, mot";
+  // A run without --config has no file to save the page's lines into (it applies them only).
+  EXPECT_EQ(runner::default_run_config().loaded_from, "");
 }
 
 // Parses `yaml` expecting an InputError at `line` naming `field`.

@@ -4,7 +4,8 @@
 # names the source, its line and its health and counts, and no picture was encoded before anyone
 # watched; the MJPEG stream delivers a whole JPEG; more watchers than the bound get 503; no path
 # outside the page's files is served (.., %2e%2e, a file of the source tree); SIGINT ends the run
-# cleanly (exit 0). Saving lines as the page does (POST /api/events): without the token, with a
+# cleanly (exit 0). Headless Chromium opens the page: its screenshot shows the picture with the
+# tracks' boxes and the line, its text the counts and health (page_screenshot.py). Saving lines as the page does (POST /api/events): without the token, with a
 # wrong one, with an oversize body: refused, nothing changed; a valid line: applied while running
 # (the status shows it, it counts crossings, counts restarted) and written into the configuration
 # file, which still loads; a broken polygon: 400 naming its field, the saved line still counted.
@@ -82,6 +83,15 @@ size=$(client jpeg) || fail "no JPEG from the MJPEG stream"
 [[ $size -gt 10000 ]] || fail "a JPEG of $size bytes for a 768x576 picture"
 [[ $(client watchers-bounded 4) == 503 ]] || fail "a 5th watcher was not refused with 503"
 
+# The page as a person sees it (headless Chromium runs its script and plays the MJPEG): a camera
+# picture with the tracks' boxes on it (the person class's green, drawn by the encoder), the line
+# drawn by the page over it (yellow), and the counts and health as text.
+shot_args=(--expect-colour 60,200,60:2000 --expect-colour 255,255,0:300
+  --expect-text "line door" --expect-text "source up")
+[[ ${RTMOT_UPDATE_DOCS:-0} == 1 ]] && shot_args+=(--docs-copy "$source_dir/docs/images/web-page.png")
+shot=$(/usr/bin/python3 "$here/page_screenshot.py" "$base" "$work/page.png" "${shot_args[@]}") ||
+  fail "the page in Chromium: $shot"
+
 # Nothing outside the page's files.
 for path in /../CMakeLists.txt /%2e%2e/CMakeLists.txt /..%2fCMakeLists.txt /app.js/../../CMakeLists.txt \
   /web/index.html /CMakeLists.txt /video/../../CMakeLists.txt /video/7.mjpg /video/x.mjpg; do
@@ -139,7 +149,8 @@ pid=
 # The file written back still reads as a configuration.
 "$rtmot" run --config "$work/run.yaml" --max-frames 1 --playback every-frame 2>"$work/reread.err" ||
   { cat "$work/reread.err"; fail "the written configuration does not load"; }
-echo "PASS: page, files, status (counts, health, geometry), a $size-byte JPEG, 503 past 4 watchers," \
+echo "PASS: page, files, status (counts, health, geometry), a $size-byte JPEG, 503 past 4 watchers,"
+echo "  Chromium's $shot," \
   "no picture encoded before a watcher, no traversal; saves: 401/403/413/404 refused, a line applied" \
   "while running and counted, written to the file (which loads), a broken zone refused with its field;" \
   "exit 0 on SIGINT"
