@@ -35,17 +35,21 @@ std::unique_ptr<std::atomic<std::uint64_t>[]> zeroed(std::size_t n) {
 
 }  // namespace
 
-std::unique_ptr<EventMetrics::Counters> EventMetrics::make_counters(Source source,
-                                                                    std::uint32_t generation) {
+std::unique_ptr<EventMetrics::Counters> EventMetrics::make_counters(
+    Source source, std::uint32_t generation) const {
   auto counters = std::make_unique<Counters>();
   counters->lines = zeroed(2 * source.lines.size());
   counters->zones = zeroed(kZoneFields * source.zones.size());
+  counters->by_class = zeroed(2 * (source.lines.size() + source.zones.size()) * class_columns_);
   counters->source = std::move(source);
   counters->generation = generation;
   return counters;
 }
 
-EventMetrics::EventMetrics(std::vector<Source> sources) {
+EventMetrics::EventMetrics(std::vector<Source> sources, int class_columns,
+                           messages::ClassLabelFn labels)
+    : class_columns_(static_cast<std::size_t>(std::max(class_columns, 0))),
+      labels_(std::move(labels)) {
   for (auto& source : sources) {
     auto stream = std::make_unique<Stream>();
     stream->stream_id = source.stream_id;
@@ -74,6 +78,13 @@ std::vector<const EventMetrics::Counters*> EventMetrics::current() const {
   return sets;
 }
 
+void EventMetrics::count_class(Counters& counters, std::size_t slot, std::int32_t class_id) const {
+  // A class the labels do not have is in the totals only.
+  if (class_id < 0 || static_cast<std::size_t>(class_id) >= class_columns_) return;
+  counters.by_class[slot * class_columns_ + static_cast<std::size_t>(class_id)].fetch_add(1,
+                                                                                          relaxed);
+}
+
 void EventMetrics::observe(const messages::FrameResult& result) {
   const auto stream = std::find_if(streams_.begin(), streams_.end(),
                                    [&](const auto& s) { return s->stream_id == result.stream_id; });
@@ -91,8 +102,9 @@ void EventMetrics::observe(const messages::FrameResult& result) {
       case events::EventKind::line_in:
       case events::EventKind::line_out:
         if (index < found->source.lines.size()) {
-          found->lines[2 * index + (event.kind == events::EventKind::line_in ? 0 : 1)].fetch_add(
-              1, relaxed);
+          const std::size_t slot = 2 * index + (event.kind == events::EventKind::line_in ? 0 : 1);
+          found->lines[slot].fetch_add(1, relaxed);
+          count_class(*found, slot, event.class_id);
         }
         break;
       case events::EventKind::zone_enter:
@@ -105,6 +117,12 @@ void EventMetrics::observe(const messages::FrameResult& result) {
           if (event.kind == events::EventKind::zone_exit && event.lost)
             zone[2].fetch_add(1, relaxed);
           if (event.kind == events::EventKind::zone_dwell) zone[3].fetch_add(1, relaxed);
+          if (event.kind != events::EventKind::zone_dwell) {
+            count_class(*found,
+                        2 * (found->source.lines.size() + index) +
+                            (event.kind == events::EventKind::zone_enter ? 0 : 1),
+                        event.class_id);
+          }
         }
         break;
     }
@@ -159,6 +177,23 @@ void EventMetrics::render(std::string& out) const {
   }
 }
 
+// The classes with any count in `slot` and its pair (in/out, enter/exit), by name.
+nlohmann::json EventMetrics::classes_of(const Counters& counters, std::size_t slot) const {
+  const bool line = slot < 2 * counters.source.lines.size();
+  nlohmann::json classes = nlohmann::json::object();
+  for (std::size_t c = 0; c < class_columns_; ++c) {
+    const auto first = counters.by_class[slot * class_columns_ + c].load(relaxed);
+    const auto second = counters.by_class[(slot + 1) * class_columns_ + c].load(relaxed);
+    if (first == 0 && second == 0) continue;
+    const auto id = static_cast<int>(c);
+    std::string name = labels_ ? std::string(labels_(id)) : std::string();
+    if (name.empty()) name = std::to_string(id);
+    classes[replace_invalid_utf8(name)] = {{line ? "in" : "enter", first},
+                                           {line ? "out" : "exit", second}};
+  }
+  return classes;
+}
+
 nlohmann::json EventMetrics::status() const {
   nlohmann::json sources = nlohmann::json::array();
   const std::vector<const Counters*> sets = current();
@@ -168,7 +203,8 @@ nlohmann::json EventMetrics::status() const {
     for (std::size_t l = 0; l < c.source.lines.size(); ++l) {
       lines.push_back({{"name", replace_invalid_utf8(c.source.lines[l])},
                        {"in", c.lines[2 * l].load(relaxed)},
-                       {"out", c.lines[2 * l + 1].load(relaxed)}});
+                       {"out", c.lines[2 * l + 1].load(relaxed)},
+                       {"classes", classes_of(c, 2 * l)}});
     }
     nlohmann::json zones = nlohmann::json::array();
     for (std::size_t z = 0; z < c.source.zones.size(); ++z) {
@@ -180,7 +216,8 @@ nlohmann::json EventMetrics::status() const {
                        {"exit", exited},
                        {"lost", zone[2].load(relaxed)},
                        {"dwell", zone[3].load(relaxed)},
-                       {"occupancy", entered >= exited ? entered - exited : 0}});
+                       {"occupancy", entered >= exited ? entered - exited : 0},
+                       {"classes", classes_of(c, 2 * (c.source.lines.size() + z))}});
     }
     // generation > 0: the page saved these lines and zones, and their counts began then.
     sources.push_back({{"stream", c.source.stream_id},

@@ -21,6 +21,7 @@
 
 #include "events/events_config.hpp"
 #include "messages/frame_result.hpp"
+#include "messages/jsonl_sink.hpp"
 
 namespace rtmot::outputs {
 
@@ -32,7 +33,10 @@ class EventMetrics {
     std::vector<std::string> zones;
   };
 
-  explicit EventMetrics(std::vector<Source> sources);
+  /// `class_columns`, `labels`: the detector's classes (ids 0..class_columns-1) and their names,
+  /// for the counts per class the web page shows (status()); 0: totals only.
+  explicit EventMetrics(std::vector<Source> sources, int class_columns = 0,
+                        messages::ClassLabelFn labels = nullptr);
 
   /// Sink thread.
   void observe(const messages::FrameResult& result);
@@ -42,7 +46,8 @@ class EventMetrics {
   /// Appends the families (text exposition 0.0.4).
   void render(std::string& out) const;
   /// Any thread: the same counts for the web page: per source, each line's in/out and each
-  /// zone's enter/exit/lost/dwell/occupancy, by name in the configuration's order.
+  /// zone's enter/exit/lost/dwell/occupancy, by name in the configuration's order, each with
+  /// `classes`: per class name that has any, its in/out (enter/exit).
   nlohmann::json status() const;
 
  private:
@@ -51,16 +56,23 @@ class EventMetrics {
     std::uint32_t generation{0};
     std::unique_ptr<std::atomic<std::uint64_t>[]> lines;  // [2 * line + (0 in, 1 out)]
     std::unique_ptr<std::atomic<std::uint64_t>[]> zones;  // [4 * zone + enter/exit/lost/dwell]
+    // [slot * class_columns + class]: slot 2 * line + (in, out), then 2 * lines + 2 * zone +
+    // (enter, exit).
+    std::unique_ptr<std::atomic<std::uint64_t>[]> by_class;
   };
   struct Stream {
     std::uint32_t stream_id{0};
     std::atomic<Counters*> current{nullptr};  // written by the sink thread only
     std::atomic<Counters*> pending{nullptr};  // written by posters only
   };
-  static std::unique_ptr<Counters> make_counters(Source source, std::uint32_t generation);
+  std::unique_ptr<Counters> make_counters(Source source, std::uint32_t generation) const;
+  void count_class(Counters& counters, std::size_t slot, std::int32_t class_id) const;
+  nlohmann::json classes_of(const Counters& counters, std::size_t slot) const;
   /// Each stream's current set, in order (acquire).
   std::vector<const Counters*> current() const;
 
+  const std::size_t class_columns_;
+  const messages::ClassLabelFn labels_;
   std::vector<std::unique_ptr<Stream>> streams_;
   std::mutex posters_;
   std::vector<std::unique_ptr<Counters>> kept_;  // every set ever made; guarded by posters_

@@ -331,9 +331,8 @@ RunOutputs make_outputs(const RunConfig& config, std::vector<pipeline::PipelineI
   RunOutputs outputs;
   std::vector<std::unique_ptr<messages::TrackSink>> sinks;
   // The model's own class names in every output that names classes; each holds the table.
-  const messages::ClassLabelFn label_of = [labels = run_labels(config)](int id) {
-    return labels->name(id);
-  };
+  const auto labels = run_labels(config);
+  const messages::ClassLabelFn label_of = [labels](int id) { return labels->name(id); };
   const platform::SourceInfo first =
       inputs.empty() ? platform::SourceInfo{} : inputs.front().source->info();
   std::vector<outputs::OutputProbe> probes;
@@ -465,7 +464,8 @@ RunOutputs make_outputs(const RunConfig& config, std::vector<pipeline::PipelineI
       counted.push_back(std::move(source));
     }
     if (!counted.empty()) {
-      outputs.event_metrics = std::make_unique<outputs::EventMetrics>(std::move(counted));
+      outputs.event_metrics =
+          std::make_unique<outputs::EventMetrics>(std::move(counted), labels->columns(), label_of);
       outputs.metrics->set_event_metrics(outputs.event_metrics.get());
       sinks.push_back(std::make_unique<outputs::EventMetricsSink>(*outputs.event_metrics));
     }

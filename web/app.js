@@ -77,6 +77,14 @@ function removeButton(c, kind, name) {
   return button;
 }
 
+// A line's or zone's row, then one row per class it counted when there are several; a single
+// class is named in the row itself.
+function withClasses(row, classes, first, second) {
+  const names = Object.keys(classes || {});
+  if (names.length === 1) return [[row[0] + ' (' + names[0] + ')', ...row.slice(1)]];
+  return [row, ...names.map(name => ['\u2003' + name, classes[name][first], classes[name][second], ''])];
+}
+
 function show(status) {
   // The detector's first words in the header, its whole description (engine choice, why) on hover.
   const detector = document.getElementById('detector');
@@ -95,9 +103,10 @@ function show(status) {
       ['detector capacity (fps, every source)', (status.detector_capacity_fps || 0).toFixed(1)]]);
     const e = status.events.find(x => x.stream === geometry.stream) || {lines: [], zones: []};
     rows(c.counts, [e.generation > 0 ? 'counted since the last save' : 'counted', 'in', 'out', ''], [
-      ...e.lines.map(l => ['line ' + l.name, l.in, l.out, removeButton(c, 'lines', l.name)]),
-      ...e.zones.map(z => ['zone ' + z.name + ' (inside ' + z.occupancy + ')', z.enter, z.exit,
-                           removeButton(c, 'zones', z.name)])]);
+      ...e.lines.flatMap(l => withClasses(['line ' + l.name, l.in, l.out, removeButton(c, 'lines', l.name)],
+                                          l.classes, 'in', 'out')),
+      ...e.zones.flatMap(z => withClasses(['zone ' + z.name + ' (inside ' + z.occupancy + ')', z.enter, z.exit,
+                                           removeButton(c, 'zones', z.name)], z.classes, 'enter', 'exit'))]);
   });
   const tbody = document.querySelector('#latency tbody');
   tbody.replaceChildren();

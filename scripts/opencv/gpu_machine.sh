@@ -158,9 +158,9 @@ if has rtmot; then
     "-DCMAKE_SHARED_LINKER_FLAGS=-Wl,-rpath-link,$lib:$deps/lib/$triplet:$ocv/install/lib" \
     >"$out/rtmot-configure-$tag.log" 2>&1 || { tail -n 30 "$out/rtmot-configure-$tag.log"; die "rtmot: configure failed"; }
   grep -E "OpenCV 4" "$out/rtmot-configure-$tag.log" || true
-  ninja -C "$build" detector_tests detector_batch_bench rtmot >"$out/rtmot-build-$tag.log" 2>&1 ||
+  ninja -C "$build" detector_tests detector_model_layout_test detector_batch_bench rtmot >"$out/rtmot-build-$tag.log" 2>&1 ||
     { grep -E "error|FAILED|undefined" -A3 "$out/rtmot-build-$tag.log" | head -n 60; die "rtmot: build failed"; }
-  echo "built: detector_tests detector_batch_bench rtmot"
+  echo "built: detector_tests detector_model_layout_test detector_batch_bench rtmot"
 fi
 
 if has tests || has bench || has pipeline; then
@@ -189,6 +189,17 @@ if has tests; then
   (cd "$build" && "${run_env[@]}" ./tests/detector/detector_tests ${RTMOT_TESTS_FILTER:+"--gtest_filter=$RTMOT_TESTS_FILTER"}) >"$out/detector_tests-$tag.log" 2>&1 ||
     { grep -E "FAILED|Failure" -A3 "$out/detector_tests-$tag.log" | head -n 40; die "detector tests failed"; }
   grep -E "matched|PASSED|on (cpu|cuda)" "$out/detector_tests-$tag.log" | head -n 30
+  # The other model layouts (docs/gpu.md, "Other model layouts on CUDA"): their fixtures are made on
+  # the CPU machine (python3-onnx, which this machine lacks) and carried in .gpu-fixtures/ by a call
+  # of their own (over 64 MiB with .gpu-carry/).
+  if [[ -f $source_dir/.gpu-fixtures/decoded.onnx ]]; then
+    step "model layout tests ($tag), fixtures from .gpu-fixtures/"
+    (cd "$build" && RTMOT_MODEL_FIXTURES="$source_dir/.gpu-fixtures" "${run_env[@]}" ./tests/detector/detector_model_layout_test) >"$out/model_layout-$tag.log" 2>&1 ||
+      { grep -E "FAILED|Failure" -A3 "$out/model_layout-$tag.log" | head -n 40; die "model layout tests failed"; }
+    grep -E "vs|PASSED|SKIPPED" "$out/model_layout-$tag.log" | head -n 20
+  else
+    echo "model layout tests on CUDA: NOT RUN (no .gpu-fixtures/ carried; docs/gpu.md says how)"
+  fi
 fi
 
 if has bench; then

@@ -8,6 +8,8 @@
 //   inside the ONNX file (metadata rtmot.model). It sees the frame at another scale, so it must
 //   find the people the bundled model finds, not the same boxes; both engines must agree on it.
 // A description or labels file that does not fit is a start-up error naming file, line and field.
+// RTMOT_MODEL_FIXTURES=DIR keeps the fixtures in DIR (made there if missing): how they reach the
+// GPU machine, which has no python3-onnx (docs/gpu.md, "Other model layouts on CUDA").
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -21,6 +23,7 @@
 #include "box_deviation.hpp"
 #include "common/input_error.hpp"
 #include "detector/coco_labels.hpp"
+#include "detector/dnn_backend.hpp"
 #include "detector/model_check.hpp"
 #include "detector/model_description.hpp"
 #include "detector/ssd_detector.hpp"
@@ -38,8 +41,15 @@ namespace fs = std::filesystem;
 class ModelLayout : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    dir_ = fs::temp_directory_path() / ("rtmot-model-layout-" + std::to_string(::getpid()));
+    const char* kept = std::getenv("RTMOT_MODEL_FIXTURES");
+    keep_ = kept != nullptr && *kept != '\0';
+    dir_ = keep_ ? fs::absolute(kept)
+                 : fs::temp_directory_path() / ("rtmot-model-layout-" + std::to_string(::getpid()));
     fs::create_directories(dir_);
+    if (keep_ && fs::exists(fixture()) && fs::exists(resized())) {
+      fixture_made_ = true;
+      return;
+    }
     const fs::path coco = dir_ / "coco.txt";
     {
       std::ofstream out(coco);
@@ -55,7 +65,9 @@ class ModelLayout : public ::testing::Test {
         std::system((command + (dir_ / "size320").string() + " " + std::to_string(kResizedInput))
                         .c_str()) == 0;
   }
-  static void TearDownTestSuite() { fs::remove_all(dir_); }
+  static void TearDownTestSuite() {
+    if (!keep_) fs::remove_all(dir_);
+  }
 
   void SetUp() override {
     if (!fs::exists(bundled()))
@@ -100,6 +112,7 @@ class ModelLayout : public ::testing::Test {
   }
 
   static inline fs::path dir_;
+  static inline bool keep_{false};
   static inline bool fixture_made_{false};
 };
 
@@ -229,6 +242,28 @@ TEST_F(ModelLayout, XnnpackRunsAnotherInputSizeAsOpenCvDoes) {
   EXPECT_GE(agreed.compared, 10U);
   EXPECT_LE(agreed.worst_box, 0.1F);
   EXPECT_LE(agreed.worst_score, 1e-3F);
+}
+
+// CUDA (cuDNN, fp32) on both fixtures as on the bundled model (tests/detector/ssd_reference_test.cpp:
+// 0.05 px and 5e-5 there): the wrapper's decoding and another input size run on the GPU as on the
+// CPU. Runs on the GPU machine (docs/gpu.md), skipped where OpenCV has no CUDA.
+TEST_F(ModelLayout, CudaRunsBothFixturesAsOpenCvCpuDoes) {
+  const auto caps = probe_backend_capabilities();
+  if (!caps.opencv_has_cuda || caps.cuda_devices == 0) {
+    GTEST_SKIP() << "no CUDA here (OpenCV with the CUDA DNN backend and a GPU): this case runs on "
+                    "the GPU machine (docs/gpu.md)";
+  }
+  for (const fs::path& model : {fixture(), resized()}) {
+    SsdDetector cpu(config_for(model, BackendRequest::cpu));
+    SsdDetector cuda(config_for(model, BackendRequest::cuda));
+    const Agreement agreed = agreement(cpu, cuda, {1, 101, 201});
+    std::cout << model.filename().string() << ", CUDA vs OpenCV cpu: " << agreed.compared
+              << " detections, worst box deviation " << agreed.worst_box
+              << " px, worst score deviation " << agreed.worst_score << "\n";
+    EXPECT_GE(agreed.compared, 15U) << model;
+    EXPECT_LE(agreed.worst_box, 0.1F) << model;
+    EXPECT_LE(agreed.worst_score, 1e-3F) << model;
+  }
 }
 
 // A file beside the model wins over the description inside it: a user corrects a model's own

@@ -111,6 +111,69 @@ TEST(EventMetrics, SeriesEqualTheEventsSentAndTheCountersTotals) {
   EXPECT_EQ(status["zones"][0]["occupancy"], counter.zone_counts()[0].occupancy);
 }
 
+// The page's counts per class: the rtmot tracker on PETS09-S2L1's detections, every other track
+// called a car (class 3), the rest people (1); each line's and zone's classes add up to its total,
+// both classes are there, and a class beyond the labels' columns is in the totals only.
+TEST(EventMetrics, CountsPerClassAddUpToTheTotals) {
+  const auto dir = test::shared_path("data/mot15-train/PETS09-S2L1");
+  RTMOT_REQUIRE_FILE(dir / "det" / "det.txt");
+  const auto info = motio::read_seqinfo(dir / "seqinfo.ini");
+  const motio::FrameDetections detections(
+      motio::read_mot_file(dir / "det" / "det.txt", motio::MotFileKind::detections));
+  auto tracker_config = *tracker::find_preset("rtmot");
+  tracker_config.frame_rate = info.frame_rate;
+  tracker::Tracker tracker(tracker_config);
+  events::EventsConfig config;
+  config.lines.push_back({"middle", {{384.0, 0.0}, {384.0, 576.0}}, true});
+  config.zones.push_back({"left", {{38, 172}, {346, 172}, {346, 547}, {38, 547}}, 5.0});
+  events::EventCounter counter(config);
+  const messages::ClassLabelFn labels = [](int id) -> std::string_view {
+    return id == 1 ? "person" : id == 3 ? "car" : "";
+  };
+  EventMetrics event_metrics({{3, {"middle"}, {"left"}}}, 4, labels);  // columns 0..3
+  EventMetricsSink sink(event_metrics);
+  messages::FrameResult frame;
+  frame.stream_id = 3;
+  int beyond = 0;
+  for (int f = 1; f <= info.length; ++f) {
+    const double time = (f - 1) / info.frame_rate;
+    const auto& reports = tracker.update(detections.at(f), time);
+    frame.frame_number = f;
+    frame.tracks.assign(reports.begin(), reports.end());
+    for (auto& track : frame.tracks) track.class_id = track.id % 2 == 0 ? 1 : 3;
+    const auto& decided = counter.update(frame.tracks, time);
+    frame.events.assign(decided.begin(), decided.end());
+    // One crossing of a class the labels do not have (id 7): counted in the total only.
+    if (beyond == 0 && !frame.events.empty() && events::is_line_event(frame.events[0].kind)) {
+      frame.events[0].class_id = 7;
+      beyond = frame.events[0].kind == events::EventKind::line_in ? 1 : -1;
+    }
+    sink.write(frame);
+  }
+  ASSERT_NE(beyond, 0);
+  const nlohmann::json status = event_metrics.status().at(0);
+  const nlohmann::json& line = status["lines"][0];
+  const nlohmann::json& classes = line["classes"];
+  ASSERT_TRUE(classes.contains("person") && classes.contains("car")) << line.dump();
+  EXPECT_EQ(classes.size(), 2U) << line.dump();
+  EXPECT_EQ(classes["person"]["in"].get<int>() + classes["car"]["in"].get<int>() +
+                (beyond == 1 ? 1 : 0),
+            line["in"].get<int>());
+  EXPECT_EQ(classes["person"]["out"].get<int>() + classes["car"]["out"].get<int>() +
+                (beyond == -1 ? 1 : 0),
+            line["out"].get<int>());
+  EXPECT_EQ(line["in"].get<int>(), counter.line_counts()[0].in);
+  const nlohmann::json& zone = status["zones"][0];
+  ASSERT_TRUE(zone["classes"].contains("person") && zone["classes"].contains("car"))
+      << zone.dump();
+  EXPECT_EQ(zone["classes"]["person"]["enter"].get<int>() +
+                zone["classes"]["car"]["enter"].get<int>(),
+            zone["enter"].get<int>());
+  EXPECT_EQ(zone["classes"]["person"]["exit"].get<int>() +
+                zone["classes"]["car"]["exit"].get<int>(),
+            zone["exit"].get<int>());
+}
+
 // A name made without the YAML reader's UTF-8 check (a caller of its own) cannot break the page:
 // a byte that is not UTF-8 becomes U+FFFD, so Prometheus still reads every series.
 TEST(EventMetrics, ANameThatIsNotUtf8BecomesAReplacementCharacter) {
