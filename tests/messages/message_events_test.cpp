@@ -52,6 +52,20 @@ void expect_same_events(const FrameResult& sent, const FrameResult& got) {
   }
 }
 
+// `frame` written as a JSON line (into `line`) and read back (into `decoded`).
+::testing::AssertionResult through_json(const FrameResult& frame, fmt::memory_buffer& line,
+                                        DecodedMessage& decoded) {
+  line.clear();
+  append_json_line(frame, static_cast<std::uint32_t>(frame.tracks.size()), false,
+                   JsonLineExtras{1, nullptr}, line);
+  std::string problem;
+  if (!decode_json_line(reinterpret_cast<const std::uint8_t*>(line.data()), line.size(), decoded,
+                        problem)) {
+    return ::testing::AssertionFailure() << problem;
+  }
+  return ::testing::AssertionSuccess();
+}
+
 TEST(MessageEvents, RunIdAndEventsRoundTripAndOldReadersFindTheTracksWhereTheyWere) {
   const auto frames = frames_with_events();
   MessageEncoder encoder;
@@ -97,13 +111,7 @@ TEST(MessageFrameSize, RoundTripsAfterTheEventsAndOlderReadersSkipIt) {
     EXPECT_EQ(header_length, message::header_extended_size +
                                  frame.events.size() * message::event_record_size +
                                  message::frame_size_size);
-    line.clear();
-    append_json_line(frame, static_cast<std::uint32_t>(frame.tracks.size()), false,
-                     JsonLineExtras{1, nullptr}, line);
-    std::string problem;
-    ASSERT_TRUE(decode_json_line(reinterpret_cast<const std::uint8_t*>(line.data()), line.size(),
-                                 decoded, problem))
-        << problem;
+    ASSERT_TRUE(through_json(frame, line, decoded));
     EXPECT_EQ(decoded.frame.frame_width, 768);
     EXPECT_EQ(decoded.frame.frame_height, 576);
   }
@@ -168,13 +176,7 @@ TEST(MessageEvents, JsonLinesCarryTheRunAndTheEvents) {
   DecodedMessage decoded;
   std::size_t with_events = 0;
   for (const auto& frame : frames) {
-    line.clear();
-    append_json_line(frame, static_cast<std::uint32_t>(frame.tracks.size()), false,
-                     JsonLineExtras{1, nullptr}, line);
-    std::string problem;
-    ASSERT_TRUE(decode_json_line(reinterpret_cast<const std::uint8_t*>(line.data()), line.size(),
-                                 decoded, problem))
-        << problem;
+    ASSERT_TRUE(through_json(frame, line, decoded));
     EXPECT_EQ(decoded.frame.run_id, frame.run_id);
     expect_same_events(frame, decoded.frame);
     if (!frame.events.empty()) {
