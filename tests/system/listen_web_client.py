@@ -8,6 +8,7 @@ Usage: listen_web_client.py BASE_URL COMMAND [ARGS]
   big-head BYTES             send a GET whose head is BYTES long; print the status (0: no answer)
   screenshot FILE IDS        check a screenshot of the page: a canvas per stream of IDS, each with
                              boxes drawn in the tracks' colour (listen.js)
+  crop IN OUT                IN without the empty page below and right of its content, as OUT
 """
 import http.client
 import json
@@ -23,6 +24,7 @@ host = urllib.parse.urlparse(base)
 # listen.js's colours.
 TRACK = (0x00, 0xFF, 0x66)
 BACKGROUND = (0x1C, 0x28, 0x33)
+PAGE = (0xF4, 0xF4, 0xF4)  # style.css's body
 
 
 def listen():
@@ -109,5 +111,12 @@ elif command == "screenshot":
             sys.exit("FAIL: a canvas of %d pixels: not drawn at its frame size" % canvas)
         if boxes < 200:
             sys.exit("FAIL: a canvas without boxes (%d pixels of the tracks' colour)" % boxes)
+elif command == "crop":
+    from PIL import Image, ImageChops
+    image = Image.open(sys.argv[3]).convert("RGB")
+    page = Image.new("RGB", image.size, PAGE)
+    box = ImageChops.difference(image, page).getbbox() or (0, 0) + image.size
+    image.crop((0, 0, min(image.width, box[2] + 16), min(image.height, box[3] + 16))).save(
+        sys.argv[4], optimize=True)
 else:
     sys.exit("unknown command " + command)

@@ -96,7 +96,7 @@ PY
   { cat "$work/chromium.log"; fail "chromium could not take the screenshot"; }
 client screenshot "$work/listen-page.png" 7,9 || fail "the screenshot does not show both streams' boxes"
 if [[ ${RTMOT_UPDATE_DOCS:-0} == 1 ]]; then
-  cp "$work/listen-page.png" "$source_dir/docs/images/listen-page.png"
+  client crop "$work/listen-page.png" "$source_dir/docs/images/listen-page.png"
   echo "docs/images/listen-page.png updated"
 fi
 
