@@ -388,8 +388,9 @@ Subcommand add_listen_command(CLI::App& parent) {
   auto options = std::make_shared<ListenOptions>();
   CLI::App* cli = parent.add_subcommand(
       "listen",
-      "Receive track messages over UDP (or read a binary message file), print them and count "
-      "lost, reordered, duplicated and corrupt messages per stream");
+      "Receive track messages over UDP or MQTT (or read a binary message file), print them and "
+      "count lost, reordered, duplicated and corrupt messages per stream; --web-port shows every "
+      "stream in a browser");
   auto* port = cli->add_option("--port,-p", options->port,
                                "UDP port to listen on (0: any free port, logged at start)")
                    ->check(integer_in(0, 65535));
