@@ -20,6 +20,8 @@
 #include "messages/message_file_reader.hpp"
 #include "messages/message_format.hpp"
 #include "messages/message_stream_stats.hpp"
+#include "outputs/listen_board.hpp"
+#include "outputs/listen_web_server.hpp"
 #include "outputs/mqtt_subscriber.hpp"
 #include "outputs/mqtt_uri.hpp"
 #include "platform/clock.hpp"
@@ -50,6 +52,8 @@ struct ListenOptions {
   std::string labels_path;  // the boards' model's labels file; empty: COCO's table
   std::string read_path;
   std::string mqtt_uri;
+  int web_port{0};  // the ground station's page (docs/web.md); 0 = off
+  std::string web_bind{"127.0.0.1"};
   bool quiet{false};
 };
 
@@ -178,17 +182,40 @@ void print_summary(const messages::ListenerStats& stats, const InvalidJson& inva
   std::fflush(stdout);
 }
 
-/// What both modes do with one message's bytes.
+// The binary messages carry class ids only: the names are the boards' model's, given here.
+messages::ClassLabelFn class_labels(const ListenOptions& options) {
+  const auto labels = std::make_shared<const detector::LabelTable>(
+      options.labels_path.empty() ? detector::LabelTable::coco()
+                                  : detector::LabelTable::from_file(options.labels_path));
+  return [labels](int class_id) { return labels->name(class_id); };
+}
+
+/// The ground station's page (--web-port): what it shows, and its server. Off: both null.
+struct ListenPage {
+  std::unique_ptr<outputs::ListenBoard> board;
+  std::unique_ptr<outputs::ListenWebServer> server;  // after board: stopped before it goes
+};
+
+ListenPage start_page(const ListenOptions& options) {
+  ListenPage page;
+  if (options.web_port <= 0) return page;
+  page.board =
+      std::make_unique<outputs::ListenBoard>(class_labels(options), platform::steady_now_ns());
+  page.server = std::make_unique<outputs::ListenWebServer>(
+      *page.board, options.web_bind, static_cast<std::uint16_t>(options.web_port),
+      outputs::ListenWebServer::find_static_dir());
+  spdlog::info("web: the ground station's page at {} (its files from {})", page.server->url(),
+               page.server->static_dir().string());
+  return page;
+}
+
+/// What both modes do with one message's bytes. `board`: the page's (null: no page).
 class MessageHandler {
  public:
-  explicit MessageHandler(const ListenOptions& options) : quiet_(options.quiet) {
+  MessageHandler(const ListenOptions& options, outputs::ListenBoard* board)
+      : quiet_(options.quiet), board_(board) {
     if (!options.jsonl_path.empty()) {
-      // The binary messages carry class ids only: the names are the boards' model's, given here.
-      const auto labels = std::make_shared<const detector::LabelTable>(
-          options.labels_path.empty() ? detector::LabelTable::coco()
-                                      : detector::LabelTable::from_file(options.labels_path));
-      jsonl_ = std::make_unique<messages::JsonlSink>(
-          options.jsonl_path, [labels](int class_id) { return labels->name(class_id); });
+      jsonl_ = std::make_unique<messages::JsonlSink>(options.jsonl_path, class_labels(options));
     }
   }
 
@@ -209,6 +236,7 @@ class MessageHandler {
 
   void handle_corrupt(messages::DecodeError reason, std::size_t size) {
     stats_.record_corrupt(reason);
+    if (board_ != nullptr) board_->set_corrupt(stats_.corrupt() + invalid_json_.count);
     if (!quiet_) print_corrupt(reason, size);
   }
 
@@ -223,6 +251,7 @@ class MessageHandler {
     std::string problem;
     if (!messages::decode_json_line(data, size, decoded_, problem)) {
       if (invalid_json_.count++ == 0) invalid_json_.first_problem = problem;
+      if (board_ != nullptr) board_->set_corrupt(stats_.corrupt() + invalid_json_.count);
       if (!quiet_) print_corrupt_json(problem, size);
       return;
     }
@@ -231,11 +260,17 @@ class MessageHandler {
 
   void record(const messages::DecodedMessage& message) {
     const messages::Arrival arrival = stats_.record(message);
+    if (board_ != nullptr) {
+      // Timed on reception by our own clock: the board's clock may be wrong.
+      board_->record(message, arrival, stats_.streams().at(message.frame.stream_id),
+                     platform::steady_now_ns());
+    }
     if (!quiet_) print_message(message, arrival);
     if (jsonl_) jsonl_->write(message);
   }
 
   bool quiet_;
+  outputs::ListenBoard* board_;
   InvalidJson invalid_json_;
   messages::DecodedMessage
       decoded_;  // reused: decoding allocates nothing once it has seen the largest frame
@@ -246,7 +281,8 @@ class MessageHandler {
 int listen_udp(const ListenOptions& options) {
   platform::StopSignals signals;  // before anything else: see its header
   platform::UdpReceiver receiver(options.bind_address, options.port);
-  MessageHandler handler(options);
+  const ListenPage page = start_page(options);
+  MessageHandler handler(options, page.board.get());
   spdlog::info("listening on udp://{}", receiver.local_address());
 
   // Room for the largest UDP payload: a longer message than we send is still seen, and rejected.
@@ -288,7 +324,8 @@ int listen_mqtt(const ListenOptions& options) {
   const auto uri =
       outputs::parse_mqtt_uri(options.mqtt_uri, problem, outputs::MqttTopicUse::subscribe);
   if (!uri) throw InputError(options.mqtt_uri, 0, "--mqtt", problem, ExitCode::usage);
-  MessageHandler handler(options);
+  const ListenPage page = start_page(options);
+  MessageHandler handler(options, page.board.get());
   // The handler runs on libmosquitto's thread; the main thread reads the counts for the stats
   // line, the limits and the summary. A listener is not a hot path: a mutex is the simple choice.
   std::mutex handler_mutex;
@@ -328,7 +365,7 @@ int listen_mqtt(const ListenOptions& options) {
 
 int read_file(const ListenOptions& options) {
   messages::MessageFileReader reader(options.read_path);
-  MessageHandler handler(options);
+  MessageHandler handler(options, nullptr);
   std::vector<std::uint8_t> record;
   messages::FileReadStatus status = messages::FileReadStatus::message;
   while (options.count == 0 || reader.records_read() < options.count) {
@@ -351,8 +388,9 @@ Subcommand add_listen_command(CLI::App& parent) {
   auto options = std::make_shared<ListenOptions>();
   CLI::App* cli = parent.add_subcommand(
       "listen",
-      "Receive track messages over UDP (or read a binary message file), print them and count "
-      "lost, reordered, duplicated and corrupt messages per stream");
+      "Receive track messages over UDP or MQTT (or read a binary message file), print them and "
+      "count lost, reordered, duplicated and corrupt messages per stream; --web-port shows every "
+      "stream in a browser");
   auto* port = cli->add_option("--port,-p", options->port,
                                "UDP port to listen on (0: any free port, logged at start)")
                    ->check(integer_in(0, 65535));
@@ -372,10 +410,10 @@ Subcommand add_listen_command(CLI::App& parent) {
       ->capture_default_str();
   auto* jsonl = cli->add_option("--jsonl", options->jsonl_path,
                                 "also write every valid message to this JSON-lines file");
-  cli->add_option("--labels", options->labels_path,
-                  "the boards' model's labels file (one name per line, the first the "
-                  "background): names the classes in --jsonl's \"label\" (default: COCO's table)")
-      ->needs(jsonl);
+  auto* labels = cli->add_option(
+      "--labels", options->labels_path,
+      "the boards' model's labels file (one name per line, the first the background): names the "
+      "classes in --jsonl's \"label\" and on the page (default: COCO's table)");
   auto* read =
       cli->add_option("--read", options->read_path, "decode a binary message file instead of UDP");
   cli->add_flag("--quiet,-q", options->quiet,
@@ -385,11 +423,24 @@ Subcommand add_listen_command(CLI::App& parent) {
       "subscribe to an MQTT broker instead of UDP: mqtt://HOST[:PORT]/TOPIC (wildcards + and # "
       "allowed; binary and JSON payloads (`run --mqtt ...?format=json`) are both read, told apart "
       "by their first byte)");
-  read->excludes(port)->excludes(bind)->excludes(duration);
+  auto* web_port =
+      cli->add_option("--web-port", options->web_port,
+                      "serve the ground station's page (every stream's tracks drawn live, its "
+                      "counts and losses; docs/web.md) on this TCP port; 0 = off")
+          ->check(integer_in(0, 65535));
+  cli->add_option("--web-bind", options->web_bind,
+                  "the address the page listens on (0.0.0.0: every network; docs/web.md's threat "
+                  "model first)")
+      ->check(bind_address())
+      ->capture_default_str()
+      ->needs(web_port);
+  read->excludes(port)->excludes(bind)->excludes(duration)->excludes(web_port);
   mqtt->excludes(port)->excludes(bind)->excludes(read);
-  cli->callback([port, read, mqtt] {
+  cli->callback([port, read, mqtt, labels, jsonl, web_port] {
     if (port->count() == 0 && read->count() == 0 && mqtt->count() == 0)
       throw CLI::RequiredError("--port (or --read FILE, or --mqtt URI)");
+    if (labels->count() > 0 && jsonl->count() == 0 && web_port->count() == 0)
+      throw CLI::ValidationError("--labels", "names classes for --jsonl or --web-port: give one");
   });
   return {cli, [options] {
             platform::check_files_and_open_log({{options->read_path, "--read"}},

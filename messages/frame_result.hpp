@@ -27,6 +27,10 @@ struct FrameResult {
   std::int64_t frame_number{0};     // the source's 1-based frame number
   std::int64_t pts_ns{0};           // stream timestamp of the frame
   std::uint32_t frames_dropped{0};  // frames the source produced but nobody processed, so far
+  /// The source's picture size in pixels: the frame the boxes are in (a ground station draws them
+  /// on a canvas of this size). 0: not known (then not sent).
+  std::uint16_t frame_width{0};
+  std::uint16_t frame_height{0};
   /// No picture: the live source is down and being reopened. The tracker still advanced (tracks
   /// coast), so the ground station keeps hearing from us; `tracks` is then empty.
   bool source_outage{false};

@@ -128,6 +128,9 @@ bool decode_json_line(const std::uint8_t* data, std::size_t size, DecodedMessage
       }
       if (used != 16) throw std::invalid_argument("\"run\" is not 16 hex digits");
     }
+    const bool sized = line.contains("width") || line.contains("height");
+    frame.frame_width = sized ? required<std::uint16_t>(line, "width") : 0;
+    frame.frame_height = sized ? required<std::uint16_t>(line, "height") : 0;
     frame.events.clear();
     if (const auto events = line.find("events"); events != line.end()) {
       if (!events->is_array()) throw std::invalid_argument("\"events\" is not an array");

@@ -74,9 +74,12 @@ void append_json_line(const FrameResult& frame, std::uint32_t total_track_count,
   }
   fmt::format_to(to, "]");
   // Added fields (schema 2 still: nothing changed meaning): the sender's run id, as 16 hex digits
-  // because a u64 does not survive JavaScript's doubles, the frame's events and the end of the
-  // stream.
+  // because a u64 does not survive JavaScript's doubles, the frame's size, the frame's events and
+  // the end of the stream.
   if (frame.run_id != 0) fmt::format_to(to, R"(,"run":"{:016x}")", frame.run_id);
+  if (frame.frame_width != 0 && frame.frame_height != 0) {
+    fmt::format_to(to, R"(,"width":{},"height":{})", frame.frame_width, frame.frame_height);
+  }
   if (!frame.events.empty()) {
     fmt::format_to(to, R"(,"events":[)");
     first = true;

@@ -187,18 +187,22 @@ std::size_t MessageEncoder::encode(const FrameResult& result, std::uint8_t* buff
   const auto& tracks = result.tracks;
   // The extension only when there is something to put in it: a message without run id and
   // events is byte for byte what it was before the extension.
-  const bool extended = result.run_id != 0 || !result.events.empty();
+  const bool has_frame_size = result.frame_width != 0 && result.frame_height != 0;
+  const bool extended = result.run_id != 0 || !result.events.empty() || has_frame_size;
+  // The frame size goes after the events, so it costs its 4 bytes only when known.
+  const std::size_t fixed_extension =
+      message::header_extended_size + (has_frame_size ? message::frame_size_size : 0);
+  const bool extension_fits = extended && capacity >= fixed_extension + message::crc_size;
   std::size_t events_sent = 0;
-  if (extended && capacity >= message::header_extended_size + message::crc_size) {
+  if (extension_fits) {
     const std::size_t room =
-        (capacity - message::header_extended_size - message::crc_size) / message::event_record_size;
+        (capacity - fixed_extension - message::crc_size) / message::event_record_size;
     events_sent = std::min({result.events.size(), room, std::size_t{0xFFFF}});
   }
   const bool events_truncated = events_sent < result.events.size();
-  const std::size_t header_length =
-      extended && capacity >= message::header_extended_size + message::crc_size
-          ? message::header_extended_size + events_sent * message::event_record_size
-          : message::header_size;
+  const std::size_t header_length = extension_fits
+                                        ? fixed_extension + events_sent * message::event_record_size
+                                        : message::header_size;
   const std::size_t fit =
       std::min(message::max_track_count,
                (capacity - header_length - message::crc_size) / message::track_record_size);
@@ -243,6 +247,12 @@ std::size_t MessageEncoder::encode(const FrameResult& result, std::uint8_t* buff
     for (std::size_t i = 0; i < events_sent; ++i) {
       write_event(header + message::header_extended_size + i * message::event_record_size,
                   result.events[i]);
+    }
+    if (has_frame_size) {
+      std::uint8_t* const size_at =
+          header + message::header_extended_size + events_sent * message::event_record_size;
+      put<std::uint16_t>(size_at, result.frame_width);
+      put<std::uint16_t>(size_at + 2, result.frame_height);
     }
   }
   std::uint8_t* record = buffer + header_length;
@@ -357,6 +367,11 @@ DecodeError decode_message(const std::uint8_t* data, std::size_t size, DecodedMe
       static_cast<std::int64_t>(static_cast<std::uint64_t>(frame.times.captured_ns) +
                                 get<std::uint64_t>(data + offset::latency_ns));
   frame.run_id = extended ? get<std::uint64_t>(data + extension_offset::run_id) : 0;
+  // The frame size, when the header goes on past the events far enough to hold it.
+  const std::uint64_t after_events = message::header_extended_size + event_count * event_length;
+  const bool has_frame_size = extended && after_events + message::frame_size_size <= header_length;
+  frame.frame_width = has_frame_size ? get<std::uint16_t>(data + after_events) : 0;
+  frame.frame_height = has_frame_size ? get<std::uint16_t>(data + after_events + 2) : 0;
   frame.events.clear();
   for (std::uint64_t i = 0; i < event_count; ++i) {
     frame.events.push_back(

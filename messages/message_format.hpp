@@ -24,6 +24,10 @@ constexpr std::size_t crc_size = 4;
 /// header_extended_size + event_count x event_record_size bytes long.
 constexpr std::size_t header_extended_size = 80;
 constexpr std::size_t event_record_size = 24;
+/// After the events, inside the header still: the frame's width and height (u16 each), when the
+/// sender knows them. A reader finds them at header_extended_size + event_count x
+/// event_record_length when the header holds that many more bytes.
+constexpr std::size_t frame_size_size = 4;
 constexpr std::size_t min_size = header_size + crc_size;
 /// Past this many tracks the 16-bit counts saturate (documented; real scenes are far below).
 constexpr std::size_t max_track_count = 0xFFFF;

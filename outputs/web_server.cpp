@@ -6,43 +6,8 @@
 #include <cstdlib>
 #include <cstring>
 
-#include "common/input_error.hpp"
-#include "common/input_file.hpp"
-#include "common/input_path.hpp"
-#include "outputs/civetweb_library.hpp"
-#include "platform/host_port.hpp"
-
 namespace rtmot::outputs {
 namespace {
-
-// The types of the files the page is made of; another file in the folder is not served.
-const char* content_type(const std::filesystem::path& file) {
-  const std::string extension = file.extension().string();
-  if (extension == ".html") return "text/html; charset=utf-8";
-  if (extension == ".js") return "text/javascript; charset=utf-8";
-  if (extension == ".css") return "text/css; charset=utf-8";
-  if (extension == ".png") return "image/png";
-  return nullptr;
-}
-
-// Each response says what it is and that the browser must not guess it or frame it elsewhere.
-constexpr const char* kSafeHeaders =
-    "X-Content-Type-Options: nosniff\r\nX-Frame-Options: DENY\r\n"
-    "Cache-Control: no-store\r\nConnection: close\r\n";
-
-int respond(mg_connection* connection, int status, const char* reason, const char* type,
-            const std::string& body) {
-  mg_printf(connection, "HTTP/1.1 %d %s\r\nContent-Type: %s\r\nContent-Length: %zu\r\n%s\r\n",
-            status, reason, type, body.size(), kSafeHeaders);
-  mg_write(connection, body.data(), body.size());
-  return status;
-}
-
-int respond_error(mg_connection* connection, int status, const char* reason,
-                  const std::string& why) {
-  return respond(connection, status, reason, "application/json",
-                 nlohmann::json{{"error", why}}.dump());
-}
 
 // Compares without stopping at the first difference: the time taken says nothing about how much of
 // a guessed token was right.
@@ -54,98 +19,31 @@ bool same_secret(const std::string& given, const std::string& expected) {
   return difference == 0;
 }
 
-// The request's path, decoded ("" when the request names no path on this server).
-std::string request_path(mg_connection* connection) {
-  const char* path = mg_get_request_info(connection)->local_uri_raw;
-  return path != nullptr ? path : "";
-}
-
 }  // namespace
 
 std::filesystem::path find_static_dir() {
-  std::vector<std::filesystem::path> candidates;
-  const std::filesystem::path installed = installed_data_dir();
-  if (!installed.empty()) candidates.push_back(installed / "web");
-  candidates.emplace_back(RTMOT_WEB_SOURCE_DIR);
-  std::string tried;
-  for (const auto& folder : candidates) {
-    std::error_code error;
-    if (std::filesystem::is_regular_file(folder / "index.html", error)) return folder;
-    tried += (tried.empty() ? "" : ", ") + folder.string();
-  }
-  throw InputError("", 0, "output.web_port",
-                   "the page's files are missing (looked in " + tried + ")");
+  return find_page_dir("index.html", "output.web_port");
 }
 
 WebServer::WebServer(WebContent content, const std::string& bind_address, std::uint16_t port,
                      const std::filesystem::path& static_dir)
     : content_(std::move(content)),
-      url_("http://" + platform::format_host_port(bind_address, port) + "/"),
-      static_dir_(static_dir) {
-  for (const auto& entry : std::filesystem::directory_iterator(static_dir)) {
-    const char* type = content_type(entry.path());
-    if (type == nullptr || !entry.is_regular_file()) continue;
-    const std::string name = entry.path().filename().string();
-    files_["/" + name] = StaticFile{type, read_text_file(entry.path())};
-  }
-  if (files_.count("/index.html") == 0) {
-    throw InputError(static_dir.string(), 0, "output.web_port", "no index.html");
-  }
-  files_["/"] = files_["/index.html"];
-  ensure_civetweb_library();
-  const std::string ports = platform::format_host_port(bind_address, port);
-  // 8 workers: kMaxWatchers MJPEG clients hold one each; the others serve the page and its status
-  // polls (one request a second per open page). Beyond them, connections wait in a bounded queue,
-  // then in the kernel's bounded backlog. 5 s for a request: a page over a slow link. A client
-  // that stops reading its MJPEG stream is dropped when a write waits longer than that.
-  const char* options[] = {"listening_ports",
-                           ports.c_str(),
-                           "num_threads",
-                           "8",
-                           "request_timeout_ms",
-                           "5000",
-                           "enable_keep_alive",
-                           "no",
-                           "linger_timeout_ms",
-                           "0",
-                           "connection_queue",
-                           "16",
-                           "listen_backlog",
-                           "32",
-                           "max_request_size",
-                           "8192",
-                           nullptr};
-  mg_callbacks callbacks{};
-  context_ = mg_start(&callbacks, nullptr, options);
-  if (context_ == nullptr) {
-    throw InputError(url_, 0, "output.web_port", "cannot listen (port in use?)", ExitCode::network);
-  }
+      files_(static_dir, "index.html", "output.web_port"),
+      server_(bind_address, port, "output.web_port") {
   // civetweb tries exact URIs first, then "/video" as a prefix ("/video/..."), then the pattern.
-  mg_set_request_handler(context_, "/api/status", &WebServer::serve_status, this);
-  mg_set_request_handler(context_, "/api/events", &WebServer::serve_events, this);
-  mg_set_request_handler(context_, "/video", &WebServer::serve_video, this);
-  mg_set_request_handler(context_, "**", &WebServer::serve_static, this);
+  server_.handle("/api/status", &WebServer::serve_status, this);
+  server_.handle("/api/events", &WebServer::serve_events, this);
+  server_.handle("/video", &WebServer::serve_video, this);
+  server_.handle("**", &WebServer::serve_static, this);
 }
 
 WebServer::~WebServer() {
-  // The MJPEG workers see this within one wait for a picture and end; mg_stop joins them.
+  // The MJPEG workers see this within one wait for a picture and end; server_ joins them.
   stopping_.store(true, std::memory_order_relaxed);
-  if (context_ != nullptr) mg_stop(context_);
 }
 
 int WebServer::serve_static(mg_connection* connection, void* self) {
-  const auto& server = *static_cast<WebServer*>(self);
-  const mg_request_info* request = mg_get_request_info(connection);
-  if (request->request_method == nullptr || std::strcmp(request->request_method, "GET") != 0) {
-    return respond_error(connection, 405, "Method Not Allowed", "only GET here");
-  }
-  // By name only: the request path must be one of the files read at start ("/app.js"), so a path
-  // with "..", "%2e%2e", a slash or a link inside leads nowhere.
-  const auto file = server.files_.find(request_path(connection));
-  if (file == server.files_.end()) {
-    return respond_error(connection, 404, "Not Found", "no such page");
-  }
-  return respond(connection, 200, "OK", file->second.type.c_str(), file->second.body);
+  return static_cast<WebServer*>(self)->files_.serve(connection);
 }
 
 int WebServer::serve_status(mg_connection* connection, void* self) {

@@ -24,9 +24,7 @@
 
 #include "outputs/live_picture.hpp"
 #include "outputs/pipeline_metrics.hpp"
-
-struct mg_context;
-struct mg_connection;
+#include "outputs/web_site.hpp"
 
 namespace rtmot::outputs {
 
@@ -60,6 +58,7 @@ class WebServer {
   /// Most MJPEG clients at once (every source together); one more is answered 503. Each holds a
   /// worker; the rest of the workers serve the page and the status.
   static constexpr int kMaxWatchers = 4;
+  static_assert(kMaxWatchers < PageServer::kWorkers, "workers must stay for the page and status");
   /// The largest body a write may send (an events section of many lines and zones fits).
   static constexpr long long kMaxBody = 64 * 1024;
 
@@ -72,15 +71,11 @@ class WebServer {
   WebServer& operator=(const WebServer&) = delete;
 
   /// "http://ADDRESS:PORT/", for the start-up log.
-  const std::string& url() const { return url_; }
+  const std::string& url() const { return server_.url(); }
   /// Where its files were read from.
-  const std::filesystem::path& static_dir() const { return static_dir_; }
+  const std::filesystem::path& static_dir() const { return files_.folder(); }
 
  private:
-  struct StaticFile {
-    std::string type;
-    std::string body;
-  };
   static int serve_static(mg_connection* connection, void* self);
   static int serve_status(mg_connection* connection, void* self);
   static int serve_video(mg_connection* connection, void* self);
@@ -88,13 +83,11 @@ class WebServer {
   int stream_video(mg_connection* connection, LivePicture& picture);
 
   WebContent content_;
-  std::mutex geometry_mutex_;                // guards content_.sources (HTTP workers only)
-  std::map<std::string, StaticFile> files_;  // by request path ("/" is index.html)
-  std::string url_;
-  std::filesystem::path static_dir_;
+  std::mutex geometry_mutex_;  // guards content_.sources (HTTP workers only)
+  StaticFiles files_;          // "/" is index.html
   std::atomic<int> watchers_{0};
   std::atomic<bool> stopping_{false};
-  mg_context* context_{nullptr};
+  PageServer server_;  // last: stopped (its workers joined) before the members they use go
 };
 
 }  // namespace rtmot::outputs

@@ -2,6 +2,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <stdexcept>
 #include <thread>
 #include <utility>
@@ -38,6 +39,11 @@ std::vector<std::unique_ptr<detector::Detector>> one_lane(
   return detectors;
 }
 
+// A side of the picture as the message carries it (u16): 0 when unknown, saturated past 65535.
+std::uint16_t frame_side(int pixels) {
+  return static_cast<std::uint16_t>(std::clamp(pixels, 0, 0xFFFF));
+}
+
 }  // namespace
 
 struct Pipeline::Stages {
@@ -72,7 +78,9 @@ struct Pipeline::Stages {
       captures.back()->set_tap(input.tap);
       captures.back()->set_outage_board(outage_board.get());
       slots.push_back(&captures.back()->slot());
-      trackers.push_back({input.tracker, input.events, input.stream_id, input.events_mailbox});
+      const platform::SourceInfo& info = captures.back()->source().info();
+      trackers.push_back({input.tracker, input.events, input.stream_id, input.events_mailbox,
+                          frame_side(info.width), frame_side(info.height)});
       stream_ids.push_back(input.stream_id);
       max_detections =
           std::max(max_detections, static_cast<std::size_t>(input.tracker.max_detections));

@@ -26,6 +26,8 @@ void TrackStage::Stream::stamp(messages::FrameResult& result, std::int64_t frame
                                std::int64_t pts_ns, std::uint32_t frames_dropped) {
   result.stream_id = stream_id;
   result.run_id = messages::this_process_run_id();
+  result.frame_width = frame_width;
+  result.frame_height = frame_height;
   result.sequence = static_cast<std::uint64_t>(messages++);
   result.source_outage = false;
   result.end_of_stream = false;
@@ -51,6 +53,8 @@ TrackStage::TrackStage(const std::vector<TrackInput>& inputs, SpscQueue<Detected
     Stream stream;
     stream.tracker = std::make_unique<tracker::Tracker>(wanted.tracker);
     stream.stream_id = wanted.stream_id;
+    stream.frame_width = wanted.frame_width;
+    stream.frame_height = wanted.frame_height;
     stream.events_mailbox = wanted.events_mailbox;
     if (!wanted.events.lines.empty() || !wanted.events.zones.empty())
       stream.counter = std::make_unique<events::EventCounter>(wanted.events);

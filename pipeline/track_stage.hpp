@@ -22,6 +22,9 @@ struct TrackInput {
   std::uint32_t stream_id{0};
   /// Where a new events configuration may arrive while running (not owned); null: never.
   EventsMailbox* events_mailbox{nullptr};
+  /// The source's picture size, sent with every message (a ground station's canvas); 0: unknown.
+  std::uint16_t frame_width{0};
+  std::uint16_t frame_height{0};
 };
 
 class TrackStage {
@@ -49,6 +52,8 @@ class TrackStage {
     EventsMailbox* events_mailbox{nullptr};
     std::uint32_t events_generation{0};  // of the configuration counted now (0: the run's own)
     std::uint32_t stream_id{0};
+    std::uint16_t frame_width{0};
+    std::uint16_t frame_height{0};
     std::int64_t messages{0};          // frames and outage ticks sent
     std::int64_t frames_processed{0};  // real frames
     std::int64_t frames_predicted{0};  // skipped frames sent with predictions (full_rate)
@@ -60,8 +65,8 @@ class TrackStage {
     /// Frames before `frame_number` that did not become a processed message: dropped somewhere.
     std::uint32_t dropped_before(std::int64_t frame_number) const;
     /// The header every message of the stream carries, in one place: the stream, the run (a
-    /// restarted board: a new run id), the stream's next sequence number, the frame and its
-    /// time; the kind flags cleared, for the caller to set the one that applies.
+    /// restarted board: a new run id), the stream's next sequence number, the frame, its size and
+    /// its time; the kind flags cleared, for the caller to set the one that applies.
     void stamp(messages::FrameResult& result, std::int64_t frame_number, std::int64_t pts_ns,
                std::uint32_t frames_dropped);
   };

@@ -52,6 +52,20 @@ void expect_same_events(const FrameResult& sent, const FrameResult& got) {
   }
 }
 
+// `frame` written as a JSON line (into `line`) and read back (into `decoded`).
+::testing::AssertionResult through_json(const FrameResult& frame, fmt::memory_buffer& line,
+                                        DecodedMessage& decoded) {
+  line.clear();
+  append_json_line(frame, static_cast<std::uint32_t>(frame.tracks.size()), false,
+                   JsonLineExtras{1, nullptr}, line);
+  std::string problem;
+  if (!decode_json_line(reinterpret_cast<const std::uint8_t*>(line.data()), line.size(), decoded,
+                        problem)) {
+    return ::testing::AssertionFailure() << problem;
+  }
+  return ::testing::AssertionSuccess();
+}
+
 TEST(MessageEvents, RunIdAndEventsRoundTripAndOldReadersFindTheTracksWhereTheyWere) {
   const auto frames = frames_with_events();
   MessageEncoder encoder;
@@ -74,6 +88,39 @@ TEST(MessageEvents, RunIdAndEventsRoundTripAndOldReadersFindTheTracksWhereTheyWe
     events_seen += frame.events.size();
   }
   EXPECT_GT(events_seen, 50U);
+}
+
+// The frame size (a ground station's canvas) rides after the events, inside the header: it round
+// trips in binary and JSON, and a reader of before it finds the events and tracks where they were.
+TEST(MessageFrameSize, RoundTripsAfterTheEventsAndOlderReadersSkipIt) {
+  auto frames = frames_with_events();
+  MessageEncoder encoder;
+  DecodedMessage decoded;
+  std::vector<std::uint8_t> buffer(message::safe_udp_payload);
+  fmt::memory_buffer line;
+  for (auto& frame : frames) {
+    frame.frame_width = 768;
+    frame.frame_height = 576;
+    const std::size_t size = encoder.encode(frame, buffer.data(), buffer.size());
+    ASSERT_EQ(decode_message(buffer.data(), size, decoded), DecodeError::none);
+    ASSERT_TRUE(test::same_as_sent(frame, decoded));
+    expect_same_events(frame, decoded.frame);
+    EXPECT_EQ(decoded.frame.frame_width, 768);
+    EXPECT_EQ(decoded.frame.frame_height, 576);
+    const std::size_t header_length = buffer[6] | (buffer[7] << 8);
+    EXPECT_EQ(header_length, message::header_extended_size +
+                                 frame.events.size() * message::event_record_size +
+                                 message::frame_size_size);
+    ASSERT_TRUE(through_json(frame, line, decoded));
+    EXPECT_EQ(decoded.frame.frame_width, 768);
+    EXPECT_EQ(decoded.frame.frame_height, 576);
+  }
+  // Unknown: not sent, read back as 0.
+  frames.front().frame_width = 0;
+  const std::size_t size = encoder.encode(frames.front(), buffer.data(), buffer.size());
+  ASSERT_EQ(decode_message(buffer.data(), size, decoded), DecodeError::none);
+  EXPECT_EQ(decoded.frame.frame_width, 0);
+  EXPECT_EQ(decoded.frame.frame_height, 0);
 }
 
 TEST(MessageEvents, AMessageWithoutRunIdOrEventsIsUnchanged) {
@@ -129,13 +176,7 @@ TEST(MessageEvents, JsonLinesCarryTheRunAndTheEvents) {
   DecodedMessage decoded;
   std::size_t with_events = 0;
   for (const auto& frame : frames) {
-    line.clear();
-    append_json_line(frame, static_cast<std::uint32_t>(frame.tracks.size()), false,
-                     JsonLineExtras{1, nullptr}, line);
-    std::string problem;
-    ASSERT_TRUE(decode_json_line(reinterpret_cast<const std::uint8_t*>(line.data()), line.size(),
-                                 decoded, problem))
-        << problem;
+    ASSERT_TRUE(through_json(frame, line, decoded));
     EXPECT_EQ(decoded.frame.run_id, frame.run_id);
     expect_same_events(frame, decoded.frame);
     if (!frame.events.empty()) {

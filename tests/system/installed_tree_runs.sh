@@ -66,7 +66,7 @@ grep -q "tried .*$stage/usr/share/rtmot/models/nothere.onnx" "$work/missing.err"
   { cat "$work/missing.err"; fail "the missing model's error does not say where it looked"; }
 
 # The operator's page comes from the installed tree, not from the source tree the binary was built in.
-for file in index.html app.js style.css; do
+for file in index.html app.js style.css listen.html listen.js; do
   [[ -f $stage/usr/share/rtmot/web/$file ]] || fail "the page's $file was not installed"
 done
 port=$(python3 -c 'import socket; s = socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')
@@ -74,6 +74,10 @@ env -i PATH=/usr/bin:/bin "$bin" run --source "test://ball?width=320&height=240"
   --max-frames 3 --web-port "$port" 2>"$work/web.err" || { cat "$work/web.err"; fail "a run with --web-port failed"; }
 grep -q "web: the operator's page at http://127.0.0.1:$port/ (its files from $stage/usr/share/rtmot/web)" \
   "$work/web.err" || { cat "$work/web.err"; fail "the page's files were not the installed ones"; }
+env -i PATH=/usr/bin:/bin "$bin" listen --port 0 --bind 127.0.0.1 --duration 0.5 --web-port "$port" \
+  2>"$work/listen.err" >/dev/null || { cat "$work/listen.err"; fail "rtmot listen --web-port failed"; }
+grep -q "web: the ground station's page at http://127.0.0.1:$port/ (its files from $stage/usr/share/rtmot/web)" \
+  "$work/listen.err" || { cat "$work/listen.err"; fail "the ground station's page is not the installed one"; }
 
 unit=$stage/usr/lib/systemd/system/rtmot.service
 [[ -f $unit ]] || fail "no unit at $unit"
