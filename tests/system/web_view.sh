@@ -14,11 +14,8 @@
 set -euo pipefail
 rtmot=$1 source_dir=$2 shared_dir=$3
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
-video=$shared_dir/data/video/vtest.avi
-model=$source_dir/models/ssdlite_mobilenet_v2_coco.onnx
-for file in "$video" "$model"; do
-  [[ -f $file ]] || { echo "FAIL: missing test input $file (model: scripts/fetch_model.sh)"; exit 1; }
-done
+# shellcheck source=vtest_inputs.sh
+source "$here/vtest_inputs.sh" "$source_dir" "$shared_dir"
 work=$(mktemp -d)
 pid=
 cleanup() {
