@@ -13,7 +13,9 @@
 #include <vector>
 
 #include "common/input_error.hpp"
+#include "detector/model_check.hpp"
 #include "detector/ssd_detector.hpp"
+#include "detector/xnnpack_network.hpp"
 #include "shared_data.hpp"
 
 namespace rtmot::detector {
@@ -190,6 +192,37 @@ void set_ints(onnx::NodeProto& node, const std::string& name, std::vector<std::i
   attribute->set_name(name);
   attribute->set_type(onnx::AttributeProto::INTS);
   for (const auto v : values) attribute->add_ints(v);
+}
+
+// After the network XNNPACK builds, the engine runs a decoding tail on the host (pytorch-ssd's box
+// decoding and softmax: model_layout_test.cpp); an operator the tail does not run is named, with
+// its node and the model, and model check reports the same. The class logits pass through Tanh
+// (which OpenCV runs) before leaving the graph.
+TEST_F(XnnpackModelErrors, AnOperatorTheDecodingTailDoesNotRunIsNamed) {
+  if (!xnnpack_built()) GTEST_SKIP() << "this build has no XNNPACK backend";
+  if (!xnnpack_runs_here()) GTEST_SKIP() << "XNNPACK does not initialize on this processor";
+  onnx::GraphProto& graph = *model_.mutable_graph();
+  for (auto& node : *graph.mutable_node()) {
+    for (auto& output : *node.mutable_output()) {
+      if (output == "class_logits") output = "raw_logits";
+    }
+  }
+  onnx::NodeProto& tanh = *graph.add_node();
+  tanh.set_name("squash_logits");
+  tanh.set_op_type("Tanh");
+  tanh.add_input("raw_logits");
+  tanh.add_output("class_logits");
+  const SsdConfig config = write(BackendRequest::xnnpack);
+  const InputError e = expect_error(config);
+  expect_bad_model(e, "node 'squash_logits' (Tanh)", "op 'Tanh' in the decoding tail");
+
+  const ModelCheck check = check_model({config.model_path, config.anchors_path});
+  const std::string report = format_model_check(check);
+  EXPECT_TRUE(check.usable()) << report;  // OpenCV runs it
+  EXPECT_NE(report.find("engine     xnnpack: no: " + config.model_path.string() +
+                        ": node 'squash_logits' (Tanh): op 'Tanh' in the decoding tail"),
+            std::string::npos)
+      << report;
 }
 
 TEST_F(XnnpackModelErrors, HugePadsAreABadModel) {
