@@ -45,7 +45,7 @@ class ModelCheckTest : public ::testing::Test {
 };
 
 TEST_F(ModelCheckTest, TheBundledModelFitsAndRunsOnEveryEngineOfThisBuild) {
-  const ModelCheck check = check_model({model_, {}});
+  const ModelCheck check = check_model({model_, {}, {}});
   const std::string report = format_model_check(check);
   std::cout << report;
   EXPECT_TRUE(check.problems.empty()) << report;
@@ -83,7 +83,7 @@ TEST_F(ModelCheckTest, AnchorsOfAnotherCountAreNamedWithBothCounts) {
       out << line << '\n';
     }
   }
-  const ModelCheck check = check_model({model_, cut});
+  const ModelCheck check = check_model({model_, cut, {}});
   EXPECT_FALSE(check.usable());
   EXPECT_EQ(check.anchors_in_file, 1900);
   EXPECT_TRUE(any_problem_with(
@@ -98,7 +98,7 @@ TEST_F(ModelCheckTest, AnchorsOfAnotherCountAreNamedWithBothCounts) {
 TEST_F(ModelCheckTest, AFileThatIsNoModelIsNamedAsSuch) {
   const fs::path text = dir_ / "notes.onnx";
   std::ofstream(text) << "not a model\n";
-  const ModelCheck check = check_model({text, {}});
+  const ModelCheck check = check_model({text, {}, {}});
   EXPECT_FALSE(check.usable());
   EXPECT_TRUE(check.outputs.empty());
   EXPECT_TRUE(any_problem_with(check, "model: OpenCV cannot load or run it"));
@@ -119,7 +119,7 @@ TEST_F(ModelCheckTest, AChangedModelFailsItsChecksum) {
     const char zeros[16] = {};
     file.write(zeros, sizeof zeros);
   }
-  const ModelCheck check = check_model({copy, {}});
+  const ModelCheck check = check_model({copy, {}, {}});
   EXPECT_EQ(check.checksums, "FAILED");
   EXPECT_TRUE(any_problem_with(check, "checksums: ")) << format_model_check(check);
   EXPECT_FALSE(check.usable());
@@ -128,7 +128,7 @@ TEST_F(ModelCheckTest, AChangedModelFailsItsChecksum) {
 // No file at all: the one error of the command (exit code bad_model), naming the path.
 TEST_F(ModelCheckTest, AMissingModelIsAnErrorNamingIt) {
   try {
-    check_model({dir_ / "absent.onnx", {}});
+    check_model({dir_ / "absent.onnx", {}, {}});
     FAIL() << "no error";
   } catch (const InputError& e) {
     EXPECT_EQ(e.exit_code(), ExitCode::bad_model);

@@ -291,7 +291,7 @@ TEST_F(ModelLayout, ItsLabelsFileNamesItsClasses) {
 // XNNPACK runs the network and the host the wrapper's decoding (Slice, Exp, Sigmoid...): model
 // check finds both CPU engines running the fixture.
 TEST_F(ModelLayout, CheckReportsTheLayoutLabelsAndEngines) {
-  const ModelCheck check = check_model({fixture(), {}});
+  const ModelCheck check = check_model({fixture(), {}, {}});
   const std::string report = format_model_check(check);
   std::cout << report;
   EXPECT_TRUE(check.usable()) << report;

@@ -216,7 +216,7 @@ TEST_F(XnnpackModelErrors, AnOperatorTheDecodingTailDoesNotRunIsNamed) {
   const InputError e = expect_error(config);
   expect_bad_model(e, "node 'squash_logits' (Tanh)", "op 'Tanh' in the decoding tail");
 
-  const ModelCheck check = check_model({config.model_path, config.anchors_path});
+  const ModelCheck check = check_model({config.model_path, config.anchors_path, {}});
   const std::string report = format_model_check(check);
   EXPECT_TRUE(check.usable()) << report;  // OpenCV runs it
   EXPECT_NE(report.find("engine     xnnpack: no: " + config.model_path.string() +
