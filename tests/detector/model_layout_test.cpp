@@ -20,11 +20,14 @@
 
 #include "box_deviation.hpp"
 #include "common/input_error.hpp"
+#include "detector/activation_ranges.hpp"
 #include "detector/coco_labels.hpp"
+#include "detector/int8_calibration.hpp"
 #include "detector/model_check.hpp"
 #include "detector/model_description.hpp"
 #include "detector/ssd_detector.hpp"
 #include "detector/xnnpack_network.hpp"
+#include "int8_match.hpp"
 #include "motio/mot_files.hpp"
 #include "shared_data.hpp"
 #include "tracker/box_geometry.hpp"
@@ -177,6 +180,44 @@ TEST_F(ModelLayout, XnnpackRunsTheDecodedLayoutAsOpenCvAndTheBundledModelDo) {
   EXPECT_GE(layouts.compared, 20U);
   EXPECT_LE(layouts.worst_box, 0.05F);
   EXPECT_LE(layouts.worst_score, 1e-4F);
+}
+
+// The int8 engine on the decoded layout: the network in int8 (the ranges calibrated for this file,
+// as scripts/calibrate_int8.sh does), its input normalisation and decoding tail in fp32. Against
+// fp32 XNNPACK on the same file, within the int8 tolerance documented for the bundled model
+// (int8_match.hpp, docs/cpu-detector.md).
+TEST_F(ModelLayout, Int8RunsTheDecodedLayoutWithinTheInt8Tolerance) {
+  if (!xnnpack_built()) GTEST_SKIP() << "this build has no XNNPACK engine";
+  if (!xnnpack_runs_here()) GTEST_SKIP() << "XNNPACK does not run on this CPU";
+  std::set<int> numbers;
+  for (int i = 0; i < kCalibrationFrames; ++i) {
+    numbers.insert(kCalibrationFirstFrame + i * kCalibrationFrameStep);
+  }
+  std::vector<cv::Mat> samples;
+  for (const auto& [number, image] : test::vtest_frames(numbers)) samples.push_back(image);
+  ASSERT_EQ(samples.size(), numbers.size());
+  const fs::path ranges = dir_ / "decoded.ranges";
+  std::ofstream(ranges) << activation_ranges_text(
+      calibrate_activation_ranges(config_for(fixture(), BackendRequest::xnnpack), samples));
+  SsdConfig config = config_for(fixture(), BackendRequest::xnnpack);
+  config.score_threshold = test::kInt8Cut;
+  config.threads = 1;
+  config.int8_ranges = ranges;
+  SsdDetector fp32(config);
+  config.backend = BackendRequest::xnnpack_int8;
+  SsdDetector int8(config);
+  EXPECT_EQ(int8.backend().name, "xnnpack-int8");
+  const auto frames = test::vtest_frames(test::reference_frame_numbers());
+  const test::Int8Match match = test::match_int8(fp32, int8, frames);
+  ASSERT_GE(match.sure, 5 * static_cast<int>(frames.size()) / 2) << "too few detections to judge";
+  std::cout << "decoded layout, int8 vs fp32 XNNPACK over " << frames.size() << " frames: matched "
+            << match.matched << "/" << match.sure << "; box move median " << match.median_box()
+            << " px, worst " << match.worst_box() << " px; score change median "
+            << match.median_score() << ", worst " << match.worst_score() << "\n";
+  EXPECT_GE(static_cast<double>(match.matched), test::kInt8MinMatchedShare * match.sure);
+  EXPECT_LE(match.median_box(), test::kInt8MedianBoxPx);
+  EXPECT_LE(match.median_score(), test::kInt8MedianScore);
+  EXPECT_LE(match.worst_score(), test::kInt8WorstScore);
 }
 
 // Scored against PETS09-S2L1's ground truth (vtest.avi is that sequence) on 16 frames spread over
