@@ -15,7 +15,7 @@ namespace rtmot::detector {
 
 const char* decoding_tail_operators() {
   return "Slice, Mul, Add, Sub, Div, Exp, Sigmoid, Softmax, Concat, Reshape, Unsqueeze, Squeeze, "
-         "Flatten, Identity, Constant";
+         "Flatten, Identity, Constant; Shape, Gather, Cast on shapes (computed once)";
 }
 
 namespace {
@@ -27,7 +27,8 @@ constexpr std::size_t kMaxRank = 8;  // of a tensor the tail computes
 const std::set<std::string>& tail_operators() {
   static const std::set<std::string> ops{"Slice",     "Mul",     "Add",     "Sub",      "Div",
                                          "Exp",       "Sigmoid", "Softmax", "Concat",   "Reshape",
-                                         "Unsqueeze", "Squeeze", "Flatten", "Identity", "Constant"};
+                                         "Unsqueeze", "Squeeze", "Flatten", "Identity", "Constant",
+                                         "Shape",     "Gather",  "Cast"};
   return ops;
 }
 
@@ -164,8 +165,16 @@ class Planner {
       softmax(node);
     } else if (op == "Slice") {
       slice(node);
+    } else if (op == "Concat" && input(node, 0).integer) {
+      integer_concat(node);
     } else if (op == "Concat") {
       concat(node);
+    } else if (op == "Shape") {
+      shape_of(node);
+    } else if (op == "Gather") {
+      gather(node);
+    } else if (op == "Cast") {
+      cast(node);
     } else {
       throw problem(&node, "op '" + op +
                                "' in the decoding tail is run neither by XNNPACK nor by " +
@@ -528,6 +537,67 @@ class Planner {
                               out[at + i] = x[base[0] + i * step[0]];
                           });
     });
+  }
+
+  // Shapes are known when the tail is planned: torch.onnx's `view(x.size(0), -1, k)` (Shape,
+  // Gather, Unsqueeze, Concat, then Reshape) becomes constants here.
+  void shape_of(const onnx::NodeProto& node) {
+    const Shape& from = input(node, 0).shape;
+    Tensor tensor;
+    tensor.constant = tensor.integer = true;
+    const auto rank = static_cast<std::int64_t>(from.size());
+    const auto* s = attribute(node, "start");
+    const auto* e = attribute(node, "end");
+    const auto clamp = [rank](std::int64_t v) {
+      return std::clamp(v < 0 ? v + rank : v, std::int64_t{0}, rank);
+    };
+    const std::int64_t first = s ? clamp(s->i()) : 0;
+    const std::int64_t last = e ? clamp(e->i()) : rank;
+    for (std::int64_t i = first; i < last; ++i) {
+      tensor.integers.push_back(static_cast<std::int64_t>(from[static_cast<std::size_t>(i)]));
+    }
+    tensor.shape = {tensor.integers.size()};
+    tensors_[node.output(0)] = tensor;
+  }
+
+  void gather(const onnx::NodeProto& node) {
+    const auto data = integers_input(node, 0);
+    const Tensor& indices = input(node, 1);
+    const auto* a = attribute(node, "axis");
+    if (!indices.integer || input(node, 0).shape.size() != 1 || (a && a->i() != 0)) {
+      throw problem(&node, "the tail gathers only from a 1-D int64 constant (a shape)");
+    }
+    Tensor tensor;
+    tensor.constant = tensor.integer = true;
+    tensor.shape = indices.shape;
+    for (auto index : indices.integers) {
+      const auto size = static_cast<std::int64_t>(data.size());
+      if (index < 0) index += size;
+      if (index < 0 || index >= size) throw problem(&node, "index outside the shape");
+      tensor.integers.push_back(data[static_cast<std::size_t>(index)]);
+    }
+    tensors_[node.output(0)] = tensor;
+  }
+
+  void cast(const onnx::NodeProto& node) {
+    const auto* to = attribute(node, "to");
+    const Tensor& from = input(node, 0);
+    const bool same = to && ((from.integer && to->i() == onnx::TensorProto::INT64) ||
+                             (!from.integer && to->i() == onnx::TensorProto::FLOAT));
+    if (!same) throw problem(&node, "the tail casts only int64 to int64 and float to float");
+    tensors_[node.output(0)] = from;
+  }
+
+  void integer_concat(const onnx::NodeProto& node) {
+    Tensor tensor;
+    tensor.constant = tensor.integer = true;
+    for (int i = 0; i < node.input_size(); ++i) {
+      const auto part = integers_input(node, i);
+      if (input(node, i).shape.size() > 1) throw problem(&node, "joins shapes of rank 1 only");
+      tensor.integers.insert(tensor.integers.end(), part.begin(), part.end());
+    }
+    tensor.shape = {tensor.integers.size()};
+    tensors_[node.output(0)] = tensor;
   }
 
   void concat(const onnx::NodeProto& node) {

@@ -6,6 +6,7 @@
 #include <onnx/onnx_pb.h>
 
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -17,6 +18,7 @@
 #include "detector/ssd_detector.hpp"
 #include "detector/xnnpack_network.hpp"
 #include "shared_data.hpp"
+#include "vtest_frames.hpp"
 
 namespace rtmot::detector {
 namespace {
@@ -192,6 +194,107 @@ void set_ints(onnx::NodeProto& node, const std::string& name, std::vector<std::i
   attribute->set_name(name);
   attribute->set_type(onnx::AttributeProto::INTS);
   for (const auto v : values) attribute->add_ints(v);
+}
+
+// torch.onnx writes pytorch-ssd's `view(x.size(0), -1, k)` as Shape, Gather, Unsqueeze and Concat
+// feeding the Reshape: shapes that are constants once the input size is known. The bundled model's
+// head Reshapes rewritten so: the heads' reshapes and their Concat move to the host tail (shapes
+// computed once), and the detections are the unchanged model's on XNNPACK.
+TEST_F(XnnpackModelErrors, ComputedReshapesAsTorchWritesThemRunInTheTail) {
+  if (!xnnpack_built()) GTEST_SKIP() << "this build has no XNNPACK backend";
+  if (!xnnpack_runs_here()) GTEST_SKIP() << "XNNPACK does not initialize on this processor";
+  const SsdConfig original = write(BackendRequest::xnnpack);
+  onnx::GraphProto& graph = *model_.mutable_graph();
+  const auto int64_constant = [&](const std::string& name, std::vector<std::int64_t> values,
+                                  bool scalar) {
+    onnx::TensorProto& tensor = *graph.add_initializer();
+    tensor.set_name(name);
+    tensor.set_data_type(onnx::TensorProto::INT64);
+    if (!scalar) tensor.add_dims(static_cast<std::int64_t>(values.size()));
+    for (const auto v : values) tensor.add_int64_data(v);
+  };
+  std::vector<onnx::NodeProto> nodes;
+  int rewritten = 0;
+  for (const onnx::NodeProto& node : graph.node()) {
+    if (node.op_type() != "Reshape") {
+      nodes.push_back(node);
+      continue;
+    }
+    const std::string tag = "dyn" + std::to_string(rewritten++);
+    std::int64_t columns = 0;
+    for (const auto& init : graph.initializer()) {
+      if (init.name() == node.input(1)) columns = init.int64_data_size() ? init.int64_data(2) : 0;
+    }
+    if (columns == 0) {  // raw_data
+      for (const auto& init : graph.initializer()) {
+        if (init.name() != node.input(1)) continue;
+        std::int64_t values[3];
+        std::memcpy(values, init.raw_data().data(), sizeof(values));
+        columns = values[2];
+      }
+    }
+    ASSERT_GT(columns, 0) << node.name();
+    int64_constant(tag + "_zero", {0}, true);
+    int64_constant(tag + "_rest", {-1, columns}, false);
+    const auto add = [&](const std::string& op, std::vector<std::string> inputs,
+                         const std::string& output) {
+      onnx::NodeProto made;
+      made.set_name(tag + "_" + op);
+      made.set_op_type(op);
+      for (const auto& input : inputs) made.add_input(input);
+      made.add_output(output);
+      nodes.push_back(made);
+      return &nodes.back();
+    };
+    add("Shape", {node.input(0)}, tag + "_shape");
+    add("Gather", {tag + "_shape", tag + "_zero"}, tag + "_batch");
+    onnx::NodeProto* unsqueeze = add("Unsqueeze", {tag + "_batch"}, tag + "_batch1");
+    auto* axes = unsqueeze->add_attribute();
+    axes->set_name("axes");
+    axes->set_type(onnx::AttributeProto::INTS);
+    axes->add_ints(0);
+    onnx::NodeProto* concat = add("Concat", {tag + "_batch1", tag + "_rest"}, tag + "_target");
+    auto* axis = concat->add_attribute();
+    axis->set_name("axis");
+    axis->set_type(onnx::AttributeProto::INT);
+    axis->set_i(0);
+    onnx::NodeProto reshape = node;
+    reshape.set_input(1, tag + "_target");
+    nodes.push_back(reshape);
+  }
+  EXPECT_EQ(rewritten, 12);
+  graph.clear_node();
+  for (const auto& node : nodes) *graph.add_node() = node;
+  const fs::path changed = dir_ / "computed.onnx";
+  {
+    std::ofstream out(changed, std::ios::binary);
+    ASSERT_TRUE(model_.SerializeToOstream(&out));
+  }
+  SsdConfig config = original;
+  config.model_path = changed;
+  config.classes = {};
+  SsdConfig reference_config = original;
+  reference_config.classes = {};
+  SsdDetector computed(config);
+  SsdDetector reference(reference_config);
+  // 12 heads x (Shape, Gather, Unsqueeze, Concat, Reshape), the two Concats, the two Identities.
+  EXPECT_NE(computed.describe().find("decoding tail of 64 nodes"), std::string::npos)
+      << computed.describe();
+  std::size_t compared = 0;
+  for (const auto& [number, image] : test::vtest_frames({1, 101})) {
+    std::vector<tracker::Detection> expected;
+    std::vector<tracker::Detection> found;
+    reference.detect(image, number, expected);
+    computed.detect(image, number, found);
+    ASSERT_EQ(found.size(), expected.size()) << "frame " << number;
+    for (std::size_t i = 0; i < found.size(); ++i) {
+      EXPECT_EQ(found[i].class_id, expected[i].class_id);
+      EXPECT_EQ(found[i].score, expected[i].score);
+      EXPECT_EQ(found[i].box.x, expected[i].box.x);
+      ++compared;
+    }
+  }
+  EXPECT_GE(compared, 10U);
 }
 
 // After the network XNNPACK builds, the engine runs a decoding tail on the host (pytorch-ssd's box
