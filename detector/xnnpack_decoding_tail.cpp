@@ -655,7 +655,9 @@ InputError split_error(const std::filesystem::path& model, const onnx::NodeProto
 
 TailSplit split_decoding_tail(const std::filesystem::path& model, const onnx::GraphProto& graph,
                               const char* network_operators) {
-  enum class Source { network, joined, host, constant };
+  // reshaped: a Reshape's result, which XNNPACK still holds in the old shape (only a Concat or the
+  // host may read it); joined: a Concat's, assembled on the host from XNNPACK's outputs.
+  enum class Source { network, reshaped, joined, host, constant };
   std::map<std::string, Source> source;
   for (const auto& tensor : graph.initializer()) source[tensor.name()] = Source::constant;
   const auto source_of = [&](const std::string& name) {
@@ -677,6 +679,7 @@ TailSplit split_decoding_tail(const std::filesystem::path& model, const onnx::Gr
     const std::string& op = node.op_type();
     bool any_host = false;
     bool any_joined = false;
+    bool any_reshaped = false;
     bool all_constant = true;
     std::vector<std::string> computed;
     for (const auto& name : node.input()) {
@@ -684,8 +687,11 @@ TailSplit split_decoding_tail(const std::filesystem::path& model, const onnx::Gr
       const Source from = source_of(name);
       any_host = any_host || from == Source::host;
       any_joined = any_joined || from == Source::joined;
+      any_reshaped = any_reshaped || from == Source::reshaped;
       all_constant = all_constant && from == Source::constant;
-      if (from == Source::network || from == Source::joined) computed.push_back(name);
+      if (from == Source::network || from == Source::reshaped || from == Source::joined) {
+        computed.push_back(name);
+      }
     }
     Source result = Source::network;
     if (all_constant) {
@@ -698,16 +704,17 @@ TailSplit split_decoding_tail(const std::filesystem::path& model, const onnx::Gr
       const bool scalar = node.input_size() == 2 &&
                           (scalar_constant(node.input(0)) || scalar_constant(node.input(1)));
       const bool two_computed = computed.size() == 2 && op == "Add";
-      result = (scalar || two_computed) && !any_joined ? Source::network : Source::host;
+      result =
+          (scalar || two_computed) && !any_joined && !any_reshaped ? Source::network : Source::host;
     } else if (op == "Concat") {
       const auto* axis = attribute(node, "axis");
       result = axis && axis->i() == 1 && !any_joined ? Source::joined : Source::host;
     } else if (op == "Reshape") {
-      result = any_joined ? Source::host : Source::joined;
+      result = any_joined ? Source::host : Source::reshaped;
     } else if (op == "Identity") {
-      result = any_joined ? Source::joined : Source::network;
-    } else if (any_joined) {
-      result = Source::host;  // the builder joins reshaped tensors only on the host
+      result = source_of(node.input(0));
+    } else if (any_joined || any_reshaped) {
+      result = Source::host;  // XNNPACK's operators read tensors in XNNPACK's own shape
     }
     if (result == Source::host || result == Source::constant) {
       split.on_host[static_cast<std::size_t>(index)] = true;
@@ -721,7 +728,9 @@ TailSplit split_decoding_tail(const std::filesystem::path& model, const onnx::Gr
   }
   for (const auto& output : graph.output()) {
     const Source from = source_of(output.name());
-    if (from == Source::network || from == Source::joined) boundary.insert(output.name());
+    if (from == Source::network || from == Source::reshaped || from == Source::joined) {
+      boundary.insert(output.name());
+    }
   }
   split.boundary.assign(boundary.begin(), boundary.end());
   // An operator neither side runs: named as the network's (a convolution follows it: it is no

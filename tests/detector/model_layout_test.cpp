@@ -173,6 +173,9 @@ TEST_F(ModelLayout, XnnpackRunsTheDecodedLayoutAsOpenCvAndTheBundledModelDo) {
   EXPECT_LE(engines.worst_box, 0.1F);
   EXPECT_LE(engines.worst_score, 1e-3F);
   SsdDetector bundled_xnnpack(config_for(bundled(), BackendRequest::xnnpack));
+  // The bundled model ends with its heads' Concat, which XNNPACK's engine joins itself: no tail.
+  EXPECT_EQ(bundled_xnnpack.describe().find("decoding tail"), std::string::npos)
+      << bundled_xnnpack.describe();
   const Agreement layouts = agreement(bundled_xnnpack, xnnpack, frames);
   std::cout << "decoded layout vs bundled, XNNPACK: " << layouts.compared
             << " detections, worst box deviation " << layouts.worst_box
