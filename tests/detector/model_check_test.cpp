@@ -68,6 +68,31 @@ TEST_F(ModelCheckTest, TheBundledModelFitsAndRunsOnEveryEngineOfThisBuild) {
   EXPECT_NE(report.find("verdict    usable by rtmot run\n"), std::string::npos);
 }
 
+// The int8 line: backend xnnpack-int8 with the ranges file it would read (the committed one
+// here), or why not (a file that is not there: named, with the way to make it). It does not
+// decide the verdict: `auto` never chooses int8.
+TEST_F(ModelCheckTest, TheInt8LineNamesItsRangesFile) {
+  const fs::path ranges = test::source_path("configs/int8/ssdlite_mobilenet_v2_coco.ranges");
+  const ModelCheck check = check_model({model_, {}, ranges});
+  const std::string report = format_model_check(check);
+  EXPECT_EQ(check.int8.runs, xnnpack_built() && xnnpack_runs_here()) << report;
+  EXPECT_NE(report.find("int8       xnnpack-int8 with ranges " + ranges.string() + ": " +
+                        (check.int8.runs ? "yes, runs as xnnpack-int8" : "no: ")),
+            std::string::npos)
+      << report;
+  if (!xnnpack_built() || !xnnpack_runs_here()) return;
+  const fs::path missing = dir_ / "absent.ranges";
+  const ModelCheck without = check_model({model_, {}, missing});
+  const std::string text = format_model_check(without);
+  EXPECT_TRUE(without.usable()) << text;
+  EXPECT_FALSE(without.int8.runs);
+  EXPECT_NE(text.find("int8       xnnpack-int8 with ranges " + missing.string() +
+                      ": no: " + missing.string()),
+            std::string::npos)
+      << text;
+  EXPECT_NE(text.find("make them with scripts/calibrate_int8.sh"), std::string::npos) << text;
+}
+
 // Anchors cut short (a file of another model, or damaged): named with both counts, and the engines
 // are not started on a model that cannot be decoded.
 TEST_F(ModelCheckTest, AnchorsOfAnotherCountAreNamedWithBothCounts) {
