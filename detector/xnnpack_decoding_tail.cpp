@@ -664,11 +664,17 @@ TailSplit split_decoding_tail(const std::filesystem::path& model, const onnx::Gr
     const auto found = source.find(name);
     return found == source.end() ? Source::network : found->second;  // the input
   };
+  std::map<std::string, std::size_t> constant_sizes;  // initializers and Constant nodes' values
+  for (const auto& tensor : graph.initializer())
+    constant_sizes[tensor.name()] = element_count(tensor);
+  for (const auto& node : graph.node()) {
+    const auto* value = node.op_type() == "Constant" ? attribute(node, "value") : nullptr;
+    if (value && node.output_size() == 1)
+      constant_sizes[node.output(0)] = element_count(value->t());
+  }
   const auto scalar_constant = [&](const std::string& name) {
-    for (const auto& tensor : graph.initializer()) {
-      if (tensor.name() == name) return element_count(tensor) == 1;
-    }
-    return false;
+    const auto found = constant_sizes.find(name);
+    return found != constant_sizes.end() && found->second == 1;
   };
   TailSplit split;
   split.on_host.assign(static_cast<std::size_t>(graph.node_size()), false);

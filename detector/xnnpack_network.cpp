@@ -192,6 +192,14 @@ class SubgraphBuilder {
         input_size_(input_size),
         mode_(mode) {
     for (const auto& tensor : graph_.initializer()) initializers_[tensor.name()] = &tensor;
+    // Exporters write constants as Constant nodes too (torch.onnx without constant folding): the
+    // same tensors (the node itself is computed on the host, once: xnnpack_decoding_tail.hpp).
+    for (const auto& node : graph_.node()) {
+      const auto* value = node.op_type() == "Constant" && node.output_size() == 1
+                              ? attribute(node, "value")
+                              : nullptr;
+      if (value) initializers_[node.output(0)] = &value->t();
+    }
     for (int index = 0; index < graph_.node_size(); ++index) {
       for (const auto& input : graph_.node(index).input()) {
         ++consumers_[input];
@@ -1061,6 +1069,13 @@ XnnpackNetwork::XnnpackNetwork(const XnnpackNetworkConfig& config)
     if (output.name() != config.box_output && output.name() != config.logit_output) {
       throw model_error("the model has outputs other than '" + config.box_output + "' and '" +
                         config.logit_output + "'");
+    }
+  }
+  for (const std::string& name : {config.box_output, config.logit_output}) {
+    const auto& outputs = graph.output();
+    if (std::none_of(outputs.begin(), outputs.end(),
+                     [&](const onnx::ValueInfoProto& o) { return o.name() == name; })) {
+      throw model_error("the model has no output '" + name + "'");
     }
   }
   impl.split = split_decoding_tail(path, graph, xnnpack_supported_operators());

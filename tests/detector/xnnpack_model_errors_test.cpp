@@ -297,6 +297,59 @@ TEST_F(XnnpackModelErrors, ComputedReshapesAsTorchWritesThemRunInTheTail) {
   EXPECT_GE(compared, 10U);
 }
 
+// torch.onnx without constant folding writes constants as Constant nodes, not initializers: the
+// bundled model's head reshapes' target shapes moved into Constant nodes build as before, with no
+// tail, and give the same detections.
+TEST_F(XnnpackModelErrors, ConstantNodesBuildAsInitializersDo) {
+  if (!xnnpack_built()) GTEST_SKIP() << "this build has no XNNPACK backend";
+  if (!xnnpack_runs_here()) GTEST_SKIP() << "XNNPACK does not initialize on this processor";
+  SsdConfig reference_config = write(BackendRequest::xnnpack);
+  reference_config.classes = {};
+  SsdDetector reference(reference_config);  // loaded before the file is rewritten
+  onnx::GraphProto& graph = *model_.mutable_graph();
+  std::vector<onnx::NodeProto> constants;
+  std::vector<onnx::TensorProto> kept;
+  for (const auto& tensor : graph.initializer()) {
+    if (tensor.data_type() != onnx::TensorProto::INT64) {
+      kept.push_back(tensor);
+      continue;
+    }
+    onnx::NodeProto node;
+    node.set_name(tensor.name() + "_constant");
+    node.set_op_type("Constant");
+    node.add_output(tensor.name());
+    auto* value = node.add_attribute();
+    value->set_name("value");
+    value->set_type(onnx::AttributeProto::TENSOR);
+    *value->mutable_t() = tensor;
+    constants.push_back(node);
+  }
+  ASSERT_EQ(constants.size(), 12U);  // the heads' reshape targets
+  std::vector<onnx::NodeProto> nodes(constants);
+  nodes.insert(nodes.end(), graph.node().begin(), graph.node().end());
+  graph.clear_node();
+  for (const auto& node : nodes) *graph.add_node() = node;
+  graph.clear_initializer();
+  for (const auto& tensor : kept) *graph.add_initializer() = tensor;
+  SsdConfig config = write(BackendRequest::xnnpack);
+  config.classes = {};
+  SsdDetector changed(config);
+  EXPECT_EQ(changed.describe().find("decoding tail"), std::string::npos) << changed.describe();
+  std::size_t compared = 0;
+  for (const auto& [number, image] : test::vtest_frames({1})) {
+    std::vector<tracker::Detection> expected;
+    std::vector<tracker::Detection> found;
+    reference.detect(image, number, expected);
+    changed.detect(image, number, found);
+    ASSERT_EQ(found.size(), expected.size());
+    for (std::size_t i = 0; i < found.size(); ++i) {
+      EXPECT_EQ(found[i].score, expected[i].score);
+      ++compared;
+    }
+  }
+  EXPECT_GE(compared, 5U);
+}
+
 // After the network XNNPACK builds, the engine runs a decoding tail on the host (pytorch-ssd's box
 // decoding and softmax: model_layout_test.cpp); an operator the tail does not run is named, with
 // its node and the model, and model check reports the same. The class logits pass through Tanh
