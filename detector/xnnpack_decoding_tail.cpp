@@ -680,6 +680,7 @@ TailSplit split_decoding_tail(const std::filesystem::path& model, const onnx::Gr
   split.on_host.assign(static_cast<std::size_t>(graph.node_size()), false);
   std::set<std::string> boundary;
   bool convolution = false;  // a convolution among the nodes run on the host: no decoding tail
+  int first_host = -1;       // the node where the host takes over
   for (int index = 0; index < graph.node_size(); ++index) {
     const onnx::NodeProto& node = graph.node(index);
     const std::string& op = node.op_type();
@@ -728,6 +729,7 @@ TailSplit split_decoding_tail(const std::filesystem::path& model, const onnx::Gr
     }
     if (result == Source::host) {
       ++split.tail_nodes;
+      if (first_host < 0) first_host = index;
       convolution = convolution || op == "Conv";
     }
     for (const auto& name : node.output()) source[name] = result;
@@ -752,10 +754,14 @@ TailSplit split_decoding_tail(const std::filesystem::path& model, const onnx::Gr
                             " (on the host): use backend: cpu");
     }
     if (builder_operator(node.op_type())) {
+      const onnx::NodeProto& cause = graph.node(first_host);
       throw split_error(model, node,
-                        "reads a tensor the xnnpack backend computes only on the host (after a "
-                        "Reshape, a Concat or an operator XNNPACK lacks), before a convolution: "
-                        "use backend: cpu");
+                        "follows node '" + cause.name() + "' (" + cause.op_type() +
+                            "), which the xnnpack backend runs only on the host (it builds " +
+                            network_operators +
+                            "; Add, Mul, Sub, Div only with one-value "
+                            "constants; nothing after a Concat or a Reshape but the heads' "
+                            "join): use backend: cpu");
     }
     throw split_error(model, node,
                       "operator '" + node.op_type() +

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <onnx/onnx_pb.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -348,6 +349,48 @@ TEST_F(XnnpackModelErrors, ConstantNodesBuildAsInitializersDo) {
     }
   }
   EXPECT_GE(compared, 5U);
+}
+
+// A per-channel constant scale in the middle of the network (as an unfolded batch norm is): not an
+// operator XNNPACK's builder takes, and a convolution follows, so it is no decoding tail: the error
+// names the node where the host would have to take over.
+TEST_F(XnnpackModelErrors, APerChannelScaleBeforeAConvolutionIsNamed) {
+  if (!xnnpack_built()) GTEST_SKIP() << "this build has no XNNPACK backend";
+  if (!xnnpack_runs_here()) GTEST_SKIP() << "XNNPACK does not initialize on this processor";
+  onnx::GraphProto& graph = *model_.mutable_graph();
+  const onnx::NodeProto conv = first_node("Conv");
+  std::int64_t channels = 0;
+  for (const auto& tensor : graph.initializer()) {
+    if (tensor.name() == conv.input(1)) channels = tensor.dims(0);
+  }
+  ASSERT_GT(channels, 0);
+  onnx::TensorProto& scale = *graph.add_initializer();
+  scale.set_name("per_channel_scale");
+  scale.set_data_type(onnx::TensorProto::FLOAT);
+  for (const std::int64_t dim : {std::int64_t{1}, channels, std::int64_t{1}, std::int64_t{1}}) {
+    scale.add_dims(dim);
+  }
+  for (std::int64_t c = 0; c < channels; ++c) scale.add_float_data(1.F);
+  for (auto& node : *graph.mutable_node()) {
+    for (auto& input : *node.mutable_input()) {
+      if (input == conv.output(0)) input = "scaled";
+    }
+  }
+  std::vector<onnx::NodeProto> nodes(graph.node().begin(), graph.node().end());
+  onnx::NodeProto mul;
+  mul.set_name("scale_first");
+  mul.set_op_type("Mul");
+  mul.add_input(conv.output(0));
+  mul.add_input("per_channel_scale");
+  mul.add_output("scaled");
+  const auto after = std::find_if(nodes.begin(), nodes.end(), [&](const onnx::NodeProto& n) {
+    return n.output_size() > 0 && n.output(0) == conv.output(0);
+  });
+  nodes.insert(after + 1, mul);
+  graph.clear_node();
+  for (const auto& node : nodes) *graph.add_node() = node;
+  expect_bad_model(expect_error(write(BackendRequest::xnnpack)), "node 'scale_first' (Mul)",
+                   "which the xnnpack backend runs only on the host");
 }
 
 // After the network XNNPACK builds, the engine runs a decoding tail on the host (pytorch-ssd's box
