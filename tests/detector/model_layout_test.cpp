@@ -22,6 +22,7 @@
 #include "common/input_error.hpp"
 #include "detector/activation_ranges.hpp"
 #include "detector/coco_labels.hpp"
+#include "detector/dnn_backend.hpp"
 #include "detector/int8_calibration.hpp"
 #include "detector/model_check.hpp"
 #include "detector/model_description.hpp"
@@ -183,6 +184,23 @@ TEST_F(ModelLayout, XnnpackRunsTheDecodedLayoutAsOpenCvAndTheBundledModelDo) {
   EXPECT_GE(layouts.compared, 20U);
   EXPECT_LE(layouts.worst_box, 0.05F);
   EXPECT_LE(layouts.worst_score, 1e-4F);
+}
+
+// backend auto on the decoded layout: XNNPACK is a candidate (no longer "xnnpack cannot run the
+// model"), timed against OpenCV at start, the faster kept and both medians logged.
+TEST_F(ModelLayout, AutoMeasuresXnnpackOnTheDecodedLayout) {
+  if (!xnnpack_built()) GTEST_SKIP() << "this build has no XNNPACK engine";
+  if (!xnnpack_runs_here()) GTEST_SKIP() << "XNNPACK does not run on this CPU";
+  const BackendCapabilities here = probe_backend_capabilities();
+  if (here.opencv_has_cuda && here.cuda_devices > 0) {
+    GTEST_SKIP() << "CUDA here: backend auto picks cuda, not a CPU engine";
+  }
+  SsdDetector detector(config_for(fixture(), BackendRequest::automatic));
+  const std::string& reason = detector.backend().reason;
+  EXPECT_EQ(reason.find("xnnpack cannot run"), std::string::npos) << reason;
+  EXPECT_NE(reason.find("forward median of"), std::string::npos) << reason;
+  EXPECT_NE(reason.find("xnnpack "), std::string::npos) << reason;
+  EXPECT_NE(reason.find("OpenCV cpu "), std::string::npos) << reason;
 }
 
 // OpenCV cannot run the decoded fixture two images a pass (its Eltwise does not broadcast the
