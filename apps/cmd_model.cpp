@@ -24,6 +24,7 @@ namespace {
 struct ModelCheckOptions {
   std::string model;
   std::string anchors;
+  std::string int8_ranges;
 };
 
 struct CalibrateOptions {
@@ -66,7 +67,8 @@ int run_model_calibrate(const CalibrateOptions& options) {
 }
 
 int run_model_check(const ModelCheckOptions& options) {
-  const detector::ModelCheck check = detector::check_model({options.model, options.anchors});
+  const detector::ModelCheck check =
+      detector::check_model({options.model, options.anchors, options.int8_ranges});
   fmt::print("{}", detector::format_model_check(check));
   return check.usable() ? 0 : to_int(ExitCode::bad_model);
 }
@@ -84,6 +86,9 @@ Subcommand add_model_command(CLI::App& parent) {
   check->add_option("model", options->model, "the ONNX file")->required();
   check->add_option("--anchors", options->anchors,
                     "the anchors CSV (default: the model's name with .anchors.csv)");
+  check->add_option("--ranges", options->int8_ranges,
+                    "the int8 engine's activation ranges (default: configs/int8/<model "
+                    "name>.ranges, as backend xnnpack-int8 reads them)");
   auto calibration = std::make_shared<CalibrateOptions>();
   CLI::App* calibrate = cli->add_subcommand(
       "calibrate",

@@ -34,9 +34,9 @@ std::filesystem::path default_activation_ranges_path(const std::filesystem::path
 }
 
 ActivationRanges read_activation_ranges(const std::filesystem::path& path) {
-  const std::string text = read_model_file(path, kMaxActivationRangesBytes,
-                                           "the int8 activation ranges (make them with "
-                                           "scripts/calibrate_int8.sh: docs/cpu-detector.md)");
+  const std::string text =
+      read_model_file(path, kMaxActivationRangesBytes, "int8 activation ranges",
+                      "make them with scripts/calibrate_int8.sh MODEL: docs/cpu-detector.md");
   const std::string file = path.string();
   ActivationRanges ranges;
   std::istringstream lines(text);

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "common/input_error.hpp"
+#include "detector/activation_ranges.hpp"
 #include "detector/dnn_backend.hpp"
 #include "detector/label_table.hpp"
 #include "detector/model_checksum.hpp"
@@ -145,6 +146,7 @@ EngineCheck run_engine(const ModelCheck& check, BackendRequest backend) {
     SsdConfig config;
     config.model_path = check.model;
     config.anchors_path = check.anchors_file;
+    config.int8_ranges = check.int8_ranges;
     config.backend = backend;
     config.classes = {};
     config.verify_checksums = false;  // reported on their own line
@@ -178,6 +180,11 @@ void check_engines(ModelCheck& check) {
   } else {
     check.engines.push_back(run_engine(check, BackendRequest::xnnpack));
   }
+  if (!here.xnnpack_built || !xnnpack_runs_here()) {
+    check.int8 = {"xnnpack-int8", false, "no XNNPACK engine here (above)"};
+  } else {
+    check.int8 = run_engine(check, BackendRequest::xnnpack_int8);
+  }
   if (here.opencv_has_cuda && here.cuda_devices > 0) {
     check.engines.push_back(run_engine(check, BackendRequest::cuda));
   } else {
@@ -201,6 +208,8 @@ ModelCheck check_model(const ModelCheckConfig& config) {
   check.model = config.model_path;
   check.anchors_file =
       config.anchors_path.empty() ? default_anchors_path(config.model_path) : config.anchors_path;
+  check.int8_ranges = config.int8_ranges.empty() ? default_activation_ranges_path(config.model_path)
+                                                 : config.int8_ranges;
   // A path that is no model file at all (missing, a folder, a FIFO, too large) ends the check.
   open_model_file(check.model, kMaxModelBytes, "model");
   check.model_bytes = std::filesystem::file_size(check.model);
@@ -258,6 +267,11 @@ std::string format_model_check(const ModelCheck& check) {
   }
   for (const auto& engine : check.engines) {
     line("engine", engine.engine + ": " + (engine.runs ? engine.detail : "no: " + engine.detail));
+  }
+  if (!check.int8.engine.empty()) {
+    line("int8",
+         fmt::format("xnnpack-int8 with ranges {}: {}", check.int8_ranges.string(),
+                     check.int8.runs ? "yes, " + check.int8.detail : "no: " + check.int8.detail));
   }
   for (const auto& problem : check.problems) line("problem", problem);
   line("verdict", check.usable()

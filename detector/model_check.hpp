@@ -15,6 +15,9 @@ struct ModelCheckConfig {
   std::filesystem::path model_path;
   /// Empty: default_anchors_path(model_path), as the detector reads it.
   std::filesystem::path anchors_path;
+  /// The int8 engine's activation ranges; empty: default_activation_ranges_path(model_path), as
+  /// the detector reads them.
+  std::filesystem::path int8_ranges;
 };
 
 struct NamedShape {
@@ -43,6 +46,10 @@ struct ModelCheck {
   std::filesystem::path anchors_file;  // layout deltas only
   int anchors_in_file{0};
   std::vector<EngineCheck> engines;
+  /// backend xnnpack-int8 (never chosen by auto, so not among `engines`): whether it runs the
+  /// model with `int8_ranges`, or why not.
+  std::filesystem::path int8_ranges;
+  EngineCheck int8;
   /// Each names the field that does not fit the contract; empty when `rtmot run` can use the model.
   std::vector<std::string> problems;
 

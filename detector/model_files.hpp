@@ -20,8 +20,10 @@ constexpr std::uint64_t kMaxChecksumBytes = 1ULL << 20;
 /// The whole file. Throws InputError: ExitCode::bad_model naming the file and `what` (with the way
 /// out) when it is missing, not a regular file (folder, FIFO, device) or over `max_bytes`;
 /// ExitCode::io_error on a read error.
+/// `remedy` is the way out the message gives.
 std::string read_model_file(const std::filesystem::path& path, std::uint64_t max_bytes,
-                            const std::string& what);
+                            const std::string& what,
+                            const std::string& remedy = "run scripts/fetch_model.sh");
 
 /// The file opened for reading, under the same rules.
 InputFile open_model_file(const std::filesystem::path& path, std::uint64_t max_bytes,

@@ -19,6 +19,7 @@
 #include "detector/model_checksum.hpp"
 #include "detector/model_files.hpp"
 #include "detector/pool_governor.hpp"
+#include "detector/xnnpack_decoding_tail.hpp"
 
 namespace rtmot::detector {
 
@@ -32,7 +33,10 @@ bool xnnpack_runs_here() {
 
 const char* xnnpack_supported_operators() {
   return "Conv (any group count, dilation, explicit pads), Clip, Relu, Add (same shapes), "
-         "Transpose (NCHW -> NHWC), Reshape, Concat (of the graph's outputs, axis 1), Identity";
+         "Add, Mul, Sub, Div by a scalar constant, Transpose (NCHW -> NHWC), Reshape, Concat "
+         "(axis 1), Identity; after them, on the host, a decoding tail of Slice, Mul, Add, Sub, "
+         "Div, Exp, Sigmoid, Softmax, Concat, Reshape, Unsqueeze, Squeeze, Flatten, Identity, "
+         "Constant";
 }
 
 namespace {
@@ -176,17 +180,26 @@ std::vector<std::int64_t> ints_attribute(const onnx::NodeProto& node, const char
 class SubgraphBuilder {
  public:
   SubgraphBuilder(const std::filesystem::path& path, const onnx::GraphProto& graph,
-                  std::map<std::string, std::vector<float>>& weights,
+                  const TailSplit& split, std::map<std::string, std::vector<float>>& weights,
                   const std::map<std::string, uint32_t>& external_ids, std::size_t batch,
                   std::size_t input_size, BuildMode mode)
       : path_(path),
         graph_(graph),
+        split_(split),
         weights_(weights),
         external_ids_(external_ids),
         batch_(batch),
         input_size_(input_size),
         mode_(mode) {
     for (const auto& tensor : graph_.initializer()) initializers_[tensor.name()] = &tensor;
+    // Exporters write constants as Constant nodes too (torch.onnx without constant folding): the
+    // same tensors (the node itself is computed on the host, once: xnnpack_decoding_tail.hpp).
+    for (const auto& node : graph_.node()) {
+      const auto* value = node.op_type() == "Constant" && node.output_size() == 1
+                              ? attribute(node, "value")
+                              : nullptr;
+      if (value) initializers_[node.output(0)] = &value->t();
+    }
     for (int index = 0; index < graph_.node_size(); ++index) {
       for (const auto& input : graph_.node(index).input()) {
         ++consumers_[input];
@@ -196,7 +209,8 @@ class SubgraphBuilder {
     for (const auto& output : graph_.output()) ++consumers_[output.name()];
   }
 
-  /// The subgraph; `outputs` gets each graph output's value (pieces set).
+  /// The subgraph of the network's nodes (the split's others run on the host); `outputs` gets
+  /// the value of each tensor the host reads (pieces set).
   SubgraphPtr build(std::map<std::string, Value>& outputs,
                     std::map<uint32_t, std::size_t>& external_sizes) {
     xnn_subgraph_t raw = nullptr;
@@ -212,9 +226,12 @@ class SubgraphBuilder {
     std::vector<bool> fused(static_cast<std::size_t>(count), false);
     for (int index = 0; index < count; ++index) {
       if (fused[static_cast<std::size_t>(index)]) continue;
+      if (split_.on_host[static_cast<std::size_t>(index)]) continue;
       const onnx::NodeProto& node = graph_.node(index);
       const std::string& op = node.op_type();
-      if (op == "Conv") {
+      if ((op == "Add" || op == "Mul" || op == "Sub" || op == "Div") && scalar_operand(node) >= 0) {
+        scalar_arithmetic(node);
+      } else if (op == "Conv") {
         const int activation = fusable_activation(node);
         if (activation >= 0) fused[static_cast<std::size_t>(activation)] = true;
         conv(node, activation >= 0 ? &graph_.node(activation) : nullptr);
@@ -236,17 +253,21 @@ class SubgraphBuilder {
                               std::string(xnnpack_supported_operators()) + "): use backend: cpu");
       }
     }
-    for (const auto& output : graph_.output()) {
-      const auto found = values_.find(output.name());
+    for (const std::string& name : split_.boundary) {
+      const auto found = values_.find(name);
       if (found == values_.end()) {
-        throw model_error("the graph output '" + output.name() + "' is computed by no node");
+        throw model_error("the tensor '" + name + "' is computed by no node");
       }
       Value value = found->second;
+      if (value.nchw) {
+        throw model_error("the feature map '" + name +
+                          "' is read after the network in NCHW order; XNNPACK holds it as NHWC");
+      }
       if (value.pieces.empty()) value.pieces = {value.id};
       if (!external_sizes_.count(value.pieces.front())) {
-        throw model_error("the graph output '" + output.name() + "' is not computed here");
+        throw model_error("the tensor '" + name + "' is not computed here");
       }
-      outputs[output.name()] = value;
+      outputs[name] = value;
     }
     external_sizes = external_sizes_;
     return subgraph;
@@ -721,6 +742,52 @@ class SubgraphBuilder {
     return {filter_id, bias_id};
   }
 
+  /// The input (0 or 1) of a binary node that is a one-value initializer, or -1.
+  int scalar_operand(const onnx::NodeProto& node) const {
+    for (int input = 0; input < std::min(node.input_size(), 2); ++input) {
+      const auto found = initializers_.find(node.input(input));
+      if (found == initializers_.end()) continue;
+      std::size_t count = 1;
+      for (const auto dim : found->second->dims())
+        count *= static_cast<std::size_t>(std::max<std::int64_t>(dim, 0));
+      if (count == 1) return input;
+    }
+    return -1;
+  }
+
+  /// A tensor and a scalar constant (a model's own input normalisation, as the fixture of
+  /// pytorch-ssd's interface has), broadcast by XNNPACK. fp32 in both engines: in the int8 one
+  /// such a node may only read an fp32 tensor (the input), and the convolution after it converts.
+  void scalar_arithmetic(const onnx::NodeProto& node) {
+    const int constant = scalar_operand(node);
+    const Value& input = xnn_value_of(node, 1 - constant);
+    if (input.qs8) {
+      throw error(node,
+                  "the int8 engine runs arithmetic with a constant only on fp32 tensors (the "
+                  "model's input); use backend: xnnpack");
+    }
+    const std::vector<float> scalar = floats(node, initializer(node, constant));
+    const auto dims = xnn_dims(input);
+    const uint32_t scalar_id = define_static(node.input(constant) + "#scalar",
+                                             std::vector<std::size_t>(dims.size(), 1), scalar);
+    Value value = input;
+    value.id = define_computed(node.output(0), dims);
+    const uint32_t first = constant == 0 ? scalar_id : input.id;
+    const uint32_t second = constant == 0 ? input.id : scalar_id;
+    const std::string& op = node.op_type();
+    const std::string what = "build node '" + node.name() + "'";
+    if (op == "Add") {
+      check(xnn_define_add2(subgraph_, kNoMin, kNoMax, first, second, value.id, 0), what);
+    } else if (op == "Mul") {
+      check(xnn_define_multiply2(subgraph_, kNoMin, kNoMax, first, second, value.id, 0), what);
+    } else if (op == "Sub") {
+      check(xnn_define_subtract(subgraph_, kNoMin, kNoMax, first, second, value.id, 0), what);
+    } else {
+      check(xnn_define_divide(subgraph_, kNoMin, kNoMax, first, second, value.id, 0), what);
+    }
+    values_[node.output(0)] = value;
+  }
+
   void clamp(const onnx::NodeProto& node) {
     const auto [low, high] = clamp_bounds(node);
     if (mode_.ranges) {
@@ -861,6 +928,7 @@ class SubgraphBuilder {
 
   const std::filesystem::path& path_;
   const onnx::GraphProto& graph_;
+  const TailSplit& split_;
   std::map<std::string, std::vector<float>>& weights_;
   const std::map<std::string, uint32_t>& external_ids_;
   std::size_t batch_;
@@ -877,16 +945,16 @@ class SubgraphBuilder {
   xnn_subgraph_t subgraph_{nullptr};
 };
 
-/// The tensors that must be XNNPACK external outputs: what the graph's outputs come from once
-/// the moves that run nothing here (Identity, Reshape, Transpose, Concat) are looked through.
-std::map<std::string, uint32_t> external_outputs(const onnx::GraphProto& graph) {
+/// The tensors that must be XNNPACK external outputs: what the tensors the host reads come from
+/// once the moves that run nothing here (Identity, Reshape, Transpose, Concat) are looked through.
+std::map<std::string, uint32_t> external_outputs(const onnx::GraphProto& graph,
+                                                 const std::vector<std::string>& read) {
   std::map<std::string, const onnx::NodeProto*> producer;
   for (const auto& node : graph.node()) {
     for (const auto& output : node.output()) producer[output] = &node;
   }
   std::map<std::string, uint32_t> ids;
-  std::vector<std::string> pending;
-  for (const auto& output : graph.output()) pending.push_back(output.name());
+  std::vector<std::string> pending(read.begin(), read.end());
   while (!pending.empty()) {
     const std::string name = pending.back();
     pending.pop_back();
@@ -913,7 +981,10 @@ struct Piece {
   std::vector<float> data;
 };
 
+/// A tensor the host reads: its pieces joined image by image.
 struct JoinedOutput {
+  std::string name;
+  std::vector<std::size_t> shape;  // ONNX's, for one image (batch 1)
   std::vector<std::size_t> piece_indices;
   std::size_t per_image{0};
   std::size_t width{0};  // the last dimension
@@ -936,8 +1007,13 @@ struct XnnpackNetwork::Impl {
   PoolPtr pool;
   std::vector<float> input;
   std::vector<Piece> pieces;
-  JoinedOutput boxes;
-  JoinedOutput logits;
+  TailSplit split;
+  std::vector<JoinedOutput> joined;  // what the host reads, fixed in place before the tails
+  // The decoding tail (empty for a model whose outputs XNNPACK computes) per batch size; its
+  // outputs 0 and 1 are the boxes and the scores. `last_tail` ran last.
+  std::unique_ptr<DecodingTail> single_tail;
+  std::unique_ptr<DecodingTail> batched_tail;
+  const DecodingTail* last_tail{nullptr};
   // Each batch size twice: on the pool and on the caller's thread alone (no pool), the governor
   // choosing per pass (detector/pool_governor.hpp). Without a pool only the inline ones exist.
   RuntimePtr single_pooled;
@@ -989,7 +1065,21 @@ XnnpackNetwork::XnnpackNetwork(const XnnpackNetworkConfig& config)
     mode.quantized = &impl.quantized_weights;
   }
   if (config.record_ranges) mode.probes = &impl.probes;
-  const auto external_ids = external_outputs(graph);
+  for (const auto& output : graph.output()) {
+    if (output.name() != config.box_output && output.name() != config.logit_output) {
+      throw model_error("the model has outputs other than '" + config.box_output + "' and '" +
+                        config.logit_output + "'");
+    }
+  }
+  for (const std::string& name : {config.box_output, config.logit_output}) {
+    const auto& outputs = graph.output();
+    if (std::none_of(outputs.begin(), outputs.end(),
+                     [&](const onnx::ValueInfoProto& o) { return o.name() == name; })) {
+      throw model_error("the model has no output '" + name + "'");
+    }
+  }
+  impl.split = split_decoding_tail(path, graph, xnnpack_supported_operators());
+  const auto external_ids = external_outputs(graph, impl.split.boundary);
 
   const auto max_batch = static_cast<std::size_t>(std::max(1, config.max_batch));
   const auto input_size = static_cast<std::size_t>(config.input_size);
@@ -1008,7 +1098,8 @@ XnnpackNetwork::XnnpackNetwork(const XnnpackNetworkConfig& config)
   std::map<uint32_t, std::size_t> piece_sizes;  // floats per image of each external output
   const auto make_runtime = [&](std::size_t batch, std::map<std::string, Value>& outputs,
                                 pthreadpool_t pool) {
-    SubgraphBuilder builder(path, graph, impl.weights, external_ids, batch, input_size, mode);
+    SubgraphBuilder builder(path, graph, impl.split, impl.weights, external_ids, batch, input_size,
+                            mode);
     SubgraphPtr subgraph = builder.build(outputs, piece_sizes);
     xnn_runtime_t raw = nullptr;
     // Workers sleep once a forward is done instead of spinning until the next frame arrives: the
@@ -1029,11 +1120,12 @@ XnnpackNetwork::XnnpackNetwork(const XnnpackNetworkConfig& config)
   impl.single_inline = make_runtime(1, outputs, nullptr);
   if (impl.pool) impl.single_pooled = make_runtime(1, outputs, impl.pool.get());
   std::map<uint32_t, std::size_t> piece_of;
-  const auto join = [&](const std::string& name, JoinedOutput& joined) {
-    const auto found = outputs.find(name);
-    if (found == outputs.end()) throw model_error("the model has no output '" + name + "'");
-    const Value& value = found->second;
-    if (value.shape.size() < 2) throw model_error("the output '" + name + "' is not per anchor");
+  for (const std::string& name : impl.split.boundary) {
+    JoinedOutput& joined = impl.joined.emplace_back();
+    const Value& value = outputs.at(name);
+    if (value.shape.size() < 2) throw model_error("the tensor '" + name + "' is not per image");
+    joined.name = name;
+    joined.shape = value.shape;
     joined.width = value.shape.back();
     joined.per_image = product(value.shape, 1);
     for (const uint32_t id : value.pieces) {
@@ -1044,16 +1136,6 @@ XnnpackNetwork::XnnpackNetwork(const XnnpackNetworkConfig& config)
       joined.piece_indices.push_back(piece_of[id]);
     }
     joined.data.assign(max_batch * joined.per_image, 0.F);
-  };
-  join(config.box_output, impl.boxes);
-  join(config.logit_output, impl.logits);
-  // Each piece's size per image: from the value the builder defined (its XNNPACK shape).
-  for (const auto& [name, id] : external_ids) {
-    (void)name;
-    if (!piece_of.count(id)) {
-      throw model_error("the model has outputs other than '" + config.box_output + "' and '" +
-                        config.logit_output + "'");
-    }
   }
   if (max_batch > 1) {
     impl.batched_inline = make_runtime(max_batch, outputs, nullptr);
@@ -1063,11 +1145,34 @@ XnnpackNetwork::XnnpackNetwork(const XnnpackNetworkConfig& config)
     piece.per_image = piece_sizes.at(piece.id);
     piece.data.assign(max_batch * piece.per_image, 0.F);
   }
-  for (const JoinedOutput* joined : {&impl.boxes, &impl.logits}) {
+  for (const JoinedOutput& joined : impl.joined) {
     std::size_t sum = 0;
-    for (const std::size_t index : joined->piece_indices) sum += impl.pieces[index].per_image;
-    if (sum != joined->per_image) throw model_error("the outputs' pieces do not add up");
+    for (const std::size_t index : joined.piece_indices) sum += impl.pieces[index].per_image;
+    if (sum != joined.per_image) throw model_error("the outputs' pieces do not add up");
   }
+  const auto tail_for = [&](std::size_t batch) {
+    std::vector<TailInput> inputs;
+    for (const JoinedOutput& joined : impl.joined) {
+      std::vector<std::size_t> shape = joined.shape;
+      shape[0] = batch;
+      inputs.push_back({joined.name, shape, joined.data.data()});
+    }
+    auto tail = std::make_unique<DecodingTail>(
+        path, impl.model, impl.split, inputs,
+        std::vector<std::string>{config.box_output, config.logit_output});
+    for (std::size_t output = 0; output < 2; ++output) {
+      const auto& shape = tail->output_shape(output);
+      if (shape.size() < 2 || shape[0] != batch) {
+        throw model_error("the output '" + (output == 0 ? config.box_output : config.logit_output) +
+                          "' is not per image (" + shape_text(shape) + " at batch " +
+                          std::to_string(batch) + ")");
+      }
+    }
+    return tail;
+  };
+  impl.single_tail = tail_for(1);
+  if (max_batch > 1) impl.batched_tail = tail_for(max_batch);
+  impl.last_tail = impl.single_tail.get();
   // The buffers never move: set up once, each run only invokes.
   std::vector<xnn_external_value> externals{{kInputExternalId, impl.input.data()}};
   for (Piece& piece : impl.pieces) externals.push_back({piece.id, piece.data.data()});
@@ -1101,7 +1206,10 @@ XnnpackNetwork::XnnpackNetwork(const XnnpackNetworkConfig& config)
        << (config.threads > threads
                ? " (" + std::to_string(config.threads) + " asked; the CPUs this process may use)"
                : std::string())
-       << (impl.pool ? ", the pool used while faster than one thread (measured pass by pass)" : "");
+       << (impl.pool ? ", the pool used while faster than one thread (measured pass by pass)" : "")
+       << (impl.split.empty() ? std::string()
+                              : ", then a decoding tail of " +
+                                    std::to_string(impl.split.tail_nodes) + " nodes on the host");
   impl.summary = text.str();
 }
 
@@ -1129,17 +1237,19 @@ void XnnpackNetwork::run(int count) {
                         .count());
   }
   if (!impl.probes.empty()) record_ranges(count);
-  // The concatenation the graph ends with, image by image.
-  for (JoinedOutput* joined : {&impl.boxes, &impl.logits}) {
+  // The concatenations the network ends with, image by image; then the decoding tail.
+  for (JoinedOutput& joined : impl.joined) {
     for (int image = 0; image < count; ++image) {
-      float* to = joined->data.data() + static_cast<std::size_t>(image) * joined->per_image;
-      for (const std::size_t index : joined->piece_indices) {
+      float* to = joined.data.data() + static_cast<std::size_t>(image) * joined.per_image;
+      for (const std::size_t index : joined.piece_indices) {
         const Piece& piece = impl.pieces[index];
         const float* from = piece.data.data() + static_cast<std::size_t>(image) * piece.per_image;
         to = std::copy(from, from + piece.per_image, to);
       }
     }
   }
+  impl.last_tail = (batched ? impl.batched_tail : impl.single_tail).get();
+  impl.last_tail->run();
 }
 
 void XnnpackNetwork::record_ranges(int count) {
@@ -1186,16 +1296,17 @@ void XnnpackNetwork::clear_recorded_ranges() {
 }
 
 const float* XnnpackNetwork::boxes() const {
-  return impl_->boxes.data.data();
+  return impl_->last_tail->output(0);
 }
 const float* XnnpackNetwork::logits() const {
-  return impl_->logits.data.data();
+  return impl_->last_tail->output(1);
 }
 std::size_t XnnpackNetwork::anchors() const {
-  return impl_->boxes.width ? impl_->boxes.per_image / impl_->boxes.width : 0;
+  const auto& shape = impl_->single_tail->output_shape(0);
+  return product(shape, 1) / std::max<std::size_t>(shape.back(), 1);
 }
 std::size_t XnnpackNetwork::classes() const {
-  return impl_->logits.width;
+  return impl_->single_tail->output_shape(1).back();
 }
 std::string XnnpackNetwork::summary() const {
   return impl_->summary;

@@ -1,7 +1,9 @@
 #pragma once
 // The SSD's forward pass on XNNPACK: the ONNX model the OpenCV backend loads, read with ONNX's own
-// protobuf classes (libonnx) and rebuilt as an XNNPACK subgraph (NHWC, weights repacked once).
-// Only the forward pass: pre- and post-processing stay in SsdDetector. See docs/cpu-detector.md.
+// protobuf classes (libonnx) and rebuilt as an XNNPACK subgraph (NHWC, weights repacked once);
+// what follows the last operator XNNPACK builds (a decoded layout's box decoding and softmax) runs
+// on the host after it (xnnpack_decoding_tail.hpp). Only the forward pass: pre- and
+// post-processing stay in SsdDetector. See docs/cpu-detector.md.
 #include <cstddef>
 #include <filesystem>
 #include <memory>
@@ -48,7 +50,8 @@ struct XnnpackNetworkConfig {
 class XnnpackNetwork {
  public:
   /// Throws rtmot::InputError (ExitCode::bad_model) naming the file: unreadable or corrupt model,
-  /// an operator (or attribute) the backend does not build (named, with its node), an input shape
+  /// an operator (or attribute) the backend does not build (named, with its node; "op 'X' in the
+  /// decoding tail" for one after the network that the host does not run), an input shape
   /// other than N x 3 x input_size x input_size, a fixed batch of 1 with max_batch > 1, non-float
   /// or non-finite weights (naming the tensor), outputs missing.
   explicit XnnpackNetwork(const XnnpackNetworkConfig& config);

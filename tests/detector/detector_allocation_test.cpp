@@ -16,10 +16,17 @@
 #include "vtest_frames.hpp"
 
 #if RTMOT_HAVE_XNNPACK
+#include <unistd.h>
 #include <xnnpack.h>
 
 #include <atomic>
 #include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "detector/coco_labels.hpp"
+#include "detector/xnnpack_network.hpp"
 #endif
 
 namespace rtmot::detector {
@@ -264,6 +271,58 @@ TEST(DetectorAllocation, XnnpackAllocatesNothingInSteadyState) {
 TEST(DetectorAllocation, XnnpackInt8AllocatesNothingInSteadyState) {
   if (!xnnpack_runs_here()) GTEST_SKIP() << "XNNPACK does not initialize on this processor";
   expect_no_xnnpack_allocation_in_steady_state(BackendRequest::xnnpack_int8);
+}
+
+// The host-side decoding tail (xnnpack_decoding_tail.hpp) of a decoded-layout model, pytorch-ssd's
+// interface made from the bundled model by make_model_fixture.py: after the first passes, a pass
+// of the network and its tail allocates nothing, at batch 1 and 2, on either allocator.
+TEST(DetectorAllocation, XnnpackDecodingTailAllocatesNothingInSteadyState) {
+  if (!xnnpack_runs_here()) GTEST_SKIP() << "XNNPACK does not initialize on this processor";
+  const auto model = test::source_path("models/ssdlite_mobilenet_v2_coco.onnx");
+  if (!std::filesystem::exists(model)) {
+    FAIL() << "missing model " << model << ": run scripts/fetch_model.sh";
+  }
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("rtmot-allocation-tail-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  {
+    std::ofstream labels(dir / "coco.txt");
+    for (int id = 0; id <= kCocoMaxClassId; ++id) labels << coco_label(id) << '\n';
+  }
+  const char* python = std::getenv("PYTHON");
+  const std::string command =
+      std::string(python != nullptr ? python : "/usr/bin/python3") + " " +
+      test::source_path("tests/detector/make_model_fixture.py").string() + " " + model.string() +
+      " " + test::source_path("models/ssdlite_mobilenet_v2_coco.anchors.csv").string() + " " +
+      (dir / "coco.txt").string() + " " + (dir / "decoded").string();
+  ASSERT_EQ(std::system(command.c_str()), 0) << "make_model_fixture.py (python3-onnx, numpy)";
+  XnnpackNetworkConfig config;
+  config.model_path = dir / "decoded.onnx";
+  config.box_output = "boxes";
+  config.logit_output = "scores";
+  config.threads = 1;
+  config.max_batch = 2;
+  XnnpackNetwork network(config);
+  std::filesystem::remove_all(dir);
+  EXPECT_NE(network.summary().find("decoding tail"), std::string::npos) << network.summary();
+  network.run(1);
+  network.run(2);
+  const xnn_allocator counting{nullptr,   &xnn_counted,         &xnn_counted_realloc,
+                               &xnn_free, &xnn_counted_aligned, &xnn_free};
+  ASSERT_EQ(xnn_initialize(&counting), xnn_status_success);
+  xnnpack_allocations = 0;
+  const test::CountingScope counting_new;
+  for (int pass = 0; pass < 3; ++pass) {
+    network.run(1);
+    network.run(2);
+  }
+  EXPECT_EQ(counting_new.allocations(), 0);
+  EXPECT_EQ(xnnpack_allocations.load(), 0);
+  // Decoded, not garbage: corners in 0..1-ish and probabilities.
+  EXPECT_EQ(network.anchors(), 1917U);
+  EXPECT_EQ(network.classes(), 91U);
+  EXPECT_GE(network.logits()[0], 0.F);
+  EXPECT_LE(network.logits()[0], 1.F);
 }
 #endif
 

@@ -12,13 +12,13 @@
 #include <string>
 #include <vector>
 
-#include "box_deviation.hpp"
 #include "common/input_error.hpp"
 #include "detector/activation_ranges.hpp"
 #include "detector/int8_calibration.hpp"
 #include "detector/model_checksum.hpp"
 #include "detector/ssd_detector.hpp"
 #include "detector/xnnpack_network.hpp"
+#include "int8_match.hpp"
 #include "shared_data.hpp"
 #include "vtest_frames.hpp"
 
@@ -34,29 +34,12 @@ fs::path ranges_path() {
   return test::source_path("configs/int8/ssdlite_mobilenet_v2_coco.ranges");
 }
 
-float iou(const tracker::Box& a, const tracker::Box& b) {
-  const float iw = std::min(a.x + a.w, b.x + b.w) - std::max(a.x, b.x);
-  const float ih = std::min(a.y + a.h, b.y + b.h) - std::max(a.y, b.y);
-  if (iw <= 0.F || ih <= 0.F) return 0.F;
-  return iw * ih / (a.area() + b.area() - iw * ih);
-}
-
 #define RTMOT_REQUIRE_XNNPACK()                                                           \
   do {                                                                                    \
     if (!xnnpack_built()) GTEST_SKIP() << "this build has no XNNPACK backend";            \
     if (!xnnpack_runs_here()) GTEST_SKIP() << "XNNPACK does not initialize on this CPU";  \
     if (!fs::exists(model_path())) FAIL() << "missing model: run scripts/fetch_model.sh"; \
   } while (false)
-
-// Every fp32 detection of score >= kSure (clear of the 0.3 cut, where int8's score shifts may
-// legitimately drop or add one) is looked for among the int8 detections of its class (best IoU, at
-// least 0.5). Measured on x86-64 (AVX2) over the 16 reference frames: see docs/cpu-detector.md.
-constexpr float kCut = 0.3F;
-constexpr float kSure = 0.5F;
-constexpr double kMinMatchedShare = 0.95;  // of the sure fp32 detections
-constexpr float kMedianBoxPx = 2.F;        // median edge move of matched boxes
-constexpr float kMedianScore = 0.03F;      // median score change
-constexpr float kWorstScore = 0.2F;
 
 TEST(XnnpackInt8, DetectionsMatchFp32WithinTheDocumentedTolerance) {
   RTMOT_REQUIRE_XNNPACK();
@@ -69,7 +52,7 @@ TEST(XnnpackInt8, DetectionsMatchFp32WithinTheDocumentedTolerance) {
   SsdConfig config;
   config.model_path = model_path();
   config.int8_ranges = ranges_path();
-  config.score_threshold = kCut;
+  config.score_threshold = test::kInt8Cut;
   config.classes = {};  // all
   config.plausible_shapes = false;
   config.threads = 1;
@@ -79,55 +62,18 @@ TEST(XnnpackInt8, DetectionsMatchFp32WithinTheDocumentedTolerance) {
   SsdDetector int8(config);
   EXPECT_NE(int8.describe().find("int8"), std::string::npos) << int8.describe();
 
-  std::vector<float> box_moves;
-  std::vector<float> score_moves;
-  int sure = 0;
-  int matched = 0;
-  for (const auto& [number, image] : frames) {
-    std::vector<tracker::Detection> expected;
-    std::vector<tracker::Detection> found;
-    fp32.detect(image, number, expected);
-    int8.detect(image, number, found);
-    std::vector<bool> used(found.size(), false);
-    for (const auto& e : expected) {  // best first (the post-processor sorts them)
-      if (e.score < kSure) continue;
-      ++sure;
-      int best = -1;
-      float best_iou = 0.5F;
-      for (std::size_t i = 0; i < found.size(); ++i) {
-        if (used[i] || found[i].class_id != e.class_id) continue;
-        if (iou(found[i].box, e.box) > best_iou) {
-          best_iou = iou(found[i].box, e.box);
-          best = static_cast<int>(i);
-        }
-      }
-      if (best < 0) {
-        std::cout << "frame " << number << ": fp32 class " << e.class_id << " score " << e.score
-                  << " at x " << e.box.x << " y " << e.box.y << " not found by int8\n";
-        continue;
-      }
-      used[static_cast<std::size_t>(best)] = true;
-      ++matched;
-      box_moves.push_back(test::box_deviation(found[static_cast<std::size_t>(best)].box, e.box));
-      score_moves.push_back(std::abs(found[static_cast<std::size_t>(best)].score - e.score));
-    }
-  }
-  ASSERT_GE(sure, 5 * static_cast<int>(frames.size()) / 2) << "too few detections to judge";
-  ASSERT_FALSE(box_moves.empty());
-  const auto median = [](std::vector<float> v) {
-    std::nth_element(v.begin(), v.begin() + static_cast<long>(v.size() / 2), v.end());
-    return v[v.size() / 2];
-  };
-  const float worst_box = *std::max_element(box_moves.begin(), box_moves.end());
-  const float worst_score = *std::max_element(score_moves.begin(), score_moves.end());
-  std::cout << "int8 vs fp32 over " << frames.size() << " frames: matched " << matched << "/"
-            << sure << " detections of score >= " << kSure << "; box move median "
-            << median(box_moves) << " px, worst " << worst_box << " px; score change median "
-            << median(score_moves) << ", worst " << worst_score << "\n";
-  EXPECT_GE(static_cast<double>(matched), kMinMatchedShare * sure);
-  EXPECT_LE(median(box_moves), kMedianBoxPx);
-  EXPECT_LE(median(score_moves), kMedianScore);
-  EXPECT_LE(worst_score, kWorstScore);
+  const test::Int8Match match = test::match_int8(fp32, int8, frames);
+  ASSERT_GE(match.sure, 5 * static_cast<int>(frames.size()) / 2) << "too few detections to judge";
+  ASSERT_FALSE(match.box_moves.empty());
+  std::cout << "int8 vs fp32 over " << frames.size() << " frames: matched " << match.matched << "/"
+            << match.sure << " detections of score >= " << test::kInt8Sure << "; box move median "
+            << match.median_box() << " px, worst " << match.worst_box()
+            << " px; score change median " << match.median_score() << ", worst "
+            << match.worst_score() << "\n";
+  EXPECT_GE(static_cast<double>(match.matched), test::kInt8MinMatchedShare * match.sure);
+  EXPECT_LE(match.median_box(), test::kInt8MedianBoxPx);
+  EXPECT_LE(match.median_score(), test::kInt8MedianScore);
+  EXPECT_LE(match.worst_score(), test::kInt8WorstScore);
 }
 
 // The committed ranges are what scripts/calibrate_int8.sh computes from the model and its sample

@@ -45,7 +45,7 @@ class ModelCheckTest : public ::testing::Test {
 };
 
 TEST_F(ModelCheckTest, TheBundledModelFitsAndRunsOnEveryEngineOfThisBuild) {
-  const ModelCheck check = check_model({model_, {}});
+  const ModelCheck check = check_model({model_, {}, {}});
   const std::string report = format_model_check(check);
   std::cout << report;
   EXPECT_TRUE(check.problems.empty()) << report;
@@ -68,6 +68,31 @@ TEST_F(ModelCheckTest, TheBundledModelFitsAndRunsOnEveryEngineOfThisBuild) {
   EXPECT_NE(report.find("verdict    usable by rtmot run\n"), std::string::npos);
 }
 
+// The int8 line: backend xnnpack-int8 with the ranges file it would read (the committed one
+// here), or why not (a file that is not there: named, with the way to make it). It does not
+// decide the verdict: `auto` never chooses int8.
+TEST_F(ModelCheckTest, TheInt8LineNamesItsRangesFile) {
+  const fs::path ranges = test::source_path("configs/int8/ssdlite_mobilenet_v2_coco.ranges");
+  const ModelCheck check = check_model({model_, {}, ranges});
+  const std::string report = format_model_check(check);
+  EXPECT_EQ(check.int8.runs, xnnpack_built() && xnnpack_runs_here()) << report;
+  EXPECT_NE(report.find("int8       xnnpack-int8 with ranges " + ranges.string() + ": " +
+                        (check.int8.runs ? "yes, runs as xnnpack-int8" : "no: ")),
+            std::string::npos)
+      << report;
+  if (!xnnpack_built() || !xnnpack_runs_here()) return;
+  const fs::path missing = dir_ / "absent.ranges";
+  const ModelCheck without = check_model({model_, {}, missing});
+  const std::string text = format_model_check(without);
+  EXPECT_TRUE(without.usable()) << text;
+  EXPECT_FALSE(without.int8.runs);
+  EXPECT_NE(text.find("int8       xnnpack-int8 with ranges " + missing.string() +
+                      ": no: " + missing.string()),
+            std::string::npos)
+      << text;
+  EXPECT_NE(text.find("make them with scripts/calibrate_int8.sh"), std::string::npos) << text;
+}
+
 // Anchors cut short (a file of another model, or damaged): named with both counts, and the engines
 // are not started on a model that cannot be decoded.
 TEST_F(ModelCheckTest, AnchorsOfAnotherCountAreNamedWithBothCounts) {
@@ -83,7 +108,7 @@ TEST_F(ModelCheckTest, AnchorsOfAnotherCountAreNamedWithBothCounts) {
       out << line << '\n';
     }
   }
-  const ModelCheck check = check_model({model_, cut});
+  const ModelCheck check = check_model({model_, cut, {}});
   EXPECT_FALSE(check.usable());
   EXPECT_EQ(check.anchors_in_file, 1900);
   EXPECT_TRUE(any_problem_with(
@@ -98,7 +123,7 @@ TEST_F(ModelCheckTest, AnchorsOfAnotherCountAreNamedWithBothCounts) {
 TEST_F(ModelCheckTest, AFileThatIsNoModelIsNamedAsSuch) {
   const fs::path text = dir_ / "notes.onnx";
   std::ofstream(text) << "not a model\n";
-  const ModelCheck check = check_model({text, {}});
+  const ModelCheck check = check_model({text, {}, {}});
   EXPECT_FALSE(check.usable());
   EXPECT_TRUE(check.outputs.empty());
   EXPECT_TRUE(any_problem_with(check, "model: OpenCV cannot load or run it"));
@@ -119,7 +144,7 @@ TEST_F(ModelCheckTest, AChangedModelFailsItsChecksum) {
     const char zeros[16] = {};
     file.write(zeros, sizeof zeros);
   }
-  const ModelCheck check = check_model({copy, {}});
+  const ModelCheck check = check_model({copy, {}, {}});
   EXPECT_EQ(check.checksums, "FAILED");
   EXPECT_TRUE(any_problem_with(check, "checksums: ")) << format_model_check(check);
   EXPECT_FALSE(check.usable());
@@ -128,7 +153,7 @@ TEST_F(ModelCheckTest, AChangedModelFailsItsChecksum) {
 // No file at all: the one error of the command (exit code bad_model), naming the path.
 TEST_F(ModelCheckTest, AMissingModelIsAnErrorNamingIt) {
   try {
-    check_model({dir_ / "absent.onnx", {}});
+    check_model({dir_ / "absent.onnx", {}, {}});
     FAIL() << "no error";
   } catch (const InputError& e) {
     EXPECT_EQ(e.exit_code(), ExitCode::bad_model);

@@ -5,16 +5,22 @@
 #include <gtest/gtest.h>
 #include <onnx/onnx_pb.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <set>
 #include <string>
 #include <vector>
 
 #include "common/input_error.hpp"
+#include "detector/model_check.hpp"
 #include "detector/ssd_detector.hpp"
+#include "detector/xnnpack_network.hpp"
 #include "shared_data.hpp"
+#include "vtest_frames.hpp"
 
 namespace rtmot::detector {
 namespace {
@@ -190,6 +196,237 @@ void set_ints(onnx::NodeProto& node, const std::string& name, std::vector<std::i
   attribute->set_name(name);
   attribute->set_type(onnx::AttributeProto::INTS);
   for (const auto v : values) attribute->add_ints(v);
+}
+
+// torch.onnx writes pytorch-ssd's `view(x.size(0), -1, k)` as Shape, Gather, Unsqueeze and Concat
+// feeding the Reshape: shapes that are constants once the input size is known. The bundled model's
+// head Reshapes rewritten so: the heads' reshapes and their Concat move to the host tail (shapes
+// computed once), and the detections are the unchanged model's on XNNPACK.
+TEST_F(XnnpackModelErrors, ComputedReshapesAsTorchWritesThemRunInTheTail) {
+  if (!xnnpack_built()) GTEST_SKIP() << "this build has no XNNPACK backend";
+  if (!xnnpack_runs_here()) GTEST_SKIP() << "XNNPACK does not initialize on this processor";
+  const SsdConfig original = write(BackendRequest::xnnpack);
+  onnx::GraphProto& graph = *model_.mutable_graph();
+  const auto int64_constant = [&](const std::string& name, std::vector<std::int64_t> values,
+                                  bool scalar) {
+    onnx::TensorProto& tensor = *graph.add_initializer();
+    tensor.set_name(name);
+    tensor.set_data_type(onnx::TensorProto::INT64);
+    if (!scalar) tensor.add_dims(static_cast<std::int64_t>(values.size()));
+    for (const auto v : values) tensor.add_int64_data(v);
+  };
+  std::vector<onnx::NodeProto> nodes;
+  int rewritten = 0;
+  for (const onnx::NodeProto& node : graph.node()) {
+    if (node.op_type() != "Reshape") {
+      nodes.push_back(node);
+      continue;
+    }
+    const std::string tag = "dyn" + std::to_string(rewritten++);
+    std::int64_t columns = 0;
+    for (const auto& init : graph.initializer()) {
+      if (init.name() == node.input(1)) columns = init.int64_data_size() ? init.int64_data(2) : 0;
+    }
+    if (columns == 0) {  // raw_data
+      for (const auto& init : graph.initializer()) {
+        if (init.name() != node.input(1)) continue;
+        std::int64_t values[3];
+        std::memcpy(values, init.raw_data().data(), sizeof(values));
+        columns = values[2];
+      }
+    }
+    ASSERT_GT(columns, 0) << node.name();
+    int64_constant(tag + "_zero", {0}, true);
+    int64_constant(tag + "_rest", {-1, columns}, false);
+    const auto add = [&](const std::string& op, std::vector<std::string> inputs,
+                         const std::string& output) {
+      onnx::NodeProto made;
+      made.set_name(tag + "_" + op);
+      made.set_op_type(op);
+      for (const auto& input : inputs) made.add_input(input);
+      made.add_output(output);
+      nodes.push_back(made);
+      return &nodes.back();
+    };
+    add("Shape", {node.input(0)}, tag + "_shape");
+    add("Gather", {tag + "_shape", tag + "_zero"}, tag + "_batch");
+    onnx::NodeProto* unsqueeze = add("Unsqueeze", {tag + "_batch"}, tag + "_batch1");
+    auto* axes = unsqueeze->add_attribute();
+    axes->set_name("axes");
+    axes->set_type(onnx::AttributeProto::INTS);
+    axes->add_ints(0);
+    onnx::NodeProto* concat = add("Concat", {tag + "_batch1", tag + "_rest"}, tag + "_target");
+    auto* axis = concat->add_attribute();
+    axis->set_name("axis");
+    axis->set_type(onnx::AttributeProto::INT);
+    axis->set_i(0);
+    onnx::NodeProto reshape = node;
+    reshape.set_input(1, tag + "_target");
+    nodes.push_back(reshape);
+  }
+  EXPECT_EQ(rewritten, 12);
+  graph.clear_node();
+  for (const auto& node : nodes) *graph.add_node() = node;
+  const fs::path changed = dir_ / "computed.onnx";
+  {
+    std::ofstream out(changed, std::ios::binary);
+    ASSERT_TRUE(model_.SerializeToOstream(&out));
+  }
+  SsdConfig config = original;
+  config.model_path = changed;
+  config.classes = {};
+  SsdConfig reference_config = original;
+  reference_config.classes = {};
+  SsdDetector computed(config);
+  SsdDetector reference(reference_config);
+  // 12 heads x (Shape, Gather, Unsqueeze, Concat, Reshape), the two Concats, the two Identities.
+  EXPECT_NE(computed.describe().find("decoding tail of 64 nodes"), std::string::npos)
+      << computed.describe();
+  std::size_t compared = 0;
+  // Under qemu one frame (a forward takes ~15 s there).
+  const std::set<int> numbers = test::under_emulation() ? std::set<int>{1} : std::set<int>{1, 101};
+  for (const auto& [number, image] : test::vtest_frames(numbers)) {
+    std::vector<tracker::Detection> expected;
+    std::vector<tracker::Detection> found;
+    reference.detect(image, number, expected);
+    computed.detect(image, number, found);
+    ASSERT_EQ(found.size(), expected.size()) << "frame " << number;
+    for (std::size_t i = 0; i < found.size(); ++i) {
+      EXPECT_EQ(found[i].class_id, expected[i].class_id);
+      EXPECT_EQ(found[i].score, expected[i].score);
+      EXPECT_EQ(found[i].box.x, expected[i].box.x);
+      ++compared;
+    }
+  }
+  EXPECT_GE(compared, 5U);
+}
+
+// torch.onnx without constant folding writes constants as Constant nodes, not initializers: the
+// bundled model's head reshapes' target shapes moved into Constant nodes build as before, with no
+// tail, and give the same detections.
+TEST_F(XnnpackModelErrors, ConstantNodesBuildAsInitializersDo) {
+  if (!xnnpack_built()) GTEST_SKIP() << "this build has no XNNPACK backend";
+  if (!xnnpack_runs_here()) GTEST_SKIP() << "XNNPACK does not initialize on this processor";
+  SsdConfig reference_config = write(BackendRequest::xnnpack);
+  reference_config.classes = {};
+  SsdDetector reference(reference_config);  // loaded before the file is rewritten
+  onnx::GraphProto& graph = *model_.mutable_graph();
+  std::vector<onnx::NodeProto> constants;
+  std::vector<onnx::TensorProto> kept;
+  for (const auto& tensor : graph.initializer()) {
+    if (tensor.data_type() != onnx::TensorProto::INT64) {
+      kept.push_back(tensor);
+      continue;
+    }
+    onnx::NodeProto node;
+    node.set_name(tensor.name() + "_constant");
+    node.set_op_type("Constant");
+    node.add_output(tensor.name());
+    auto* value = node.add_attribute();
+    value->set_name("value");
+    value->set_type(onnx::AttributeProto::TENSOR);
+    *value->mutable_t() = tensor;
+    constants.push_back(node);
+  }
+  ASSERT_EQ(constants.size(), 12U);  // the heads' reshape targets
+  std::vector<onnx::NodeProto> nodes(constants);
+  nodes.insert(nodes.end(), graph.node().begin(), graph.node().end());
+  graph.clear_node();
+  for (const auto& node : nodes) *graph.add_node() = node;
+  graph.clear_initializer();
+  for (const auto& tensor : kept) *graph.add_initializer() = tensor;
+  SsdConfig config = write(BackendRequest::xnnpack);
+  config.classes = {};
+  SsdDetector changed(config);
+  EXPECT_EQ(changed.describe().find("decoding tail"), std::string::npos) << changed.describe();
+  std::size_t compared = 0;
+  for (const auto& [number, image] : test::vtest_frames({1})) {
+    std::vector<tracker::Detection> expected;
+    std::vector<tracker::Detection> found;
+    reference.detect(image, number, expected);
+    changed.detect(image, number, found);
+    ASSERT_EQ(found.size(), expected.size());
+    for (std::size_t i = 0; i < found.size(); ++i) {
+      EXPECT_EQ(found[i].score, expected[i].score);
+      ++compared;
+    }
+  }
+  EXPECT_GE(compared, 5U);
+}
+
+// A per-channel constant scale in the middle of the network (as an unfolded batch norm is): not an
+// operator XNNPACK's builder takes, and a convolution follows, so it is no decoding tail: the error
+// names the node where the host would have to take over.
+TEST_F(XnnpackModelErrors, APerChannelScaleBeforeAConvolutionIsNamed) {
+  if (!xnnpack_built()) GTEST_SKIP() << "this build has no XNNPACK backend";
+  if (!xnnpack_runs_here()) GTEST_SKIP() << "XNNPACK does not initialize on this processor";
+  onnx::GraphProto& graph = *model_.mutable_graph();
+  const onnx::NodeProto conv = first_node("Conv");
+  std::int64_t channels = 0;
+  for (const auto& tensor : graph.initializer()) {
+    if (tensor.name() == conv.input(1)) channels = tensor.dims(0);
+  }
+  ASSERT_GT(channels, 0);
+  onnx::TensorProto& scale = *graph.add_initializer();
+  scale.set_name("per_channel_scale");
+  scale.set_data_type(onnx::TensorProto::FLOAT);
+  for (const std::int64_t dim : {std::int64_t{1}, channels, std::int64_t{1}, std::int64_t{1}}) {
+    scale.add_dims(dim);
+  }
+  for (std::int64_t c = 0; c < channels; ++c) scale.add_float_data(1.F);
+  for (auto& node : *graph.mutable_node()) {
+    for (auto& input : *node.mutable_input()) {
+      if (input == conv.output(0)) input = "scaled";
+    }
+  }
+  std::vector<onnx::NodeProto> nodes(graph.node().begin(), graph.node().end());
+  onnx::NodeProto mul;
+  mul.set_name("scale_first");
+  mul.set_op_type("Mul");
+  mul.add_input(conv.output(0));
+  mul.add_input("per_channel_scale");
+  mul.add_output("scaled");
+  const auto after = std::find_if(nodes.begin(), nodes.end(), [&](const onnx::NodeProto& n) {
+    return n.output_size() > 0 && n.output(0) == conv.output(0);
+  });
+  nodes.insert(after + 1, mul);
+  graph.clear_node();
+  for (const auto& node : nodes) *graph.add_node() = node;
+  expect_bad_model(expect_error(write(BackendRequest::xnnpack)), "node 'scale_first' (Mul)",
+                   "which the xnnpack backend runs only on the host");
+}
+
+// After the network XNNPACK builds, the engine runs a decoding tail on the host (pytorch-ssd's box
+// decoding and softmax: model_layout_test.cpp); an operator the tail does not run is named, with
+// its node and the model, and model check reports the same. The class logits pass through Tanh
+// (which OpenCV runs) before leaving the graph.
+TEST_F(XnnpackModelErrors, AnOperatorTheDecodingTailDoesNotRunIsNamed) {
+  if (!xnnpack_built()) GTEST_SKIP() << "this build has no XNNPACK backend";
+  if (!xnnpack_runs_here()) GTEST_SKIP() << "XNNPACK does not initialize on this processor";
+  onnx::GraphProto& graph = *model_.mutable_graph();
+  for (auto& node : *graph.mutable_node()) {
+    for (auto& output : *node.mutable_output()) {
+      if (output == "class_logits") output = "raw_logits";
+    }
+  }
+  onnx::NodeProto& tanh = *graph.add_node();
+  tanh.set_name("squash_logits");
+  tanh.set_op_type("Tanh");
+  tanh.add_input("raw_logits");
+  tanh.add_output("class_logits");
+  const SsdConfig config = write(BackendRequest::xnnpack);
+  const InputError e = expect_error(config);
+  expect_bad_model(e, "node 'squash_logits' (Tanh)", "op 'Tanh' in the decoding tail");
+  // Model check runs OpenCV's engine five times: not under qemu (~15 s a forward there).
+  if (test::under_emulation()) return;
+
+  const ModelCheck check = check_model({config.model_path, config.anchors_path, {}});
+  const std::string report = format_model_check(check);
+  EXPECT_TRUE(check.usable()) << report;  // OpenCV runs it
+  EXPECT_NE(report.find("engine     xnnpack: no: " + config.model_path.string() +
+                        ": node 'squash_logits' (Tanh): op 'Tanh' in the decoding tail"),
+            std::string::npos)
+      << report;
 }
 
 TEST_F(XnnpackModelErrors, HugePadsAreABadModel) {
