@@ -56,7 +56,7 @@ int run_reporting_errors(const std::function<int()>& run) {
   return code;
 }
 
-// SIGINT/SIGTERM blocked before anything else, so that a command that stops cleanly on them takes
+// SIGINT/SIGTERM (and SIGHUP) blocked before anything else, so that a command that stops cleanly on them takes
 // the ones sent while it starts (platform::StopSignals sigwait()s pending signals too). main() is
 // too late: the constructors of the ~250 shared libraries (OpenCV, GStreamer, ...) run before it,
 // 60-200 ms during which SIGTERM killed `rtmot run`. A .preinit_array entry of the executable runs
@@ -71,6 +71,7 @@ void block_stop_signals(int, char**, char**) {
   sigemptyset(&stop_signals);
   sigaddset(&stop_signals, SIGINT);
   sigaddset(&stop_signals, SIGTERM);
+  sigaddset(&stop_signals, SIGHUP);  // `run` re-reads its configuration on it (platform/signals)
   sigprocmask(SIG_BLOCK, &stop_signals, nullptr);
 }
 __attribute__((section(".preinit_array"),
@@ -82,6 +83,7 @@ void unblock_stop_signals() {
   sigemptyset(&stop_signals);
   sigaddset(&stop_signals, SIGINT);
   sigaddset(&stop_signals, SIGTERM);
+  sigaddset(&stop_signals, SIGHUP);
   pthread_sigmask(SIG_UNBLOCK, &stop_signals, nullptr);
 }
 

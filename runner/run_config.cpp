@@ -226,7 +226,7 @@ void resolve_input_paths(RunConfig& config) {
 
 RunConfig default_run_config() {
   RunConfig config = parse_run_config("tracker: {}\n", "(defaults)");
-  config.file = "(command line)";
+  config.file = kNoConfigFile;
   config.detector.model = "models/ssdlite_mobilenet_v2_coco.onnx";
   resolve_input_paths(config);  // the working directory's models/, else the installed one
   return config;
@@ -287,6 +287,10 @@ void validate(const RunConfig& config) {
       missing("sources[" + std::to_string(i) + "].stream_id",
               "stream id " + std::to_string(stream_id_of(config, i)) + " is used twice");
     }
+  }
+  if (!config.output.web_save_to.empty() && config_file_of(config).empty()) {
+    missing("output.web_save_to",
+            "needs --config: the file saved is a copy of the configuration file with the change");
   }
   if (sources.size() > 1 && config.output.video) {
     missing("output.video_file", "the annotated video needs a single source");

@@ -103,6 +103,9 @@ struct OutputConfig {
   int web_port{0};                            // the operator's page on this TCP port, 0 = off
   std::string web_bind{"127.0.0.1"};          // an IP literal the page listens on
   std::string web_token_file;                 // the token writes need; empty: writes are off
+  /// Where the page's saves go (a whole configuration: --config's with the change); empty: the
+  /// --config file itself.
+  std::string web_save_to;
   /// MOTChallenge results per source, in this folder (runner/mot_results_output.hpp); empty = off.
   std::string mot_results;
   /// A message for every camera frame, predicted where the detector skipped (docs/full-rate.md).
@@ -133,6 +136,13 @@ struct RunConfig {
 std::vector<SourceConfig> source_list(const RunConfig& config);
 /// The stream id of source `index` of source_list().
 std::uint32_t stream_id_of(const RunConfig& config, std::size_t index);
+
+/// What RunConfig::file says of a run without --config (messages name it).
+inline constexpr const char* kNoConfigFile = "(command line)";
+/// The --config file the run was read from, or "" (none).
+inline std::string config_file_of(const RunConfig& config) {
+  return config.file == kNoConfigFile ? std::string() : config.file;
+}
 
 /// Reads a YAML run configuration. Relative paths in it stay as written (relative to the cwd).
 RunConfig load_run_config(const std::string& path);

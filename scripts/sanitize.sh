@@ -84,6 +84,11 @@ if [[ $which == tsan || $which == all ]]; then
   echo "--- tsan: rtmot run --web-port, watched and written to"
   bash "$root/tests/system/web_view.sh" "$tsan_dir/apps/rtmot" "$root" \
     "${RTMOT_SHARED_DIR:-$root/../shared}" || status=1
+  # SIGHUP's reload thread and the page's settings against the running pipeline (the score cut's
+  # hand-over to the detect stage, the events' to the track stage).
+  echo "--- tsan: rtmot run, SIGHUP and POST /api/settings"
+  bash "$root/tests/system/web_reload.sh" "$tsan_dir/apps/rtmot" "$root" \
+    "${RTMOT_SHARED_DIR:-$root/../shared}" || status=1
   echo "sanitize: tsan build and tests took $(($(date +%s) - start)) s"
 fi
 exit $status

@@ -9,6 +9,7 @@ Usage: web_client.py BASE_URL COMMAND [ARGS]
   post SOURCE TOKEN BODY     POST BODY to /api/events?source=SOURCE as the page does (TOKEN "-":
                              no Authorization header; BODY "@N": N bytes); print "STATUS JSON"
   wait-count NAME            wait until source 0's line NAME counted a crossing (300 s at most)
+  post-settings TOKEN BODY   POST BODY to /api/settings, as `post`; print "STATUS JSON"
 """
 import http.client
 import json
@@ -84,15 +85,20 @@ elif command == "get":
     response = connection.getresponse()
     body = response.read()
     print(response.status, len(body), b"cmake_minimum_required" in body)
-elif command == "post":
-    source, token, body = sys.argv[3], sys.argv[4], sys.argv[5]
+elif command in ("post", "post-settings"):
+    if command == "post":
+        source, token, body = sys.argv[3], sys.argv[4], sys.argv[5]
+        path = "/api/events?source=" + source
+    else:
+        token, body = sys.argv[3], sys.argv[4]
+        path = "/api/settings"
     data = (b"x" * int(body[1:])) if body.startswith("@") else body.encode()
     headers = {"Content-Type": "application/json"}
     if token != "-":
         headers["Authorization"] = "Bearer " + token
     connection = http.client.HTTPConnection(host.hostname, host.port, timeout=60)
     try:
-        connection.request("POST", "/api/events?source=" + source, body=data, headers=headers)
+        connection.request("POST", path, body=data, headers=headers)
         response = connection.getresponse()
         print(response.status, response.read().decode())
     except (BrokenPipeError, ConnectionResetError):
