@@ -56,15 +56,15 @@ int run_reporting_errors(const std::function<int()>& run) {
   return code;
 }
 
-// SIGINT/SIGTERM (and SIGHUP) blocked before anything else, so that a command that stops cleanly on them takes
-// the ones sent while it starts (platform::StopSignals sigwait()s pending signals too). main() is
-// too late: the constructors of the ~250 shared libraries (OpenCV, GStreamer, ...) run before it,
-// 60-200 ms during which SIGTERM killed `rtmot run`. A .preinit_array entry of the executable runs
-// after the loader has mapped the libraries and before any of their constructors; the process is
-// single-threaded then, so sigprocmask is the whole mask.
-// SIGXFSZ is ignored here too: under a file-size limit (ulimit -f, systemd's LimitFSIZE=) its
-// default action killed the run mid-record; ignored, the write fails with EFBIG and the output is
-// cut back to its last whole record (common/output_file.cpp) and the run ends with io_error.
+// SIGINT/SIGTERM (and SIGHUP) blocked before anything else, so that a command that stops cleanly on
+// them takes the ones sent while it starts (platform::StopSignals sigwait()s pending signals too).
+// main() is too late: the constructors of the ~250 shared libraries (OpenCV, GStreamer, ...) run
+// before it, 60-200 ms during which SIGTERM killed `rtmot run`. A .preinit_array entry of the
+// executable runs after the loader has mapped the libraries and before any of their constructors;
+// the process is single-threaded then, so sigprocmask is the whole mask. SIGXFSZ is ignored here
+// too: under a file-size limit (ulimit -f, systemd's LimitFSIZE=) its default action killed the run
+// mid-record; ignored, the write fails with EFBIG and the output is cut back to its last whole
+// record (common/output_file.cpp) and the run ends with io_error.
 void block_stop_signals(int, char**, char**) {
   std::signal(SIGXFSZ, SIG_IGN);
   sigset_t stop_signals;

@@ -5,7 +5,9 @@
 
 namespace rtmot::events {
 
-inline bool same_point(const Point& a, const Point& b) { return a.x == b.x && a.y == b.y; }
+inline bool same_point(const Point& a, const Point& b) {
+  return a.x == b.x && a.y == b.y;
+}
 
 inline bool same_events(const EventsConfig& a, const EventsConfig& b) {
   if (a.lines.size() != b.lines.size() || a.zones.size() != b.zones.size()) return false;

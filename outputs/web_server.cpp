@@ -268,8 +268,8 @@ int respond_answer(mg_connection* connection, const SaveAnswer& answer) {
 int WebServer::serve_settings(mg_connection* connection, void* self) {
   auto& server = *static_cast<WebServer*>(self);
   std::string body;
-  if (const int refused = server.read_write(connection, server.content_.save_settings != nullptr,
-                                            body)) {
+  if (const int refused =
+          server.read_write(connection, server.content_.save_settings != nullptr, body)) {
     return refused;
   }
   return respond_answer(connection, server.content_.save_settings(body));

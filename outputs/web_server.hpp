@@ -48,7 +48,8 @@ struct WebContent {
   std::string detector;                // the detector's description (backend)
   /// Saves source N's events section (body); null: saving is off.
   std::function<SaveAnswer(std::size_t source, const std::string& body)> save_events;
-  /// Per source its geometry as it is now (`sources` updated by saves and by SIGHUP); null: `sources`.
+  /// Per source its geometry as it is now (`sources` updated by saves and by SIGHUP); null:
+  /// `sources`.
   std::function<nlohmann::json()> geometry;
   /// Changes the settings a run takes live (`{"score_threshold": 0.4}`); null: off.
   std::function<SaveAnswer(const std::string& body)> save_settings;

@@ -1,13 +1,14 @@
 #pragma once
 // The running configuration's text, where the page's saves go (docs/web.md): the `--config` file as
-// read at start or at the last SIGHUP that was applied, with the saves made since. A save writes the
-// whole document, changed, to output.web_save_to when set, else back to the --config file: to a
+// read at start or at the last SIGHUP that was applied, with the saves made since. A save writes
+// the whole document, changed, to output.web_save_to when set, else back to the --config file: to a
 // temporary beside it, renamed over it once whole (common/output_file.hpp), so a crash leaves the
 // old file or the new one. yaml-cpp re-emits it: comments and key order are not kept.
+#include <yaml-cpp/yaml.h>
+
 #include <functional>
 #include <mutex>
 #include <string>
-#include <yaml-cpp/yaml.h>
 
 namespace rtmot::runner {
 

@@ -17,8 +17,7 @@ bool taken_live(const std::string& path) {
   if (path == "detector.score_threshold" || path == "source.events") return true;
   // sources[N].events
   return path.rfind("sources[", 0) == 0 && path.size() > 7 &&
-         path.compare(path.size() - 7, 7, ".events") == 0 &&
-         path.find('.') == path.size() - 7;
+         path.compare(path.size() - 7, 7, ".events") == 0 && path.find('.') == path.size() - 7;
 }
 
 void differences(const YAML::Node& before, const YAML::Node& after, const std::string& path,
@@ -54,8 +53,8 @@ void differences(const YAML::Node& before, const YAML::Node& after, const std::s
     }
     for (const auto& entry : after) {
       const std::string key = entry.first.Scalar();
-      if (!before[key].IsDefined()) differences(YAML::Node(YAML::NodeType::Undefined),
-                                                entry.second, prefix + key, out);
+      if (!before[key].IsDefined())
+        differences(YAML::Node(YAML::NodeType::Undefined), entry.second, prefix + key, out);
     }
   }
 }
@@ -69,9 +68,9 @@ std::vector<std::string> settings_needing_restart(const YAML::Node& before,
   return out;
 }
 
-ConfigReloader::ConfigReloader(std::string config_file, const RunFlags& flags,
-                               EventsEditor& events, SettingsEditor& settings,
-                               pipeline::ScoreCut& score_cut, ConfigDocument& document)
+ConfigReloader::ConfigReloader(std::string config_file, const RunFlags& flags, EventsEditor& events,
+                               SettingsEditor& settings, pipeline::ScoreCut& score_cut,
+                               ConfigDocument& document)
     : config_file_(std::move(config_file)),
       flags_(flags),
       events_(events),
@@ -91,8 +90,9 @@ void ConfigReloader::reload() {
   RunConfig fresh;
   std::vector<events::EventsConfig> resolved;
   try {
+    // The reader of the start (paths resolved as there), then the document of the same file.
+    fresh = load_run_config(config_file_);
     const std::string text = read_text_file(config_file_);
-    fresh = parse_run_config(text, config_file_);
     flags_.apply(fresh);
     validate(fresh);
     document = YAML::Load(text);
@@ -100,16 +100,15 @@ void ConfigReloader::reload() {
     if (sources.size() == events_.sources().size()) {
       for (std::size_t i = 0; i < sources.size(); ++i) {
         const auto& running = events_.sources()[i];
-        resolved.push_back(events::resolve_events(sources[i].events, running.width,
-                                                  running.height));
+        resolved.push_back(
+            events::resolve_events(sources[i].events, running.width, running.height));
       }
     }
   } catch (const InputError& error) {
     spdlog::error("SIGHUP: {}; the running configuration is kept", error.what());
     return;
   } catch (const std::exception& error) {
-    spdlog::error("SIGHUP: {}: {}; the running configuration is kept", config_file_,
-                  error.what());
+    spdlog::error("SIGHUP: {}: {}; the running configuration is kept", config_file_, error.what());
     return;
   }
   std::vector<std::string> restart = settings_needing_restart(started_with_, document);

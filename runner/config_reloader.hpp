@@ -7,9 +7,10 @@
 // generation; a section that resolves to the running one keeps its counts) and the detector's
 // score cut (runner/settings_editor.hpp). Every other setting that differs from the file the run
 // started with is named in one "needs a restart" line and not applied.
+#include <yaml-cpp/yaml.h>
+
 #include <string>
 #include <vector>
-#include <yaml-cpp/yaml.h>
 
 #include "runner/config_document.hpp"
 #include "runner/events_editor.hpp"

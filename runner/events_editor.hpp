@@ -27,7 +27,7 @@ class EventsEditor {
     std::string uri;
     int width{0};
     int height{0};
-    events::EventsConfig running;         // what the run counts now (resolved, frame period set)
+    events::EventsConfig running;  // what the run counts now (resolved, frame period set)
     pipeline::EventsMailbox* mailbox{nullptr};  // not owned
   };
 

@@ -214,9 +214,8 @@ class CostProbe {
 // The image's work is done only where the tracker will use it.
 bool measures_appearance(const RunConfig& config) {
   const tracker::TrackerConfig& tracker = config.tracker;
-  return config.detector.appearance &&
-         (tracker.appearance_weight > 0.0 || tracker.appearance_gate < 1.0 ||
-          tracker.reid_gate > 0.0);
+  return config.detector.appearance && (tracker.appearance_weight > 0.0 ||
+                                        tracker.appearance_gate < 1.0 || tracker.reid_gate > 0.0);
 }
 
 bool runs_on_cpu(const detector::Detector& detector) {
@@ -422,8 +421,7 @@ RunOutputs make_outputs(const RunConfig& config, std::vector<pipeline::PipelineI
   }
   outputs.deliveries = probes;  // for the final report
   // What a save on the page or a SIGHUP changes while the run goes on.
-  const bool live =
-      !inputs.empty() && (output.web_port > 0 || !config_file_of(config).empty());
+  const bool live = !inputs.empty() && (output.web_port > 0 || !config_file_of(config).empty());
   std::vector<EventsEditor::Source> editable;
   if (live) {
     for (auto& input : inputs) {
@@ -435,8 +433,7 @@ RunOutputs make_outputs(const RunConfig& config, std::vector<pipeline::PipelineI
                           input.events_mailbox});
     }
     outputs.score_cut = std::make_unique<pipeline::ScoreCut>(config.detector.score_threshold);
-    outputs.document =
-        std::make_unique<ConfigDocument>(config_file_of(config), output.web_save_to);
+    outputs.document = std::make_unique<ConfigDocument>(config_file_of(config), output.web_save_to);
     outputs.settings_editor =
         std::make_unique<SettingsEditor>(*outputs.score_cut, *outputs.document);
   }
@@ -491,9 +488,9 @@ RunOutputs make_outputs(const RunConfig& config, std::vector<pipeline::PipelineI
     sinks.push_back(std::make_unique<outputs::MetricsSink>(*outputs.metrics));
   }
   if (live) {
-    outputs.events_editor = std::make_unique<EventsEditor>(
-        std::move(editable), outputs.event_metrics.get(), *outputs.document,
-        !config.sources.empty());
+    outputs.events_editor =
+        std::make_unique<EventsEditor>(std::move(editable), outputs.event_metrics.get(),
+                                       *outputs.document, !config.sources.empty());
   }
   outputs.consumers = pipeline::as_consumers(std::move(sinks));
   if (mot_results) outputs.consumers.push_back(std::move(mot_results));

@@ -15,8 +15,8 @@
 #include "platform/video_source.hpp"
 #include "runner/config_document.hpp"
 #include "runner/events_editor.hpp"
-#include "runner/settings_editor.hpp"
 #include "runner/run_config.hpp"
+#include "runner/settings_editor.hpp"
 
 namespace rtmot::runner {
 

@@ -21,7 +21,8 @@ outputs::SaveAnswer refused(const std::string& field, const std::string& problem
           nullptr};
 }
 
-// A key of the configuration file (bare, as "nms_threshold", or whole, as "detector.nms_threshold").
+// A key of the configuration file (bare, as "nms_threshold", or whole, as
+// "detector.nms_threshold").
 bool is_setting(const std::string& key) {
   if (find_run_setting(key) != nullptr || find_run_setting("detector." + key) != nullptr)
     return true;
@@ -41,13 +42,15 @@ std::optional<std::string> SettingsEditor::score_problem(float cut) const {
   if (!(cut > 0.F)) return std::string("expected a number in (0, 1]");
   if (cut < score_cut_.floor()) {
     return fmt::format(
-        "{} is below the cut the detector was started with ({}): lowering it needs a restart",
-        cut, score_cut_.floor());
+        "{} is below the cut the detector was started with ({}): lowering it needs a restart", cut,
+        score_cut_.floor());
   }
   return std::nullopt;
 }
 
-nlohmann::json SettingsEditor::current() const { return {{kScoreKey, score_cut_.get()}}; }
+nlohmann::json SettingsEditor::current() const {
+  return {{kScoreKey, score_cut_.get()}};
+}
 
 outputs::SaveAnswer SettingsEditor::save(const std::string& body) {
   YAML::Node node;
