@@ -63,9 +63,29 @@ void AnnotatedVideo::write_predicted(SideFrame& frame) {
   ++predicted_;
 }
 
+// The configuration counted for `generation` replaces the one drawn, counts from zero. A
+// configuration replaced before any frame counted with it reached the video is never drawn (the
+// mailbox keeps only the newest): the one before stays until the newest's first frame. The new
+// overlay allocates, and the old one is freed, on the sink thread: once per save, a person's
+// click, as the encoder allocates for every frame.
+void AnnotatedVideo::switch_events(std::uint32_t generation) {
+  if (events_mailbox_ == nullptr || generation == shown_generation_) return;
+  if (const pipeline::PostedEvents* posted = events_mailbox_->take()) next_events_ = posted;
+  if (next_events_ == nullptr || next_events_->generation != generation) return;
+  const events::EventsConfig& config = next_events_->config;
+  if (config.lines.empty() && config.zones.empty()) {
+    events_overlay_.reset();
+  } else {
+    events_overlay_.emplace(config);
+  }
+  shown_generation_ = generation;
+  next_events_ = nullptr;
+}
+
 void AnnotatedVideo::consume(const pipeline::SinkFrame& frame) {
   const messages::FrameResult& result = frame.result;
   if (result.source_outage || result.end_of_stream) return;  // no picture
+  switch_events(result.events_generation);
   // The frames skipped before this one show the counts as they were; this one and later, with its
   // events.
   bool counted = false;

@@ -116,6 +116,7 @@ std::uint32_t EventsEditor::hand_over(std::size_t index, events::EventsConfig co
     metrics_->post(std::move(names), generation);
   }
   source.running = config;
+  if (source.video_mailbox != nullptr) source.video_mailbox->post(config, generation);
   source.mailbox->post(std::move(config), generation);
   return generation;
 }

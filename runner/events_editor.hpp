@@ -29,6 +29,8 @@ class EventsEditor {
     int height{0};
     events::EventsConfig running;  // what the run counts now (resolved, frame period set)
     pipeline::EventsMailbox* mailbox{nullptr};  // not owned
+    /// The annotated video's (it draws the lines and zones); not owned, null: none.
+    pipeline::EventsMailbox* video_mailbox{nullptr};
   };
 
   /// `metrics`: null when nothing serves the counts; `document`: where saves are written (not

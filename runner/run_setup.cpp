@@ -402,6 +402,7 @@ RunOutputs make_outputs(const RunConfig& config, std::vector<pipeline::PipelineI
     sinks.push_back(std::make_unique<messages::JsonlSink>(output.jsonl_file, label_of));
   }
   std::unique_ptr<pipeline::FrameConsumer> video;
+  outputs::AnnotatedVideo* annotated_video = nullptr;
   if (output.video) {
     auto annotated = std::make_unique<outputs::AnnotatedVideo>(*output.video, output.video_encoding,
                                                                first, output.overlay, label_of);
@@ -409,6 +410,7 @@ RunOutputs make_outputs(const RunConfig& config, std::vector<pipeline::PipelineI
     if (!inputs.empty()) inputs.front().tap = annotated->tap();
     const auto& counted = inputs.empty() ? events::EventsConfig{} : inputs.front().events;
     if (!counted.lines.empty() || !counted.zones.empty()) annotated->show_events(counted);
+    annotated_video = annotated.get();
     video = std::move(annotated);
     outputs.destinations.push_back(
         "video -> " + output.video->text +
@@ -430,7 +432,13 @@ RunOutputs make_outputs(const RunConfig& config, std::vector<pipeline::PipelineI
       const platform::SourceInfo& info = input.source->info();
       editable.push_back({input.stream_id, info.uri, static_cast<int>(input.tracker.image_width),
                           static_cast<int>(input.tracker.image_height), input.events,
-                          input.events_mailbox});
+                          input.events_mailbox, nullptr});
+    }
+    if (annotated_video != nullptr) {
+      // One source (validate() checked it): the video draws its lines as they change.
+      outputs.video_mailbox = std::make_unique<pipeline::EventsMailbox>();
+      annotated_video->follow_events(outputs.video_mailbox.get());
+      editable.front().video_mailbox = outputs.video_mailbox.get();
     }
     outputs.score_cut = std::make_unique<pipeline::ScoreCut>(config.detector.score_threshold);
     outputs.document = std::make_unique<ConfigDocument>(config_file_of(config), output.web_save_to);

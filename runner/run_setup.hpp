@@ -55,6 +55,7 @@ struct RunOutputs {
   /// run goes on (docs/web.md): the sources' new lines and zones, the detector's score cut, and
   /// the document saves are written to. Declared before the server, which uses them.
   std::vector<std::unique_ptr<pipeline::EventsMailbox>> mailboxes;
+  std::unique_ptr<pipeline::EventsMailbox> video_mailbox;  // with output.video_file
   std::unique_ptr<pipeline::ScoreCut> score_cut;
   std::unique_ptr<ConfigDocument> document;
   std::unique_ptr<EventsEditor> events_editor;

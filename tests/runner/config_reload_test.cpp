@@ -61,7 +61,7 @@ struct Fixture {
     events::EventsConfig running;
     running.lines.push_back({"door", {{380, 0}, {380, 576}}, true});
     events = std::make_unique<EventsEditor>(
-        std::vector<EventsEditor::Source>{{0, "video.avi", 768, 576, running, &mailbox}}, nullptr,
+        std::vector<EventsEditor::Source>{{0, "video.avi", 768, 576, running, &mailbox, nullptr}}, nullptr,
         *document, false);
     settings = std::make_unique<SettingsEditor>(cut, *document);
     reloader =
