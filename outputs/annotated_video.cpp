@@ -57,35 +57,17 @@ void AnnotatedVideo::write_predicted(SideFrame& frame) {
     prediction_.tracks.push_back(predicted);
   }
   overlay_.draw(frame.image, prediction_, true, stats_);
-  if (events_overlay_) events_overlay_->draw(frame.image);
+  if (EventsOverlay* events_overlay = events_.get()) events_overlay->draw(frame.image);
   stream_->push(frame.image);
   ++written_;
   ++predicted_;
 }
 
-// The configuration counted for `generation` replaces the one drawn, counts from zero. A
-// configuration replaced before any frame counted with it reached the video is never drawn (the
-// mailbox keeps only the newest): the one before stays until the newest's first frame. The new
-// overlay allocates, and the old one is freed, on the sink thread: once per save, a person's
-// click, as the encoder allocates for every frame.
-void AnnotatedVideo::switch_events(std::uint32_t generation) {
-  if (events_mailbox_ == nullptr || generation == shown_generation_) return;
-  if (const pipeline::PostedEvents* posted = events_mailbox_->take()) next_events_ = posted;
-  if (next_events_ == nullptr || next_events_->generation != generation) return;
-  const events::EventsConfig& config = next_events_->config;
-  if (config.lines.empty() && config.zones.empty()) {
-    events_overlay_.reset();
-  } else {
-    events_overlay_.emplace(config);
-  }
-  shown_generation_ = generation;
-  next_events_ = nullptr;
-}
-
 void AnnotatedVideo::consume(const pipeline::SinkFrame& frame) {
   const messages::FrameResult& result = frame.result;
   if (result.source_outage || result.end_of_stream) return;  // no picture
-  switch_events(result.events_generation);
+  events_.switch_to(result.events_generation);
+  EventsOverlay* events_overlay = events_.get();
   // The frames skipped before this one show the counts as they were; this one and later, with its
   // events.
   bool counted = false;
@@ -101,16 +83,16 @@ void AnnotatedVideo::consume(const pipeline::SinkFrame& frame) {
     } else if (result.predicted) {
       // Full-rate output: the tracker's own prediction for this skipped frame, drawn dashed.
       overlay_.draw(side->image, result, true, stats_);
-      if (events_overlay_) events_overlay_->draw(side->image);
+      if (events_overlay) events_overlay->draw(side->image);
       stream_->push(side->image);
       ++written_;
       ++predicted_;
     } else {
       overlay_.draw(side->image, result, false, stats_);
-      if (events_overlay_) {
-        events_overlay_->count(result);
+      if (events_overlay) {
+        events_overlay->count(result);
         counted = true;
-        events_overlay_->draw(side->image);
+        events_overlay->draw(side->image);
       }
       stream_->push(side->image);
       ++written_;
@@ -118,7 +100,7 @@ void AnnotatedVideo::consume(const pipeline::SinkFrame& frame) {
     frames_.pop();
   }
   if (result.predicted) return;  // no events; the extrapolation below keeps to processed frames
-  if (events_overlay_ && !counted) events_overlay_->count(result);
+  if (events_overlay && !counted) events_overlay->count(result);
   remember(result);
 }
 

@@ -16,11 +16,10 @@
 #include <vector>
 
 #include "messages/jsonl_sink.hpp"
-#include "outputs/events_overlay.hpp"
+#include "outputs/followed_events_overlay.hpp"
 #include "outputs/frame_side_channel.hpp"
 #include "outputs/overlay.hpp"
 #include "outputs/video_stream.hpp"
-#include "pipeline/events_mailbox.hpp"
 #include "pipeline/frame_consumer.hpp"
 
 namespace rtmot::outputs {
@@ -34,11 +33,10 @@ class AnnotatedVideo final : public pipeline::FrameConsumer {
                  messages::ClassLabelFn labels);
 
   /// Draws these lines and zones with their live counts on every frame (docs/events.md).
-  void show_events(const events::EventsConfig& config) { events_overlay_.emplace(config); }
-  /// Lines and zones changed while the run goes on (a page save, SIGHUP: docs/web.md) arrive here
-  /// (not owned, outlives the video); each is drawn, its counts from zero, from the first frame
-  /// counted with it (FrameResult::events_generation) on, as the metrics switch.
-  void follow_events(pipeline::EventsMailbox* mailbox) { events_mailbox_ = mailbox; }
+  void show_events(const events::EventsConfig& config) { events_.start_with(config); }
+  /// Lines and zones changed while the run goes on arrive here
+  /// (outputs/followed_events_overlay.hpp; not owned, outlives the video).
+  void follow_events(pipeline::EventsMailbox* mailbox) { events_.follow(mailbox); }
 
   /// Give this to the source's PipelineInput::tap: it feeds the video every source frame.
   pipeline::FrameTap* tap() { return &frames_; }
@@ -57,14 +55,10 @@ class AnnotatedVideo final : public pipeline::FrameConsumer {
  private:
   void write_predicted(SideFrame& frame);
   void remember(const messages::FrameResult& result);
-  void switch_events(std::uint32_t generation);
 
   std::unique_ptr<VideoStream> stream_;
   Overlay overlay_;
-  std::optional<EventsOverlay> events_overlay_;
-  pipeline::EventsMailbox* events_mailbox_{nullptr};
-  const pipeline::PostedEvents* next_events_{nullptr};  // taken, its frames not reached yet
-  std::uint32_t shown_generation_{0};
+  FollowedEventsOverlay events_;
   FrameSideChannel frames_;
   // The last two processed frames' tracks (reused buffers) and a scratch result for predictions.
   messages::FrameResult last_;
