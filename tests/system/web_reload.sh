@@ -155,7 +155,42 @@ pid=
 [[ $status == 0 ]] || fail "rtmot run exited $status after SIGINT"
 "$rtmot" run --config "$work/saved.yaml" --max-frames 1 --playback every-frame 2>"$work/reread.err" ||
   { cat "$work/reread.err"; fail "the saved configuration does not load"; }
+# Without --config: nothing to re-read, the run goes on and ends cleanly (no model needed).
+: >"$work/det.txt"
+"$rtmot" run --source "$video" --det-file "$work/det.txt" --playback realtime \
+  2>"$work/bare.err" &
+pid=$!
+for _ in $(seq 600); do
+  grep -q "source: " "$work/bare.err" && break
+  sleep 0.1
+done
+kill -HUP "$pid"
+for _ in $(seq 600); do
+  grep -q "SIGHUP: nothing to re-read (the run has no --config)" "$work/bare.err" && break
+  kill -0 "$pid" 2>/dev/null || { cat "$work/bare.err"; fail "a run without --config ended on SIGHUP"; }
+  sleep 0.1
+done
+grep -q "SIGHUP: nothing to re-read" "$work/bare.err" || { cat "$work/bare.err"; fail "no 'nothing to re-read' line"; }
+kill -INT "$pid"
+status=0
+wait "$pid" || status=$?
+pid=
+[[ $status == 0 ]] || { cat "$work/bare.err"; fail "a run without --config exited $status after SIGHUP, SIGINT"; }
+# Other commands keep SIGHUP's default action (docs/exit-codes.md): `listen` ends with it.
+"$rtmot" listen --port 0 >/dev/null 2>"$work/listen.err" &
+pid=$!
+for _ in $(seq 600); do
+  grep -q "listening on" "$work/listen.err" && break
+  sleep 0.1
+done
+kill -HUP "$pid"
+status=0
+{ wait "$pid"; } 2>/dev/null || status=$?  # (bash's "Hangup" notice is not ours)
+pid=
+[[ $status == 129 ]] || fail "rtmot listen exited $status on SIGHUP, not 129 (its default action)"
+
 echo "PASS: SIGHUP: unchanged file kept the counts, a new line applied (generation 1) and counted," \
   "a broken file refused naming its field, a new model refused as needing a restart; settings:" \
   "401/403/413 and 400 (range, floor, restart, unknown) refused and nothing written, a valid cut" \
-  "applied, shown and written to --web-save-to (which loads); exit 0 on SIGINT"
+  "applied, shown and written to --web-save-to (which loads); exit 0 on SIGINT; without --config" \
+  "'nothing to re-read' and exit 0; listen still ends on SIGHUP (129)"
