@@ -62,7 +62,13 @@ class ReloadThread {
             const std::uint64_t now = signals.wait_for_reload(seen, std::chrono::milliseconds(200));
             if (now == seen) continue;
             seen = now;
-            reload();
+            // A reload reports its own errors; anything else must not end the process either.
+            try {
+              reload();
+            } catch (const std::exception& error) {
+              spdlog::error("SIGHUP: the reload failed: {}; the running configuration is kept",
+                            error.what());
+            }
           }
         }) {}
   ~ReloadThread() {

@@ -593,7 +593,8 @@ void check_run_files(const RunConfig& config) {
   const OutputConfig& output = config.output;
   std::vector<NamedFile> outputs{{output.binary_file, "output.binary_file"},
                                  {output.jsonl_file, "output.jsonl_file"},
-                                 {output.report_file, "output.report_file"}};
+                                 {output.report_file, "output.report_file"},
+                                 {output.web_save_to, "output.web_save_to"}};
   const auto& video = output.video;
   if (video && (video->kind == outputs::VideoTargetKind::mp4_file ||
                 video->kind == outputs::VideoTargetKind::mkv_file)) {

@@ -4,6 +4,8 @@
 #include <spdlog/spdlog.h>
 #include <yaml-cpp/yaml.h>
 
+#include <cmath>
+
 #include "runner/run_settings.hpp"
 #include "tracker/tracker_options.hpp"
 
@@ -23,6 +25,11 @@ outputs::SaveAnswer refused(const std::string& field, const std::string& problem
 
 // A key of the configuration file (bare, as "nms_threshold", or whole, as
 // "detector.nms_threshold").
+// As typed (0.6), not as the float's nearest double shows it (0.6000000238418579).
+double shown(float cut) {
+  return std::round(static_cast<double>(cut) * 1e6) / 1e6;
+}
+
 bool is_setting(const std::string& key) {
   if (find_run_setting(key) != nullptr || find_run_setting("detector." + key) != nullptr)
     return true;
@@ -49,7 +56,7 @@ std::optional<std::string> SettingsEditor::score_problem(float cut) const {
 }
 
 nlohmann::json SettingsEditor::current() const {
-  return {{kScoreKey, score_cut_.get()}};
+  return {{kScoreKey, shown(score_cut_.get())}};
 }
 
 outputs::SaveAnswer SettingsEditor::save(const std::string& body) {
@@ -96,7 +103,7 @@ outputs::SaveAnswer SettingsEditor::save(const std::string& body) {
   spdlog::info("web: the detector's score cut is {} from the next frame on{}", *score,
                saved.empty() ? " (not written to a file: the run has no --config)"
                              : ", written to " + saved);
-  return {200, {{kScoreKey, *score}, {"saved_to", saved}}, nullptr};
+  return {200, {{kScoreKey, shown(*score)}, {"saved_to", saved}}, nullptr};
 }
 
 }  // namespace rtmot::runner
