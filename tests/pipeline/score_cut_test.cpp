@@ -31,7 +31,7 @@ class ThreeBoxes : public detector::Detector {
   ScoreCut& cut_;
 };
 
-TEST(ScoreCut, EachBatchIsCutByTheValueSetBeforeItWasHandedOn) {
+TEST(LiveScoreCut, EachBatchIsCutByTheValueSetBeforeItWasHandedOn) {
   ScoreCut cut(0.3F);
   WakeSignal frames_ready;
   LatestFrameSlot slot(SlotMode::every_frame, &frames_ready);
