@@ -67,8 +67,8 @@ if [[ $which == tsan || $which == all ]]; then
   configure "$tsan_dir" thread
   # Only the threaded components, to fit CI: the hand-off stress test and the four-thread Pipeline
   # (playback tests), capture and signal threads, the reconnecting source, UDP loopback, the
-  # events mailbox, the live score cut, and rtmot itself streaming a real vtest.avi run to a listener and serving its
-  # page.
+  # events mailbox, the live score cut, and rtmot itself streaming a real vtest.avi run to a
+  # listener and serving its page.
   cmake --build "$tsan_dir" -j "$jobs" --target $tsan_targets rtmot
   export TSAN_OPTIONS="suppressions=$supp/tsan.supp halt_on_error=1 second_deadlock_stack=1"
   for target in $tsan_targets; do
