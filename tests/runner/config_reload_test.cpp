@@ -6,6 +6,7 @@
 #include <fstream>
 #include <string>
 
+#include "common/input_error.hpp"
 #include "common/input_file.hpp"
 #include "runner/config_reloader.hpp"
 #include "scratch_folder.hpp"
@@ -172,6 +173,21 @@ TEST(ConfigReloader, WithoutAFileNothingIsRead) {
   ConfigReloader nothing("", f.flags, *f.events, *f.settings, f.cut, *f.document);
   nothing.reload();
   EXPECT_EQ(f.mailbox.take(), nullptr);
+}
+
+TEST(WebSaveTo, NeedsAConfigurationFileToCopy) {
+  RunConfig config = default_run_config();
+  config.source.uri = "video.avi";
+  config.output.web_save_to = "saved.yaml";
+  try {
+    validate(config);
+    FAIL() << "--web-save-to without --config was accepted";
+  } catch (const InputError& error) {
+    EXPECT_EQ(error.field(), "output.web_save_to");
+    EXPECT_EQ(error.exit_code(), ExitCode::bad_input);
+  }
+  config.file = "run.yaml";  // as load_run_config sets it
+  EXPECT_NO_THROW(validate(config));
 }
 
 }  // namespace

@@ -125,6 +125,8 @@ expect() {  # $1 status, $2 what the answer must contain, $3 body, $4 token
   read -r code answer < <(client post-settings "${4:-$token}" "$3")
   [[ $code == "$1" && $answer == *"$2"* ]] || fail "settings $3: answered $code $answer, not $1 $2"
 }
+[[ $(curl -s -o /dev/null -w '%{http_code}' "${base}api/settings") == 405 ]] ||
+  fail "GET /api/settings was not refused with 405"
 expect 401 "Authorization" '{"score_threshold": 0.6}' -
 expect 403 "wrong token" '{"score_threshold": 0.6}' wrong-token-wrong-token
 read -r code _ < <(client post-settings "$token" @70000)
