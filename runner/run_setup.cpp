@@ -214,8 +214,9 @@ class CostProbe {
 // The image's work is done only where the tracker will use it.
 bool measures_appearance(const RunConfig& config) {
   const tracker::TrackerConfig& tracker = config.tracker;
-  return config.detector.appearance && (tracker.appearance_weight > 0.0 ||
-                                        tracker.appearance_gate < 1.0 || tracker.reid_gate > 0.0);
+  return config.detector.appearance &&
+         (tracker.appearance_weight > 0.0 || tracker.appearance_gate < 1.0 ||
+          tracker.reid_gate > 0.0);
 }
 
 bool runs_on_cpu(const detector::Detector& detector) {
