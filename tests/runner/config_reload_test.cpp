@@ -62,8 +62,8 @@ struct Fixture {
     events::EventsConfig running;
     running.lines.push_back({"door", {{380, 0}, {380, 576}}, true});
     events = std::make_unique<EventsEditor>(
-        std::vector<EventsEditor::Source>{{0, "video.avi", 768, 576, running, &mailbox, nullptr}}, nullptr,
-        *document, false);
+        std::vector<EventsEditor::Source>{{0, "video.avi", 768, 576, running, &mailbox, nullptr}},
+        nullptr, *document, false);
     settings = std::make_unique<SettingsEditor>(cut, *document);
     reloader =
         std::make_unique<ConfigReloader>(file.string(), flags, *events, *settings, cut, *document);
