@@ -1,9 +1,12 @@
 // `rtmot run`: the real-time pipeline (source -> SSD or replay detector -> SORT -> sinks) from a
 // YAML configuration, with command-line overrides. Ends at the end of the stream, --max-frames or
-// SIGINT/SIGTERM (all exit 0), after draining, flushing and the final report.
+// SIGINT/SIGTERM (all exit 0), after draining, flushing and the final report. SIGHUP re-reads the
+// configuration file (runner/config_reloader.hpp).
 #include <spdlog/spdlog.h>
 
+#include <atomic>
 #include <chrono>
+#include <functional>
 #include <memory>
 #include <string>
 #include <thread>
@@ -18,6 +21,7 @@
 #include "platform/board.hpp"
 #include "platform/signals.hpp"
 #include "runner/class_choice.hpp"
+#include "runner/config_reloader.hpp"
 #include "runner/run_config.hpp"
 #include "runner/run_flags.hpp"
 #include "runner/run_setup.hpp"
@@ -46,9 +50,42 @@ void linger_with_final_metrics(const runner::OutputConfig& output,
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
 }
 
+// Takes each SIGHUP on a thread of its own while the pipeline runs: a reload reads a file and
+// takes the editors' locks, which no pipeline thread may wait for.
+class ReloadThread {
+ public:
+  ReloadThread(const platform::StopSignals& signals, std::function<void()> reload)
+      : thread_([this, &signals, reload = std::move(reload)] {
+          std::uint64_t seen = 0;
+          // Polls `done_` every 200 ms: the wait is for a SIGHUP, and the end of the run is rare.
+          while (!done_.load(std::memory_order_acquire)) {
+            const std::uint64_t now = signals.wait_for_reload(seen, std::chrono::milliseconds(200));
+            if (now == seen) continue;
+            seen = now;
+            // A reload reports its own errors; anything else must not end the process either.
+            try {
+              reload();
+            } catch (const std::exception& error) {
+              spdlog::error("SIGHUP: the reload failed: {}; the running configuration is kept",
+                            error.what());
+            }
+          }
+        }) {}
+  ~ReloadThread() {
+    done_.store(true, std::memory_order_release);
+    thread_.join();
+  }
+  ReloadThread(const ReloadThread&) = delete;
+  ReloadThread& operator=(const ReloadThread&) = delete;
+
+ private:
+  std::atomic<bool> done_{false};
+  std::thread thread_;
+};
+
 int run(const RunCommand& command) {
-  // Before any thread exists: every thread inherits the blocked SIGINT/SIGTERM.
-  platform::StopSignals signals;
+  // Before any thread exists: every thread inherits the blocked SIGINT/SIGTERM/SIGHUP.
+  platform::StopSignals signals(platform::Hangup::reloads);
   runner::RunConfig config = command.config_file.empty()
                                  ? runner::default_run_config()
                                  : runner::load_run_config(command.config_file);
@@ -82,9 +119,27 @@ int run(const RunCommand& command) {
     spdlog::info("web: the operator's page at {} (its files from {})", outputs.web_server->url(),
                  outputs.web_server->static_dir().string());
   }
+  pipeline::PipelineOptions options = runner::make_options(config);
+  options.score_cut = outputs.score_cut.get();
   pipeline::Pipeline pipeline(std::move(inputs), std::move(detectors), std::move(outputs.consumers),
-                              runner::make_options(config));
-  const pipeline::PipelineReport report = pipeline.run(signals.stop_flag());
+                              options);
+  std::unique_ptr<runner::ConfigReloader> reloader;
+  if (outputs.events_editor && !config.loaded_from.empty()) {
+    reloader = std::make_unique<runner::ConfigReloader>(
+        config.loaded_from, command.flags, *outputs.events_editor,
+        *outputs.settings_editor, *outputs.score_cut, *outputs.document);
+  }
+  pipeline::PipelineReport report;
+  {
+    const ReloadThread reloading(signals, [&reloader] {
+      if (reloader) {
+        reloader->reload();
+      } else {
+        spdlog::warn("SIGHUP: nothing to re-read (the run has no --config); nothing changed");
+      }
+    });
+    report = pipeline.run(signals.stop_flag());
+  }
   if (outputs.metrics) outputs.metrics->sources_ended();
 
   // The final report is the run's result: shown whatever --log-level says (warn hid it).

@@ -56,21 +56,22 @@ int run_reporting_errors(const std::function<int()>& run) {
   return code;
 }
 
-// SIGINT/SIGTERM blocked before anything else, so that a command that stops cleanly on them takes
-// the ones sent while it starts (platform::StopSignals sigwait()s pending signals too). main() is
-// too late: the constructors of the ~250 shared libraries (OpenCV, GStreamer, ...) run before it,
-// 60-200 ms during which SIGTERM killed `rtmot run`. A .preinit_array entry of the executable runs
-// after the loader has mapped the libraries and before any of their constructors; the process is
-// single-threaded then, so sigprocmask is the whole mask.
-// SIGXFSZ is ignored here too: under a file-size limit (ulimit -f, systemd's LimitFSIZE=) its
-// default action killed the run mid-record; ignored, the write fails with EFBIG and the output is
-// cut back to its last whole record (common/output_file.cpp) and the run ends with io_error.
+// SIGINT/SIGTERM (and SIGHUP) blocked before anything else, so that a command that stops cleanly on
+// them takes the ones sent while it starts (platform::StopSignals sigwait()s pending signals too).
+// main() is too late: the constructors of the ~250 shared libraries (OpenCV, GStreamer, ...) run
+// before it, 60-200 ms during which SIGTERM killed `rtmot run`. A .preinit_array entry of the
+// executable runs after the loader has mapped the libraries and before any of their constructors;
+// the process is single-threaded then, so sigprocmask is the whole mask. SIGXFSZ is ignored here
+// too: under a file-size limit (ulimit -f, systemd's LimitFSIZE=) its default action killed the run
+// mid-record; ignored, the write fails with EFBIG and the output is cut back to its last whole
+// record (common/output_file.cpp) and the run ends with io_error.
 void block_stop_signals(int, char**, char**) {
   std::signal(SIGXFSZ, SIG_IGN);
   sigset_t stop_signals;
   sigemptyset(&stop_signals);
   sigaddset(&stop_signals, SIGINT);
   sigaddset(&stop_signals, SIGTERM);
+  sigaddset(&stop_signals, SIGHUP);  // `run` re-reads its configuration on it (platform/signals)
   sigprocmask(SIG_BLOCK, &stop_signals, nullptr);
 }
 __attribute__((section(".preinit_array"),
@@ -82,6 +83,7 @@ void unblock_stop_signals() {
   sigemptyset(&stop_signals);
   sigaddset(&stop_signals, SIGINT);
   sigaddset(&stop_signals, SIGTERM);
+  sigaddset(&stop_signals, SIGHUP);
   pthread_sigmask(SIG_UNBLOCK, &stop_signals, nullptr);
 }
 

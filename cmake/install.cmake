@@ -8,7 +8,8 @@
 #   P/share/rtmot/configs/*.yaml         run configurations (jetson-csi.yaml is the service's)
 #   P/share/rtmot/models/*               the SSD model, when it was fetched before the install
 #                                        (scripts/fetch_model.sh); configs name it ../models/...
-#   P/share/rtmot/web/*                  the pages (index.html, app.js, listen.html, listen.js, style.css; found
+#   P/share/rtmot/web/*                  the pages (index.html, editor.js, app.js, settings.js, listen.html,
+#                                        listen.js, style.css; found
 #                                        from the binary: outputs/web_server.hpp, docs/web.md)
 #   P/share/doc/rtmot/*.md, README.md    the product's documentation (not the study's tables/plots)
 #   P/lib/systemd/system/rtmot.service   the service, ExecStart=P/bin/rtmot --config P/share/...

@@ -57,7 +57,7 @@ void AnnotatedVideo::write_predicted(SideFrame& frame) {
     prediction_.tracks.push_back(predicted);
   }
   overlay_.draw(frame.image, prediction_, true, stats_);
-  if (events_overlay_) events_overlay_->draw(frame.image);
+  if (EventsOverlay* events_overlay = events_.get()) events_overlay->draw(frame.image);
   stream_->push(frame.image);
   ++written_;
   ++predicted_;
@@ -66,8 +66,8 @@ void AnnotatedVideo::write_predicted(SideFrame& frame) {
 void AnnotatedVideo::consume(const pipeline::SinkFrame& frame) {
   const messages::FrameResult& result = frame.result;
   if (result.source_outage || result.end_of_stream) return;  // no picture
-  // The frames skipped before this one show the counts as they were; this one and later, with its
-  // events.
+  // The frames skipped before this one show the counts (and the lines) as they were; this one and
+  // later, with its events, under its configuration.
   bool counted = false;
   const std::int64_t e2e_ns = pipeline::stage_span_ns(pipeline::Stage::end_to_end, result.times);
   stats_ =
@@ -78,19 +78,24 @@ void AnnotatedVideo::consume(const pipeline::SinkFrame& frame) {
               // the tap runs before publishing)
     if (side->info.frame_number < result.frame_number) {
       write_predicted(*side);
-    } else if (result.predicted) {
+      frames_.pop();
+      continue;
+    }
+    events_.switch_to(result.events_generation);
+    EventsOverlay* events_overlay = events_.get();
+    if (result.predicted) {
       // Full-rate output: the tracker's own prediction for this skipped frame, drawn dashed.
       overlay_.draw(side->image, result, true, stats_);
-      if (events_overlay_) events_overlay_->draw(side->image);
+      if (events_overlay) events_overlay->draw(side->image);
       stream_->push(side->image);
       ++written_;
       ++predicted_;
     } else {
       overlay_.draw(side->image, result, false, stats_);
-      if (events_overlay_) {
-        events_overlay_->count(result);
+      if (events_overlay) {
+        events_overlay->count(result);
         counted = true;
-        events_overlay_->draw(side->image);
+        events_overlay->draw(side->image);
       }
       stream_->push(side->image);
       ++written_;
@@ -98,7 +103,9 @@ void AnnotatedVideo::consume(const pipeline::SinkFrame& frame) {
     frames_.pop();
   }
   if (result.predicted) return;  // no events; the extrapolation below keeps to processed frames
-  if (events_overlay_ && !counted) events_overlay_->count(result);
+  events_.switch_to(result.events_generation);
+  EventsOverlay* events_overlay = events_.get();
+  if (events_overlay && !counted) events_overlay->count(result);
   remember(result);
 }
 

@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "messages/jsonl_sink.hpp"
-#include "outputs/events_overlay.hpp"
+#include "outputs/followed_events_overlay.hpp"
 #include "outputs/frame_side_channel.hpp"
 #include "outputs/overlay.hpp"
 #include "outputs/video_stream.hpp"
@@ -33,7 +33,10 @@ class AnnotatedVideo final : public pipeline::FrameConsumer {
                  messages::ClassLabelFn labels);
 
   /// Draws these lines and zones with their live counts on every frame (docs/events.md).
-  void show_events(const events::EventsConfig& config) { events_overlay_.emplace(config); }
+  void show_events(const events::EventsConfig& config) { events_.start_with(config); }
+  /// Lines and zones changed while the run goes on arrive here
+  /// (outputs/followed_events_overlay.hpp; not owned, outlives the video).
+  void follow_events(pipeline::EventsMailbox* mailbox) { events_.follow(mailbox); }
 
   /// Give this to the source's PipelineInput::tap: it feeds the video every source frame.
   pipeline::FrameTap* tap() { return &frames_; }
@@ -55,7 +58,7 @@ class AnnotatedVideo final : public pipeline::FrameConsumer {
 
   std::unique_ptr<VideoStream> stream_;
   Overlay overlay_;
-  std::optional<EventsOverlay> events_overlay_;
+  FollowedEventsOverlay events_;
   FrameSideChannel frames_;
   // The last two processed frames' tracks (reused buffers) and a scratch result for predictions.
   messages::FrameResult last_;

@@ -71,6 +71,8 @@ class LivePicture final : public pipeline::FrameTap {
   /// Any thread: the first JPEG newer than `sequence` (updated to its number), or null if none came
   /// within `wait`.
   Jpeg next_jpeg(std::uint64_t& sequence, std::chrono::milliseconds wait);
+  /// MJPEG clients now (a hint: see watchers_).
+  int watchers() const { return watchers_.load(std::memory_order_relaxed); }
   /// Pictures encoded so far (0 while nobody ever watched: the tests' proof that nobody pays).
   std::uint64_t pictures_encoded() const { return encoded_.load(std::memory_order_relaxed); }
 

@@ -33,6 +33,7 @@ WebServer::WebServer(WebContent content, const std::string& bind_address, std::u
   // civetweb tries exact URIs first, then "/video" as a prefix ("/video/..."), then the pattern.
   server_.handle("/api/status", &WebServer::serve_status, this);
   server_.handle("/api/events", &WebServer::serve_events, this);
+  server_.handle("/api/settings", &WebServer::serve_settings, this);
   server_.handle("/video", &WebServer::serve_video, this);
   server_.handle("**", &WebServer::serve_static, this);
 }
@@ -50,18 +51,26 @@ int WebServer::serve_status(mg_connection* connection, void* self) {
   auto& server = *static_cast<WebServer*>(self);
   nlohmann::json status = server.content_.metrics->status();
   status["detector"] = server.content_.detector;
-  {
+  if (server.content_.geometry) {
+    status["geometry"] = server.content_.geometry();
+  } else {
     const std::lock_guard<std::mutex> lock(server.geometry_mutex_);
     status["geometry"] = server.content_.sources;
   }
   status["writes"] = !server.content_.token.empty() && server.content_.save_events != nullptr;
+  if (server.content_.settings) status["settings"] = server.content_.settings();
   // Per source, the pictures encoded so far: 0 until someone first watches (nobody watching costs
   // nothing; the system test checks it).
   nlohmann::json encoded = nlohmann::json::array();
+  nlohmann::json watchers = nlohmann::json::array();
   for (const LivePicture* picture : server.content_.pictures) {
     encoded.push_back(picture->pictures_encoded());
+    watchers.push_back(picture->watchers());
   }
   status["pictures_encoded"] = std::move(encoded);
+  // Per source, the MJPEG clients streaming now (a client that went away counts until its worker's
+  // next write fails: one picture later).
+  status["watchers"] = std::move(watchers);
   return respond(connection, 200, "OK", "application/json", status.dump());
 }
 
@@ -111,14 +120,13 @@ int WebServer::stream_video(mg_connection* connection, LivePicture& picture) {
   return 200;
 }
 
-int WebServer::serve_events(mg_connection* connection, void* self) {
-  auto& server = *static_cast<WebServer*>(self);
+int WebServer::read_write(mg_connection* connection, bool enabled, std::string& body) const {
   const mg_request_info* request = mg_get_request_info(connection);
   if (request->request_method == nullptr || std::strcmp(request->request_method, "POST") != 0) {
-    return respond_error(connection, 405, "Method Not Allowed", "POST the events section here");
+    return respond_error(connection, 405, "Method Not Allowed", "POST here");
   }
   // The token before anything else is looked at: without it nothing of the request is read.
-  if (server.content_.token.empty() || !server.content_.save_events) {
+  if (content_.token.empty() || !enabled) {
     return respond_error(connection, 403, "Forbidden",
                          "writes are off: start rtmot run with --web-token-file (docs/web.md)");
   }
@@ -128,7 +136,7 @@ int WebServer::serve_events(mg_connection* connection, void* self) {
     return respond_error(connection, 401, "Unauthorized",
                          "a write needs the header Authorization: Bearer TOKEN");
   }
-  if (!same_secret(authorization + bearer.size(), server.content_.token)) {
+  if (!same_secret(authorization + bearer.size(), content_.token)) {
     return respond_error(connection, 403, "Forbidden", "wrong token");
   }
   if (request->content_length < 0) {
@@ -138,13 +146,46 @@ int WebServer::serve_events(mg_connection* connection, void* self) {
     return respond_error(connection, 413, "Payload Too Large",
                          fmt::format("the body may be at most {} bytes", kMaxBody));
   }
-  std::string body(static_cast<std::size_t>(request->content_length), '\0');
+  body.assign(static_cast<std::size_t>(request->content_length), '\0');
   std::size_t got = 0;
   while (got < body.size()) {
     const int n = mg_read(connection, body.data() + got, body.size() - got);
     if (n <= 0) return respond_error(connection, 400, "Bad Request", "the body was cut short");
     got += static_cast<std::size_t>(n);
   }
+  return 0;
+}
+
+namespace {
+
+int respond_answer(mg_connection* connection, const SaveAnswer& answer) {
+  const char* reason = answer.status == 200   ? "OK"
+                       : answer.status == 400 ? "Bad Request"
+                       : answer.status == 404 ? "Not Found"
+                                              : "Internal Server Error";
+  return respond(connection, answer.status, reason, "application/json", answer.body.dump());
+}
+
+}  // namespace
+
+int WebServer::serve_settings(mg_connection* connection, void* self) {
+  auto& server = *static_cast<WebServer*>(self);
+  std::string body;
+  if (const int refused =
+          server.read_write(connection, server.content_.save_settings != nullptr, body)) {
+    return refused;
+  }
+  return respond_answer(connection, server.content_.save_settings(body));
+}
+
+int WebServer::serve_events(mg_connection* connection, void* self) {
+  auto& server = *static_cast<WebServer*>(self);
+  std::string body;
+  if (const int refused =
+          server.read_write(connection, server.content_.save_events != nullptr, body)) {
+    return refused;
+  }
+  const mg_request_info* request = mg_get_request_info(connection);
   const char* query = request->query_string;
   char number[16] = {};
   if (query == nullptr ||
@@ -161,11 +202,7 @@ int WebServer::serve_events(mg_connection* connection, void* self) {
     const std::lock_guard<std::mutex> lock(server.geometry_mutex_);
     server.content_.sources[index] = std::move(answer.geometry);
   }
-  const char* reason = answer.status == 200   ? "OK"
-                       : answer.status == 400 ? "Bad Request"
-                       : answer.status == 404 ? "Not Found"
-                                              : "Internal Server Error";
-  return respond(connection, answer.status, reason, "application/json", answer.body.dump());
+  return respond_answer(connection, answer);
 }
 
 }  // namespace rtmot::outputs

@@ -12,6 +12,8 @@
 //                          (outputs/live_picture.hpp: encoded only while someone watches)
 //   POST /api/events?source=N  source N's new lines and zones (the events section, YAML or JSON),
 //                          with "Authorization: Bearer TOKEN"; the body at most kMaxBody bytes
+//   POST /api/settings     the settings a run takes live (the detector's score cut), as writes
+//                          above
 #include <atomic>
 #include <cstdint>
 #include <filesystem>
@@ -44,6 +46,13 @@ struct WebContent {
   std::string detector;                // the detector's description (backend)
   /// Saves source N's events section (body); null: saving is off.
   std::function<SaveAnswer(std::size_t source, const std::string& body)> save_events;
+  /// Per source its geometry as it is now (`sources` updated by saves and by SIGHUP); null:
+  /// `sources`.
+  std::function<nlohmann::json()> geometry;
+  /// Changes the settings a run takes live (`{"score_threshold": 0.4}`); null: off.
+  std::function<SaveAnswer(const std::string& body)> save_settings;
+  /// Those settings as they are now, shown by the status ("settings"); null: none.
+  std::function<nlohmann::json()> settings;
   /// What a write must carry ("Authorization: Bearer TOKEN"); empty: writes are refused.
   std::string token;
 };
@@ -80,6 +89,10 @@ class WebServer {
   static int serve_status(mg_connection* connection, void* self);
   static int serve_video(mg_connection* connection, void* self);
   static int serve_events(mg_connection* connection, void* self);
+  static int serve_settings(mg_connection* connection, void* self);
+  /// A write's checks (method, token, length) and its body; 0 when it may go on, else the status
+  /// already answered.
+  int read_write(mg_connection* connection, bool enabled, std::string& body) const;
   int stream_video(mg_connection* connection, LivePicture& picture);
 
   WebContent content_;

@@ -101,6 +101,11 @@ bool DetectStage::hand_on(DetectLane& lane, const std::atomic<bool>& abort) {
     counts_.busy_ns = busy_.busy_ns();
   }
   std::size_t picture = 0;
+  // Read once per batch: all its boxes are cut by one value (pipeline/score_cut.hpp). At the
+  // detector's own cut nothing is removed: its boxes are what it gives (a tile's box may be kept
+  // under the whole frame's cut by detector.tile_threshold).
+  const float cut = options_.score_cut != nullptr ? options_.score_cut->get() : 0.F;
+  const bool cutting = options_.score_cut != nullptr && cut > options_.score_cut->floor();
   for (std::size_t i = 0; i < batch.count; ++i) {
     LaneFrame& frame = batch.frames[i];
     DetectedFrame* out = output_.claim(abort);
@@ -109,7 +114,10 @@ bool DetectStage::hand_on(DetectLane& lane, const std::atomic<bool>& abort) {
       out->detections.clear();
     } else {
       const auto& boxes = batch.detections[picture++];
-      out->detections.assign(boxes.begin(), boxes.end());  // within the reserved capacity
+      out->detections.clear();  // then within the reserved capacity
+      for (const auto& box : boxes) {
+        if (!cutting || box.score >= cut) out->detections.push_back(box);
+      }
     }
     out->input = frame.input;
     out->outage = frame.outage;

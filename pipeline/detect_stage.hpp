@@ -32,6 +32,7 @@
 #include "pipeline/busy_time.hpp"
 #include "pipeline/detect_lane.hpp"
 #include "pipeline/latest_frame_slot.hpp"
+#include "pipeline/score_cut.hpp"
 #include "pipeline/spsc_queue.hpp"
 #include "pipeline/stage_items.hpp"
 
@@ -43,6 +44,9 @@ struct DetectOptions {
   std::size_t max_detections{100};  // reserved per queued frame
   std::chrono::microseconds batch_wait{5000};
   int lane_fifo_priority{0};  // the lanes' workers (K > 1): SCHED_FIFO priority, 0 = normal
+  /// The live score cut (pipeline/score_cut.hpp), applied to the detector's boxes; not owned, must
+  /// outlive the stage; null: the detector's own cut alone.
+  const ScoreCut* score_cut{nullptr};
 };
 
 /// What the detect thread counted; read after it ended.

@@ -91,6 +91,7 @@ struct Pipeline::Stages {
     detect_options.max_detections = max_detections;
     detect_options.batch_wait = options.batch_wait;
     detect_options.lane_fifo_priority = options.threads.detect.fifo_priority;
+    detect_options.score_cut = options.score_cut;
     detect = std::make_unique<DetectStage>(std::move(detectors), std::move(slots), frames_ready,
                                            detect_options);
     track = std::make_unique<TrackStage>(trackers, detect->output(), options.queue_capacity,

@@ -21,6 +21,7 @@
 #include "pipeline/frame_tap.hpp"
 #include "pipeline/pipeline_report.hpp"
 #include "pipeline/playback_mode.hpp"
+#include "pipeline/score_cut.hpp"
 #include "platform/video_source.hpp"
 #include "tracker/tracker_config.hpp"
 
@@ -58,6 +59,9 @@ struct PipelineOptions {
   /// before it runs the batch without them.
   std::chrono::microseconds batch_wait{5000};
   StageThreads threads;
+  /// The detector's score cut changed while running (pipeline/score_cut.hpp); not owned, must
+  /// outlive run(); null: the detector's own.
+  const ScoreCut* score_cut{nullptr};
 };
 
 /// One source of a multi-source pipeline: its own capture thread, tracker and stream id.

@@ -1,13 +1,28 @@
 #pragma once
-// Clean stop on SIGINT/SIGTERM. The signals are blocked and a watcher thread takes them with
-// sigwait(), so no async-signal handler runs and no global flag is needed: the flag lives in this
+// Clean stop on SIGINT/SIGTERM, and SIGHUP as "re-read the configuration" for a command that asks
+// for it (`rtmot run`, docs/web.md). The signals are blocked and a watcher thread takes them with
+// sigwait(), so no async-signal handler runs and no global flag is needed: the flags live in this
 // object. The only process-wide state touched is the signal mask, which is how POSIX delivers
 // signals at all.
 #include <atomic>
+#include <chrono>
+#include <condition_variable>
 #include <csignal>
+#include <cstdint>
+#include <mutex>
 #include <thread>
 
 namespace rtmot::platform {
+
+/// What SIGHUP does to a command.
+enum class Hangup {
+  /// Its default action (the process ends at once, as before this option existed): commands that
+  /// have nothing to re-read.
+  ends,
+  /// Counted as a request to re-read the configuration (reload_requests(), wait_for_reload()); the
+  /// command keeps running. A terminal hanging up no longer ends it either (as under nohup).
+  reloads,
+};
 
 class StopSignals {
  public:
@@ -15,7 +30,7 @@ class StopSignals {
   /// thread can receive SIGINT/SIGTERM with its default action (which would kill the process
   /// without flushing). A second signal while stopping ends the process at once (exit code 128 +
   /// signal), for a pipeline that does not stop.
-  StopSignals();
+  explicit StopSignals(Hangup hangup = Hangup::ends);
   /// Stops the watcher and restores the constructing thread's signal mask (destroy on that thread).
   ~StopSignals();
   StopSignals(const StopSignals&) = delete;
@@ -29,6 +44,12 @@ class StopSignals {
   /// Ask to stop without a signal (e.g. end of input), same effect for pollers.
   void request_stop() { stop_.store(true, std::memory_order_release); }
 
+  /// SIGHUPs received so far (Hangup::reloads; always 0 otherwise).
+  std::uint64_t reload_requests() const;
+  /// Waits until reload_requests() is past `seen` or `timeout` has passed; returns the count then.
+  /// For a thread that re-reads the configuration (never a pipeline thread).
+  std::uint64_t wait_for_reload(std::uint64_t seen, std::chrono::milliseconds timeout) const;
+
  private:
   void watch();
 
@@ -37,6 +58,9 @@ class StopSignals {
   std::atomic<bool> stop_{false};
   std::atomic<int> signal_{0};
   std::atomic<bool> closing_{false};
+  mutable std::mutex reload_mutex_;
+  mutable std::condition_variable reload_wake_;
+  std::uint64_t reloads_{0};  // guarded by reload_mutex_
   std::thread watcher_;
 };
 

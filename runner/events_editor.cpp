@@ -4,8 +4,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "common/input_error.hpp"
-#include "common/input_file.hpp"
-#include "common/output_file.hpp"
+#include "events/events_equal.hpp"
 #include "events/events_yaml.hpp"
 #include "runner/web_geometry.hpp"
 
@@ -25,12 +24,9 @@ outputs::SaveAnswer refused(const InputError& error) {
 
 }  // namespace
 
-EventsEditor::EventsEditor(std::vector<Source> sources, outputs::EventMetrics& metrics,
-                           std::string config_file, bool listed)
-    : sources_(std::move(sources)),
-      metrics_(metrics),
-      config_file_(std::move(config_file)),
-      listed_(listed) {}
+EventsEditor::EventsEditor(std::vector<Source> sources, outputs::EventMetrics* metrics,
+                           ConfigDocument& document, bool listed)
+    : sources_(std::move(sources)), metrics_(metrics), document_(document), listed_(listed) {}
 
 outputs::SaveAnswer EventsEditor::save(std::size_t index, const std::string& body) {
   if (index >= sources_.size()) {
@@ -52,43 +48,31 @@ outputs::SaveAnswer EventsEditor::save(std::size_t index, const std::string& bod
   } catch (const InputError& error) {
     return refused(error);
   }
-  config.frame_period_seconds = source.frame_period_seconds;
+  config.frame_period_seconds = source.running.frame_period_seconds;
 
   const std::lock_guard<std::mutex> lock(saving_);
   // The file first: a save that cannot be kept changes nothing.
-  std::string saved;
-  if (!config_file_.empty()) {
-    try {
-      YAML::Node file = YAML::Load(read_text_file(config_file_));
+  try {
+    document_.save([&](YAML::Node& file) {
       YAML::Node place = listed_ ? file["sources"][index] : file["source"];
       place["events"] = node;
-      YAML::Emitter out;
-      out << file;
-      out << YAML::Newline;
-      OutputFile written(config_file_, OutputFile::Publish::on_close);
-      written.write(std::string_view(out.c_str(), out.size()));
-      written.close();
-      saved = config_file_;
-    } catch (const std::exception& error) {
-      return {500,
-              {{"error", "not applied: the configuration file cannot be written: " +
-                             std::string(error.what())}},
-              nullptr};
-    }
+    });
+  } catch (const std::exception& error) {
+    return {500,
+            {{"error", "not applied: the configuration file cannot be written: " +
+                           std::string(error.what())}},
+            nullptr};
   }
-  outputs::EventMetrics::Source names{source.stream_id, {}, {}};
-  for (const auto& line : config.lines) names.lines.push_back(line.name);
-  for (const auto& zone : config.zones) names.zones.push_back(zone.name);
+  const std::string& saved = document_.target();
   nlohmann::json geometry =
       web_geometry(config, source.stream_id, source.uri, source.width, source.height);
-  const std::uint32_t generation = ++generation_;
-  // The names first: the sink knows them before the first message counted with them.
-  metrics_.post(std::move(names), generation);
-  source.mailbox->post(config, generation);
+  const std::size_t lines = config.lines.size();
+  const std::size_t zones = config.zones.size();
+  const std::uint32_t generation = hand_over(index, std::move(config));
   spdlog::info(
       "web: stream {}: {} line(s) and {} zone(s) saved (configuration {}), counted from "
       "zero{}",
-      source.stream_id, config.lines.size(), config.zones.size(), generation,
+      source.stream_id, lines, zones, generation,
       saved.empty() ? " (not written to a file: the run has no --config)"
                     : ", written to " + saved);
   return {200,
@@ -96,6 +80,45 @@ outputs::SaveAnswer EventsEditor::save(std::size_t index, const std::string& bod
            {"saved_to", saved},
            {"counts", "restart from zero for this source's lines and zones"}},
           std::move(geometry)};
+}
+
+bool EventsEditor::apply(std::size_t index, events::EventsConfig config, const std::string& why) {
+  const std::lock_guard<std::mutex> lock(saving_);
+  Source& source = sources_.at(index);
+  config.frame_period_seconds = source.running.frame_period_seconds;
+  if (events::same_events(config, source.running)) return false;
+  const std::size_t lines = config.lines.size();
+  const std::size_t zones = config.zones.size();
+  const std::uint32_t generation = hand_over(index, std::move(config));
+  spdlog::info("{}: stream {}: {} line(s) and {} zone(s) (configuration {}), counted from zero",
+               why, source.stream_id, lines, zones, generation);
+  return true;
+}
+
+nlohmann::json EventsEditor::geometry() const {
+  const std::lock_guard<std::mutex> lock(saving_);
+  nlohmann::json all = nlohmann::json::array();
+  for (const Source& source : sources_) {
+    all.push_back(
+        web_geometry(source.running, source.stream_id, source.uri, source.width, source.height));
+  }
+  return all;
+}
+
+std::uint32_t EventsEditor::hand_over(std::size_t index, events::EventsConfig config) {
+  Source& source = sources_[index];
+  const std::uint32_t generation = ++generation_;
+  if (metrics_ != nullptr) {
+    outputs::EventMetrics::Source names{source.stream_id, {}, {}};
+    for (const auto& line : config.lines) names.lines.push_back(line.name);
+    for (const auto& zone : config.zones) names.zones.push_back(zone.name);
+    // The names first: the sink knows them before the first message counted with them.
+    metrics_->post(std::move(names), generation);
+  }
+  source.running = config;
+  if (source.video_mailbox != nullptr) source.video_mailbox->post(config, generation);
+  source.mailbox->post(std::move(config), generation);
+  return generation;
 }
 
 }  // namespace rtmot::runner

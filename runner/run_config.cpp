@@ -289,6 +289,10 @@ void validate(const RunConfig& config) {
               "stream id " + std::to_string(stream_id_of(config, i)) + " is used twice");
     }
   }
+  if (!config.output.web_save_to.empty() && config.loaded_from.empty()) {
+    missing("output.web_save_to",
+            "needs --config: the file saved is a copy of the configuration file with the change");
+  }
   if (sources.size() > 1 && config.output.video) {
     missing("output.video_file", "the annotated video needs a single source");
   }

@@ -103,6 +103,9 @@ struct OutputConfig {
   int web_port{0};                            // the operator's page on this TCP port, 0 = off
   std::string web_bind{"127.0.0.1"};          // an IP literal the page listens on
   std::string web_token_file;                 // the token writes need; empty: writes are off
+  /// Where the page's saves go (a whole configuration: --config's with the change); empty: the
+  /// --config file itself.
+  std::string web_save_to;
   /// MOTChallenge results per source, in this folder (runner/mot_results_output.hpp); empty = off.
   std::string mot_results;
   /// A message for every camera frame, predicted where the detector skipped (docs/full-rate.md).

@@ -379,6 +379,10 @@ std::vector<RunSetting> output_settings() {
            "a file holding the token the page's writes (saving lines and zones) must carry; "
            "without it the page only reads",
            [](RunConfig& c) -> std::string& { return c.output.web_token_file; }),
+      text("output.web_save_to", "--web-save-to",
+           "the page's saves (lines, zones, settings) go to this file, a copy of the "
+           "configuration file with the change, instead of the configuration file itself",
+           [](RunConfig& c) -> std::string& { return c.output.web_save_to; }),
   };
 }
 

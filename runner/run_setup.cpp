@@ -401,6 +401,7 @@ RunOutputs make_outputs(const RunConfig& config, std::vector<pipeline::PipelineI
     sinks.push_back(std::make_unique<messages::JsonlSink>(output.jsonl_file, label_of));
   }
   std::unique_ptr<pipeline::FrameConsumer> video;
+  outputs::AnnotatedVideo* annotated_video = nullptr;
   if (output.video) {
     auto annotated = std::make_unique<outputs::AnnotatedVideo>(*output.video, output.video_encoding,
                                                                first, output.overlay, label_of);
@@ -408,6 +409,7 @@ RunOutputs make_outputs(const RunConfig& config, std::vector<pipeline::PipelineI
     if (!inputs.empty()) inputs.front().tap = annotated->tap();
     const auto& counted = inputs.empty() ? events::EventsConfig{} : inputs.front().events;
     if (!counted.lines.empty() || !counted.zones.empty()) annotated->show_events(counted);
+    annotated_video = annotated.get();
     video = std::move(annotated);
     outputs.destinations.push_back(
         "video -> " + output.video->text +
@@ -419,6 +421,29 @@ RunOutputs make_outputs(const RunConfig& config, std::vector<pipeline::PipelineI
     outputs.destinations.push_back(file_line("report", output.report_file));
   }
   outputs.deliveries = probes;  // for the final report
+  // What a save on the page or a SIGHUP changes while the run goes on.
+  const bool live = !inputs.empty() && (output.web_port > 0 || !config.loaded_from.empty());
+  std::vector<EventsEditor::Source> editable;
+  if (live) {
+    for (auto& input : inputs) {
+      outputs.mailboxes.push_back(std::make_unique<pipeline::EventsMailbox>());
+      input.events_mailbox = outputs.mailboxes.back().get();
+      const platform::SourceInfo& info = input.source->info();
+      editable.push_back({input.stream_id, info.uri, static_cast<int>(input.tracker.image_width),
+                          static_cast<int>(input.tracker.image_height), input.events,
+                          input.events_mailbox, nullptr});
+    }
+    if (annotated_video != nullptr) {
+      // One source (validate() checked it): the video draws its lines as they change.
+      outputs.video_mailbox = std::make_unique<pipeline::EventsMailbox>();
+      annotated_video->follow_events(outputs.video_mailbox.get());
+      editable.front().video_mailbox = outputs.video_mailbox.get();
+    }
+    outputs.score_cut = std::make_unique<pipeline::ScoreCut>(config.detector.score_threshold);
+    outputs.document = std::make_unique<ConfigDocument>(config.loaded_from, output.web_save_to);
+    outputs.settings_editor =
+        std::make_unique<SettingsEditor>(*outputs.score_cut, *outputs.document);
+  }
   if (output.web_port > 0) {
     std::vector<outputs::LivePicture*> pictures;
     outputs.web_sources = nlohmann::json::array();
@@ -437,15 +462,9 @@ RunOutputs make_outputs(const RunConfig& config, std::vector<pipeline::PipelineI
       }
       pictures.push_back(picture.get());
       outputs.pictures.push_back(std::move(picture));
-      outputs.mailboxes.push_back(std::make_unique<pipeline::EventsMailbox>());
-      input.events_mailbox = outputs.mailboxes.back().get();
       const platform::SourceInfo& info = input.source->info();
       outputs.web_sources.push_back(
           web_geometry(input.events, input.stream_id, info.uri, info.width, info.height));
-      outputs.editable.push_back({input.stream_id, info.uri,
-                                  static_cast<int>(input.tracker.image_width),
-                                  static_cast<int>(input.tracker.image_height),
-                                  input.events.frame_period_seconds, input.events_mailbox});
     }
     sinks.push_back(std::make_unique<outputs::LivePictureSink>(std::move(pictures)));
   }
@@ -455,9 +474,9 @@ RunOutputs make_outputs(const RunConfig& config, std::vector<pipeline::PipelineI
     outputs.metrics = std::make_unique<outputs::PipelineMetrics>(std::move(probes), streams);
     std::vector<outputs::EventMetrics::Source> counted;
     for (const auto& input : inputs) {
-      // With the page every source is counted: its lines may be drawn while it runs.
-      if (input.events.lines.empty() && input.events.zones.empty() && output.web_port <= 0)
-        continue;
+      // With the page or a file to re-read every source is counted: its lines may be drawn or
+      // added while it runs.
+      if (input.events.lines.empty() && input.events.zones.empty() && !live) continue;
       outputs::EventMetrics::Source source{input.stream_id, {}, {}};
       for (const auto& line : input.events.lines) source.lines.push_back(line.name);
       for (const auto& zone : input.events.zones) source.zones.push_back(zone.name);
@@ -475,6 +494,11 @@ RunOutputs make_outputs(const RunConfig& config, std::vector<pipeline::PipelineI
       outputs.destinations.push_back("metrics -> " + outputs.metrics_server->url());
     }
     sinks.push_back(std::make_unique<outputs::MetricsSink>(*outputs.metrics));
+  }
+  if (live) {
+    outputs.events_editor =
+        std::make_unique<EventsEditor>(std::move(editable), outputs.event_metrics.get(),
+                                       *outputs.document, !config.sources.empty());
   }
   outputs.consumers = pipeline::as_consumers(std::move(sinks));
   if (mot_results) outputs.consumers.push_back(std::move(mot_results));
@@ -499,13 +523,16 @@ void start_web_server(const RunConfig& config, RunOutputs& outputs, const std::s
                        "a token of at least 16 characters is needed (e.g. openssl rand -hex 16)");
     }
     content.token = std::move(token);
-    outputs.events_editor = std::make_unique<EventsEditor>(
-        outputs.editable, *outputs.event_metrics, config.loaded_from, !config.sources.empty());
     content.save_events = [editor = outputs.events_editor.get()](std::size_t source,
                                                                  const std::string& body) {
       return editor->save(source, body);
     };
+    content.save_settings = [editor = outputs.settings_editor.get()](const std::string& body) {
+      return editor->save(body);
+    };
   }
+  content.settings = [editor = outputs.settings_editor.get()] { return editor->current(); };
+  content.geometry = [editor = outputs.events_editor.get()] { return editor->geometry(); };
   outputs.web_server = std::make_unique<outputs::WebServer>(
       std::move(content), config.output.web_bind,
       static_cast<std::uint16_t>(config.output.web_port), outputs::find_static_dir());
@@ -566,7 +593,8 @@ void check_run_files(const RunConfig& config) {
   const OutputConfig& output = config.output;
   std::vector<NamedFile> outputs{{output.binary_file, "output.binary_file"},
                                  {output.jsonl_file, "output.jsonl_file"},
-                                 {output.report_file, "output.report_file"}};
+                                 {output.report_file, "output.report_file"},
+                                 {output.web_save_to, "output.web_save_to"}};
   const auto& video = output.video;
   if (video && (video->kind == outputs::VideoTargetKind::mp4_file ||
                 video->kind == outputs::VideoTargetKind::mkv_file)) {

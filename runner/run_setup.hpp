@@ -13,8 +13,10 @@
 #include "outputs/web_server.hpp"
 #include "pipeline/pipeline.hpp"
 #include "platform/video_source.hpp"
+#include "runner/config_document.hpp"
 #include "runner/events_editor.hpp"
 #include "runner/run_config.hpp"
+#include "runner/settings_editor.hpp"
 
 namespace rtmot::runner {
 
@@ -49,10 +51,16 @@ struct RunOutputs {
   /// starts with start_web_server(). Declared in this order so that the server goes first.
   std::vector<std::unique_ptr<outputs::LivePicture>> pictures;
   std::vector<std::unique_ptr<pipeline::TapFanout>> taps;
-  std::vector<std::unique_ptr<pipeline::EventsMailbox>> mailboxes;  // the sources' new lines
-  std::vector<EventsEditor::Source> editable;                       // what a save needs of each
-  nlohmann::json web_sources;
+  /// With output.web_port or a configuration file (SIGHUP re-reads it): what changes while the
+  /// run goes on (docs/web.md): the sources' new lines and zones, the detector's score cut, and
+  /// the document saves are written to. Declared before the server, which uses them.
+  std::vector<std::unique_ptr<pipeline::EventsMailbox>> mailboxes;
+  std::unique_ptr<pipeline::EventsMailbox> video_mailbox;  // with output.video_file
+  std::unique_ptr<pipeline::ScoreCut> score_cut;
+  std::unique_ptr<ConfigDocument> document;
   std::unique_ptr<EventsEditor> events_editor;
+  std::unique_ptr<SettingsEditor> settings_editor;
+  nlohmann::json web_sources;
   std::unique_ptr<outputs::WebServer> web_server;
   /// One line per destination ("udp -> [::1]:5600", "jsonl -> tracks.jsonl (replaces an existing
   /// file)"), for the start-up log.

@@ -19,7 +19,7 @@ jobs=${JOBS:-2}
 asan_dir=${ASAN_DIR:-$root/build-asan}
 tsan_dir=${TSAN_DIR:-$root/build-tsan}
 tsan_targets=${TSAN_TARGETS:-pipeline_handoff_test pipeline_playback_test pipeline_outage_test pipeline_multi_source_test pipeline_detect_lanes_test pipeline_stage_threads_test test_platform_capture test_platform_signals test_platform_thread test_reconnecting_source messages_test study_tests outputs_mqtt_test
-  pipeline_events_mailbox_test}
+  pipeline_events_mailbox_test pipeline_score_cut_test}
 supp=$root/scripts/sanitizers
 
 # clang, not g++: g++ took over 16 minutes for half of the ASan+UBSan build on CI's 2 cores (its
@@ -67,8 +67,8 @@ if [[ $which == tsan || $which == all ]]; then
   configure "$tsan_dir" thread
   # Only the threaded components, to fit CI: the hand-off stress test and the four-thread Pipeline
   # (playback tests), capture and signal threads, the reconnecting source, UDP loopback, the
-  # events mailbox, and rtmot itself streaming a real vtest.avi run to a listener and serving its
-  # page.
+  # events mailbox, the live score cut, and rtmot itself streaming a real vtest.avi run to a
+  # listener and serving its page.
   cmake --build "$tsan_dir" -j "$jobs" --target $tsan_targets rtmot
   export TSAN_OPTIONS="suppressions=$supp/tsan.supp halt_on_error=1 second_deadlock_stack=1"
   for target in $tsan_targets; do
@@ -83,6 +83,11 @@ if [[ $which == tsan || $which == all ]]; then
   # line saved while the track stage runs (pipeline/events_mailbox.hpp), on a real run.
   echo "--- tsan: rtmot run --web-port, watched and written to"
   bash "$root/tests/system/web_view.sh" "$tsan_dir/apps/rtmot" "$root" \
+    "${RTMOT_SHARED_DIR:-$root/../shared}" || status=1
+  # SIGHUP's reload thread and the page's settings against the running pipeline (the score cut's
+  # hand-over to the detect stage, the events' to the track stage).
+  echo "--- tsan: rtmot run, SIGHUP and POST /api/settings"
+  bash "$root/tests/system/web_reload.sh" "$tsan_dir/apps/rtmot" "$root" \
     "${RTMOT_SHARED_DIR:-$root/../shared}" || status=1
   echo "sanitize: tsan build and tests took $(($(date +%s) - start)) s"
 fi

@@ -56,5 +56,38 @@ TEST(StopSignalsTest, RestoresTheSignalMaskWhenDestroyed) {
   EXPECT_FALSE(sigismember(&after, SIGTERM));
 }
 
+TEST(StopSignalsTest, HangupAsksForAReloadAndDoesNotStop) {
+  const StopSignals signals(Hangup::reloads);
+  EXPECT_EQ(signals.reload_requests(), 0U);
+  // To the whole process: with its default action it would end the test.
+  ASSERT_EQ(kill(getpid(), SIGHUP), 0);
+  EXPECT_EQ(signals.wait_for_reload(0, std::chrono::seconds(10)), 1U);
+  ASSERT_EQ(kill(getpid(), SIGHUP), 0);
+  EXPECT_EQ(signals.wait_for_reload(1, std::chrono::seconds(10)), 2U);
+  EXPECT_FALSE(signals.stop_requested());
+  EXPECT_EQ(signals.signal_number(), 0);
+}
+
+TEST(StopSignalsTest, WaitingForAReloadEndsAfterItsTimeout) {
+  const StopSignals signals(Hangup::reloads);
+  EXPECT_EQ(signals.wait_for_reload(0, std::chrono::milliseconds(1)), 0U);
+}
+
+TEST(StopSignalsTest, HangupKeepsItsDefaultActionUnlessAsked) {
+  // As main() leaves it for every command: blocked from the start.
+  sigset_t hangup;
+  sigemptyset(&hangup);
+  sigaddset(&hangup, SIGHUP);
+  sigset_t before;
+  pthread_sigmask(SIG_BLOCK, &hangup, &before);
+  sigset_t during;
+  {
+    const StopSignals signals;  // Hangup::ends
+    pthread_sigmask(SIG_SETMASK, nullptr, &during);
+  }
+  pthread_sigmask(SIG_SETMASK, &before, nullptr);
+  EXPECT_FALSE(sigismember(&during, SIGHUP)) << "a command that has nothing to re-read";
+}
+
 }  // namespace
 }  // namespace rtmot::platform

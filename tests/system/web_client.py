@@ -4,11 +4,13 @@ Usage: web_client.py BASE_URL COMMAND [ARGS]
   status                     print /api/status (JSON)
   wait-processed N           wait until source 0 processed N frames (gives up after 300 s)
   jpeg                       read /video/0.mjpg until one whole JPEG arrived; print its size
-  watchers-bounded MAX       hold MAX streams open; the next one is answered 503
+  watchers-bounded MAX       once no watcher is counted, hold MAX streams open; the next one is
+                             answered 503
   get PATH                   print "STATUS LENGTH" of a GET with the path sent as is
   post SOURCE TOKEN BODY     POST BODY to /api/events?source=SOURCE as the page does (TOKEN "-":
                              no Authorization header; BODY "@N": N bytes); print "STATUS JSON"
   wait-count NAME            wait until source 0's line NAME counted a crossing (300 s at most)
+  post-settings TOKEN BODY   POST BODY to /api/settings, as `post`; print "STATUS JSON"
 """
 import http.client
 import json
@@ -67,6 +69,12 @@ elif command == "jpeg":
     connection.close()
 elif command == "watchers-bounded":
     limit = int(sys.argv[3])
+    # A client that went away holds its worker's watcher until that worker's next write fails (one
+    # picture later, longer on a loaded machine): wait until nobody is counted, then fill the bound.
+    deadline = time.time() + 120
+    while sum(status()["watchers"]) > 0:
+        assert time.time() < deadline, "watchers still counted 120 s after their clients left"
+        time.sleep(0.1)
     held = []
     for _ in range(limit):
         connection, response = open_stream()
@@ -84,15 +92,20 @@ elif command == "get":
     response = connection.getresponse()
     body = response.read()
     print(response.status, len(body), b"cmake_minimum_required" in body)
-elif command == "post":
-    source, token, body = sys.argv[3], sys.argv[4], sys.argv[5]
+elif command in ("post", "post-settings"):
+    if command == "post":
+        source, token, body = sys.argv[3], sys.argv[4], sys.argv[5]
+        path = "/api/events?source=" + source
+    else:
+        token, body = sys.argv[3], sys.argv[4]
+        path = "/api/settings"
     data = (b"x" * int(body[1:])) if body.startswith("@") else body.encode()
     headers = {"Content-Type": "application/json"}
     if token != "-":
         headers["Authorization"] = "Bearer " + token
     connection = http.client.HTTPConnection(host.hostname, host.port, timeout=60)
     try:
-        connection.request("POST", "/api/events?source=" + source, body=data, headers=headers)
+        connection.request("POST", path, body=data, headers=headers)
         response = connection.getresponse()
         print(response.status, response.read().decode())
     except (BrokenPipeError, ConnectionResetError):
