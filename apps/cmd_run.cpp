@@ -126,8 +126,8 @@ int run(const RunCommand& command) {
   std::unique_ptr<runner::ConfigReloader> reloader;
   if (outputs.events_editor && !config.loaded_from.empty()) {
     reloader = std::make_unique<runner::ConfigReloader>(
-        config.loaded_from, command.flags, *outputs.events_editor,
-        *outputs.settings_editor, *outputs.score_cut, *outputs.document);
+        config.loaded_from, command.flags, *outputs.events_editor, *outputs.settings_editor,
+        *outputs.score_cut, *outputs.document);
   }
   pipeline::PipelineReport report;
   {
