@@ -103,7 +103,10 @@ void PipelineMetrics::observe(const messages::FrameResult& result) {
     stream.tracks_reported.fetch_add(result.tracks.size(), relaxed);
     stream.tracks_last_frame.store(static_cast<std::uint32_t>(result.tracks.size()), relaxed);
     stream.up.store(!result.source_outage, relaxed);
-    if (!result.source_outage) stream.last_sent_ns.store(t.sent_ns, relaxed);
+    if (!result.source_outage) {
+      stream.last_sent_ns.store(t.sent_ns, relaxed);
+      stream.end_to_end.record(pipeline::stage_span_ns(pipeline::Stage::end_to_end, t));
+    }
     if (result.source_outage) {
       stream.outage_frames.fetch_add(1, relaxed);
       if (!stream.in_outage) stream.outages.fetch_add(1, relaxed);
@@ -218,7 +221,10 @@ nlohmann::json PipelineMetrics::status() const {
                        {"frames_processed", s.frames_processed.load(relaxed)},
                        {"frames_skipped", s.frames_skipped.load(relaxed)},
                        {"outages", s.outages.load(relaxed)},
-                       {"tracks", s.tracks_last_frame.load(relaxed)}});
+                       {"tracks", s.tracks_last_frame.load(relaxed)},
+                       {"end_to_end",
+                        {{"p50_ms", s.end_to_end.quantile_ms(0.5)},
+                         {"p99_ms", s.end_to_end.quantile_ms(0.99)}}}});
   }
   nlohmann::json stages = nlohmann::json::object();
   for (const auto& [stage, name] : pipeline::kStageNames.entries()) {

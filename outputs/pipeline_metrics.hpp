@@ -112,7 +112,8 @@ class PipelineMetrics {
     std::atomic<bool> up{false};  // false until its first frame: a cold start is not "up"
     std::atomic<std::int64_t> first_captured_ns{0};  // the first message's (a tick's too)
     std::atomic<std::int64_t> last_sent_ns{0};       // the last picture's (not a tick's)
-    bool in_outage{false};                           // sink stage only
+    LatencyBuckets end_to_end;  // capture -> sent of its pictures (the page's per-source p50/p99)
+    bool in_outage{false};      // sink stage only
   };
 
   // One definition of each derived fact, for render() and status().

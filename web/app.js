@@ -100,6 +100,8 @@ function show(status) {
       ['frames captured', s.frames_captured], ['frames processed', s.frames_processed],
       ['frames skipped (detector busy)', s.frames_skipped], ['outages', s.outages],
       ['tracks now', s.tracks],
+      ['capture \u2192 sent p50 / p99 (ms)', s.end_to_end
+        ? s.end_to_end.p50_ms.toFixed(0) + ' / ' + s.end_to_end.p99_ms.toFixed(0) : ''],
       ['detector capacity (fps, every source)', (status.detector_capacity_fps || 0).toFixed(1)]]);
     const e = status.events.find(x => x.stream === geometry.stream) || {lines: [], zones: []};
     rows(c.counts, [e.generation > 0 ? 'counted since the last save' : 'counted', 'in', 'out', ''], [

@@ -106,6 +106,12 @@ TEST(Metrics, PredictedMessagesAreCountedApart) {
   EXPECT_EQ(value_of(response, R"(rtmot_frames_processed_total{stream="7"})"), 10.0);
   EXPECT_EQ(value_of(response, R"(rtmot_predicted_messages_total{stream="7"})"), 30.0);
   EXPECT_EQ(value_of(response, R"(rtmot_stage_latency_seconds_count{stage="end_to_end"})"), 10.0);
+  // The page's per-source capture->sent: one source, so the pipeline's own (the same frames).
+  const nlohmann::json status = metrics.status();
+  const nlohmann::json& source = status["sources"][0]["end_to_end"];
+  EXPECT_GT(source["p50_ms"].get<double>(), 0.0);
+  EXPECT_EQ(source["p50_ms"], status["latency"]["end_to_end"]["p50_ms"]);
+  EXPECT_EQ(source["p99_ms"], status["latency"]["end_to_end"]["p99_ms"]);
 }
 
 // Issue 23, class 4: one connection that sends nothing, and 50 that send half a request and then
