@@ -186,7 +186,7 @@ TEST(WebSaveTo, NeedsAConfigurationFileToCopy) {
     EXPECT_EQ(error.field(), "output.web_save_to");
     EXPECT_EQ(error.exit_code(), ExitCode::bad_input);
   }
-  config.file = "run.yaml";  // as load_run_config sets it
+  config.file = config.loaded_from = "run.yaml";  // as load_run_config sets them
   EXPECT_NO_THROW(validate(config));
 }
 
