@@ -152,17 +152,22 @@ Agreement agreement(SsdDetector& expected_detector, SsdDetector& found_detector,
   return result;
 }
 
+// Prints what was compared (the figures docs/model.md quotes) and checks it against the bounds.
+void expect_agreement(const std::string& what, const Agreement& agreed, std::size_t at_least,
+                      float box_px, float score) {
+  std::cout << what << ": " << agreed.compared << " detections, worst box deviation "
+            << agreed.worst_box << " px, worst score deviation " << agreed.worst_score << "\n";
+  EXPECT_GE(agreed.compared, at_least) << what;
+  EXPECT_LE(agreed.worst_box, box_px) << what;
+  EXPECT_LE(agreed.worst_score, score) << what;
+}
+
 TEST_F(ModelLayout, DecodedLayoutFindsWhatTheBundledModelFinds) {
   SsdDetector reference(config_for(bundled(), BackendRequest::cpu));
   SsdDetector decoded(config_for(fixture(), BackendRequest::cpu));
   EXPECT_EQ(decoded.description().layout, OutputLayout::decoded);
   const Agreement agreed = agreement(reference, decoded, {1, 51, 101, 151});
-  std::cout << "decoded layout vs bundled, OpenCV cpu: " << agreed.compared
-            << " detections, worst box deviation " << agreed.worst_box
-            << " px, worst score deviation " << agreed.worst_score << "\n";
-  EXPECT_GE(agreed.compared, 20U);
-  EXPECT_LE(agreed.worst_box, 0.05F);
-  EXPECT_LE(agreed.worst_score, 1e-4F);
+  expect_agreement("decoded layout vs bundled, OpenCV cpu", agreed, 20, 0.05F, 1e-4F);
 }
 
 // XNNPACK on the decoded layout: the network on XNNPACK, the wrapper's decoding tail (slices,
@@ -179,23 +184,13 @@ TEST_F(ModelLayout, XnnpackRunsTheDecodedLayoutAsOpenCvAndTheBundledModelDo) {
   EXPECT_NE(xnnpack.describe().find("decoding tail of"), std::string::npos) << xnnpack.describe();
   const std::set<int> frames{1, 51, 101, 151};
   const Agreement engines = agreement(opencv, xnnpack, frames);
-  std::cout << "decoded layout, XNNPACK vs OpenCV cpu: " << engines.compared
-            << " detections, worst box deviation " << engines.worst_box
-            << " px, worst score deviation " << engines.worst_score << "\n";
-  EXPECT_GE(engines.compared, 20U);
-  EXPECT_LE(engines.worst_box, 0.1F);
-  EXPECT_LE(engines.worst_score, 1e-3F);
+  expect_agreement("decoded layout, XNNPACK vs OpenCV cpu", engines, 20, 0.1F, 1e-3F);
   SsdDetector bundled_xnnpack(config_for(bundled(), BackendRequest::xnnpack));
   // The bundled model ends with its heads' Concat, which XNNPACK's engine joins itself: no tail.
   EXPECT_EQ(bundled_xnnpack.describe().find("decoding tail"), std::string::npos)
       << bundled_xnnpack.describe();
   const Agreement layouts = agreement(bundled_xnnpack, xnnpack, frames);
-  std::cout << "decoded layout vs bundled, XNNPACK: " << layouts.compared
-            << " detections, worst box deviation " << layouts.worst_box
-            << " px, worst score deviation " << layouts.worst_score << "\n";
-  EXPECT_GE(layouts.compared, 20U);
-  EXPECT_LE(layouts.worst_box, 0.05F);
-  EXPECT_LE(layouts.worst_score, 1e-4F);
+  expect_agreement("decoded layout vs bundled, XNNPACK", layouts, 20, 0.05F, 1e-4F);
 }
 
 // backend auto on the decoded layout: XNNPACK is a candidate (no longer "xnnpack cannot run the
@@ -364,17 +359,13 @@ TEST_F(ModelLayout, XnnpackRunsAnotherInputSizeAsOpenCvDoes) {
   SsdDetector opencv(config_for(resized(), BackendRequest::cpu));
   SsdDetector xnnpack(config_for(resized(), BackendRequest::xnnpack));
   const Agreement agreed = agreement(opencv, xnnpack, {1, 101});
-  std::cout << "320 px input, XNNPACK vs OpenCV cpu: " << agreed.compared
-            << " detections, worst box deviation " << agreed.worst_box
-            << " px, worst score deviation " << agreed.worst_score << "\n";
-  EXPECT_GE(agreed.compared, 10U);
-  EXPECT_LE(agreed.worst_box, 0.1F);
-  EXPECT_LE(agreed.worst_score, 1e-3F);
+  expect_agreement("320 px input, XNNPACK vs OpenCV cpu", agreed, 10, 0.1F, 1e-3F);
 }
 
-// CUDA (cuDNN, fp32) on both fixtures as on the bundled model (tests/detector/ssd_reference_test.cpp:
-// 0.05 px and 5e-5 there): the wrapper's decoding and another input size run on the GPU as on the
-// CPU. Runs on the GPU machine (docs/gpu.md), skipped where OpenCV has no CUDA.
+// CUDA (cuDNN, fp32) on both fixtures as on the bundled model
+// (tests/detector/ssd_reference_test.cpp: 0.05 px and 5e-5 there): the wrapper's decoding and
+// another input size run on the GPU as on the CPU. Runs on the GPU machine (docs/gpu.md), skipped
+// where OpenCV has no CUDA.
 TEST_F(ModelLayout, CudaRunsBothFixturesAsOpenCvCpuDoes) {
   const auto caps = probe_backend_capabilities();
   if (!caps.opencv_has_cuda || caps.cuda_devices == 0) {
@@ -385,12 +376,7 @@ TEST_F(ModelLayout, CudaRunsBothFixturesAsOpenCvCpuDoes) {
     SsdDetector cpu(config_for(model, BackendRequest::cpu));
     SsdDetector cuda(config_for(model, BackendRequest::cuda));
     const Agreement agreed = agreement(cpu, cuda, {1, 101, 201});
-    std::cout << model.filename().string() << ", CUDA vs OpenCV cpu: " << agreed.compared
-              << " detections, worst box deviation " << agreed.worst_box
-              << " px, worst score deviation " << agreed.worst_score << "\n";
-    EXPECT_GE(agreed.compared, 15U) << model;
-    EXPECT_LE(agreed.worst_box, 0.1F) << model;
-    EXPECT_LE(agreed.worst_score, 1e-3F) << model;
+    expect_agreement(model.filename().string() + ", CUDA vs OpenCV cpu", agreed, 15, 0.1F, 1e-3F);
   }
 }
 

@@ -26,17 +26,28 @@ namespace {
 
 using test::value_of;
 
+// PETS09-S2L1's public detections and the rtmot tracker set for the sequence's frame size and rate.
+struct S2L1Tracking {
+  static std::filesystem::path dir() { return test::shared_path("data/mot15-train/PETS09-S2L1"); }
+  static tracker::TrackerConfig config_for(const motio::SequenceInfo& sequence) {
+    auto config = *tracker::find_preset("rtmot");
+    config.frame_rate = sequence.frame_rate;
+    config.image_width = static_cast<float>(sequence.width);
+    config.image_height = static_cast<float>(sequence.height);
+    return config;
+  }
+  motio::SequenceInfo info = motio::read_seqinfo(dir() / "seqinfo.ini");
+  motio::FrameDetections detections{
+      motio::read_mot_file(dir() / "det" / "det.txt", motio::MotFileKind::detections)};
+  tracker::Tracker tracker{config_for(info)};
+};
+
 TEST(EventMetrics, SeriesEqualTheEventsSentAndTheCountersTotals) {
-  const auto dir = test::shared_path("data/mot15-train/PETS09-S2L1");
-  RTMOT_REQUIRE_FILE(dir / "det" / "det.txt");
-  const auto info = motio::read_seqinfo(dir / "seqinfo.ini");
-  const motio::FrameDetections detections(
-      motio::read_mot_file(dir / "det" / "det.txt", motio::MotFileKind::detections));
-  auto tracker_config = *tracker::find_preset("rtmot");
-  tracker_config.frame_rate = info.frame_rate;
-  tracker_config.image_width = static_cast<float>(info.width);
-  tracker_config.image_height = static_cast<float>(info.height);
-  tracker::Tracker tracker(tracker_config);
+  RTMOT_REQUIRE_FILE(S2L1Tracking::dir() / "det" / "det.txt");
+  S2L1Tracking s2l1;
+  const auto& info = s2l1.info;
+  const auto& detections = s2l1.detections;
+  auto& tracker = s2l1.tracker;
 
   events::EventsConfig config;
   config.lines.push_back({"middle \"m\"", {{384.0, 0.0}, {384.0, 576.0}}, true});
@@ -115,14 +126,11 @@ TEST(EventMetrics, SeriesEqualTheEventsSentAndTheCountersTotals) {
 // called a car (class 3), the rest people (1); each line's and zone's classes add up to its total,
 // both classes are there, and a class beyond the labels' columns is in the totals only.
 TEST(EventMetrics, CountsPerClassAddUpToTheTotals) {
-  const auto dir = test::shared_path("data/mot15-train/PETS09-S2L1");
-  RTMOT_REQUIRE_FILE(dir / "det" / "det.txt");
-  const auto info = motio::read_seqinfo(dir / "seqinfo.ini");
-  const motio::FrameDetections detections(
-      motio::read_mot_file(dir / "det" / "det.txt", motio::MotFileKind::detections));
-  auto tracker_config = *tracker::find_preset("rtmot");
-  tracker_config.frame_rate = info.frame_rate;
-  tracker::Tracker tracker(tracker_config);
+  RTMOT_REQUIRE_FILE(S2L1Tracking::dir() / "det" / "det.txt");
+  S2L1Tracking s2l1;
+  const auto& info = s2l1.info;
+  const auto& detections = s2l1.detections;
+  auto& tracker = s2l1.tracker;
   events::EventsConfig config;
   config.lines.push_back({"middle", {{384.0, 0.0}, {384.0, 576.0}}, true});
   config.zones.push_back({"left", {{38, 172}, {346, 172}, {346, 547}, {38, 547}}, 5.0});
@@ -156,22 +164,21 @@ TEST(EventMetrics, CountsPerClassAddUpToTheTotals) {
   const nlohmann::json& classes = line["classes"];
   ASSERT_TRUE(classes.contains("person") && classes.contains("car")) << line.dump();
   EXPECT_EQ(classes.size(), 2U) << line.dump();
-  EXPECT_EQ(classes["person"]["in"].get<int>() + classes["car"]["in"].get<int>() +
-                (beyond == 1 ? 1 : 0),
-            line["in"].get<int>());
+  EXPECT_EQ(
+      classes["person"]["in"].get<int>() + classes["car"]["in"].get<int>() + (beyond == 1 ? 1 : 0),
+      line["in"].get<int>());
   EXPECT_EQ(classes["person"]["out"].get<int>() + classes["car"]["out"].get<int>() +
                 (beyond == -1 ? 1 : 0),
             line["out"].get<int>());
   EXPECT_EQ(line["in"].get<int>(), counter.line_counts()[0].in);
   const nlohmann::json& zone = status["zones"][0];
-  ASSERT_TRUE(zone["classes"].contains("person") && zone["classes"].contains("car"))
-      << zone.dump();
-  EXPECT_EQ(zone["classes"]["person"]["enter"].get<int>() +
-                zone["classes"]["car"]["enter"].get<int>(),
-            zone["enter"].get<int>());
-  EXPECT_EQ(zone["classes"]["person"]["exit"].get<int>() +
-                zone["classes"]["car"]["exit"].get<int>(),
-            zone["exit"].get<int>());
+  ASSERT_TRUE(zone["classes"].contains("person") && zone["classes"].contains("car")) << zone.dump();
+  EXPECT_EQ(
+      zone["classes"]["person"]["enter"].get<int>() + zone["classes"]["car"]["enter"].get<int>(),
+      zone["enter"].get<int>());
+  EXPECT_EQ(
+      zone["classes"]["person"]["exit"].get<int>() + zone["classes"]["car"]["exit"].get<int>(),
+      zone["exit"].get<int>());
 }
 
 // A name made without the YAML reader's UTF-8 check (a caller of its own) cannot break the page:
