@@ -4,11 +4,9 @@
 # reordered, duplicated or corrupt. Usage: listen_receives_vtest_run.sh RTMOT SOURCE_DIR SHARED_DIR FRAMES
 set -euo pipefail
 rtmot=$1 source_dir=$2 shared_dir=$3 frames=$4
-video=$shared_dir/data/video/vtest.avi
-model=$source_dir/models/ssdlite_mobilenet_v2_coco.onnx
-for file in "$video" "$model"; do
-  [[ -f $file ]] || { echo "FAIL: missing test input $file (model: scripts/fetch_model.sh)"; exit 1; }
-done
+here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
+# shellcheck source=vtest_inputs.sh
+source "$here/vtest_inputs.sh" "$source_dir" "$shared_dir"
 work=$(mktemp -d)
 trap 'kill "${listener:-}" 2>/dev/null || true; rm -rf "$work"' EXIT
 # Made before the listener starts: the loop below may read it before the listener's shell has

@@ -14,19 +14,10 @@
 set -euo pipefail
 rtmot=$1 source_dir=$2 shared_dir=$3
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
-video=$shared_dir/data/video/vtest.avi
-model=$source_dir/models/ssdlite_mobilenet_v2_coco.onnx
-for file in "$video" "$model"; do
-  [[ -f $file ]] || { echo "FAIL: missing test input $file (model: scripts/fetch_model.sh)"; exit 1; }
-done
-work=$(mktemp -d)
-pid=
-cleanup() {
-  [[ -z $pid ]] || kill "$pid" 2>/dev/null || true
-  rm -rf "$work"
-}
-trap cleanup EXIT
-fail() { echo "FAIL: $*"; cat "$work/run.err"; exit 1; }
+# shellcheck source=vtest_inputs.sh
+source "$here/vtest_inputs.sh" "$source_dir" "$shared_dir"
+# shellcheck source=background_run.sh
+source "$here/background_run.sh"
 
 token=0123456789abcdef0123
 printf '%s\n' "$token" >"$work/token"

@@ -16,14 +16,8 @@ rtmot=$1 source_dir=$2 shared_dir=$3
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 # shellcheck source=vtest_inputs.sh
 source "$here/vtest_inputs.sh" "$source_dir" "$shared_dir"
-work=$(mktemp -d)
-pid=
-cleanup() {
-  [[ -z $pid ]] || kill "$pid" 2>/dev/null || true
-  rm -rf "$work"
-}
-trap cleanup EXIT
-fail() { echo "FAIL: $*"; cat "$work/run.err"; exit 1; }
+# shellcheck source=background_run.sh
+source "$here/background_run.sh"
 
 token=0123456789abcdef0123
 printf '%s\n' "$token" >"$work/token"
