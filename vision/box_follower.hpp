@@ -1,0 +1,69 @@
+#pragma once
+// Following boxes through the frames the detector skipped: sparse optical flow (pyramidal
+// Lucas-Kanade, OpenCV's calcOpticalFlowPyrLK) on a grid of points inside each box, from one gray
+// thumbnail of the camera's frames to the next. A box moves by its points' median displacement
+// and scales by the median ratio of their pairwise distances; points that do not come back to
+// where they started when followed backwards (forward-backward error) are not trusted, so an
+// occluder or a textureless box lowers the confidence instead of dragging the box. Used by the
+// pipeline's track stage (docs/full-rate.md, "Observed boxes"); the tracker never sees an image.
+#include <opencv2/core/mat.hpp>
+#include <cstdint>
+#include <vector>
+
+#include "tracker/box.hpp"
+
+namespace rtmot::vision {
+
+struct BoxFollowerConfig {
+  int grid = 6;              // grid x grid points per box, over its inner part
+  int window = 11;           // Lucas-Kanade window side, thumbnail pixels
+  int pyramid_levels = 2;    // above the thumbnail itself
+  float max_round_trip = 1.0F;  // forward-backward error a trusted point may have, thumbnail px
+  float min_trusted = 0.3F;  // share of a box's points that must be trusted to move it
+};
+
+/// Where one box went.
+struct FollowedBox {
+  tracker::Box box;        // frame pixels (the input box when not followed)
+  float confidence{0.F};   // share of its points trusted, 0..1
+  bool followed{false};    // confidence >= min_trusted: `box` is where the image says it went
+};
+
+/// One per camera. Frames are pushed in order; follow() moves boxes from the previous frame to
+/// the latest one. Allocates nothing once it has seen a frame of the camera's size and as many
+/// boxes as it will get (its buffers are kept).
+class BoxFollower {
+ public:
+  explicit BoxFollower(const BoxFollowerConfig& config = {});
+
+  /// The next frame: an 8-bit gray thumbnail, `scale` thumbnail pixels per frame pixel (the same
+  /// for every frame of the camera). Its pyramid is built once, here; the last frame becomes the
+  /// previous one.
+  void push(const cv::Mat& gray_thumbnail, float scale);
+  /// Whether two frames were pushed since the last reset().
+  bool ready() const;
+  /// Forgets the frames (a gap in the camera's frames: there is nothing to follow across).
+  void reset();
+
+  /// Each of `boxes` (frame pixels, where they are in the previous frame) followed into the
+  /// latest frame, into `out` (resized to boxes.size()). Before ready(): each box unfollowed.
+  void follow(const std::vector<tracker::Box>& boxes, std::vector<FollowedBox>& out);
+
+ private:
+  BoxFollowerConfig config_;
+  // Implementation's buffers (pyramids of the two frames, points, status, errors), kept across
+  // calls: see box_follower.cpp.
+  std::vector<cv::Mat> previous_pyramid_;
+  std::vector<cv::Mat> latest_pyramid_;
+  std::vector<cv::Point2f> from_points_;
+  std::vector<cv::Point2f> to_points_;
+  std::vector<cv::Point2f> back_points_;
+  std::vector<unsigned char> status_;
+  std::vector<unsigned char> back_status_;
+  std::vector<float> errors_;
+  std::vector<float> scratch_;
+  float scale_{1.F};
+  int frames_{0};
+};
+
+}  // namespace rtmot::vision
