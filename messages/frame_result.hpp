@@ -43,6 +43,10 @@ struct FrameResult {
   /// predicted for this frame's time. They
   /// never fed back into the tracker. No events (counted on processed frames only).
   bool predicted{false};
+  /// With `predicted`: the boxes were followed through the skipped frames in the image
+  /// (vision/box_follower.hpp); each track's score is then the share of its points the image
+  /// followed (0: not followed, its box is the prediction). docs/full-rate.md, "Observed boxes".
+  bool observed{false};
   FrameTimes times;
   std::vector<tracker::TrackReport> tracks;  // reserved once; never grows in steady state
   /// Line crossings and zone visits decided in this frame (events/, docs/events.md); reserved once.

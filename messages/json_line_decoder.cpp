@@ -85,6 +85,8 @@ bool decode_json_line(const std::uint8_t* data, std::size_t size, DecodedMessage
     frame.source_outage = line.contains("source_outage") && required<bool>(line, "source_outage");
     frame.end_of_stream = line.contains("end_of_stream") && required<bool>(line, "end_of_stream");
     frame.predicted = line.contains("predicted") && required<bool>(line, "predicted");
+    frame.observed =
+        frame.predicted && line.contains("observed") && required<bool>(line, "observed");
     frame.times = FrameTimes{};
     frame.times.captured_ns = required<std::int64_t>(line, "captured_ns");
     frame.times.sent_ns = frame.times.captured_ns + required<std::int64_t>(line, "latency_ns");
@@ -94,7 +96,8 @@ bool decode_json_line(const std::uint8_t* data, std::size_t size, DecodedMessage
     out.flags = static_cast<std::uint8_t>((truncated ? message::flag_truncated : 0) |
                                           (frame.source_outage ? message::flag_source_outage : 0) |
                                           (frame.end_of_stream ? message::flag_end_of_stream : 0) |
-                                          (frame.predicted ? message::flag_predicted : 0));
+                                          (frame.predicted ? message::flag_predicted : 0) |
+                                          (frame.observed ? message::flag_observed : 0));
     const auto tracks = line.find("tracks");
     if (tracks == line.end() || !tracks->is_array()) {
       problem = "no \"tracks\" array";

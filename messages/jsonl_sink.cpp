@@ -99,6 +99,7 @@ void append_json_line(const FrameResult& frame, std::uint32_t total_track_count,
   }
   if (frame.end_of_stream) fmt::format_to(to, R"(,"end_of_stream":true)");
   if (frame.predicted) fmt::format_to(to, R"(,"predicted":true)");
+  if (frame.predicted && frame.observed) fmt::format_to(to, R"(,"observed":true)");
   fmt::format_to(to, "}}\n");
 }
 

@@ -217,7 +217,8 @@ std::size_t MessageEncoder::encode(const FrameResult& result, std::uint8_t* buff
                                 (result.source_outage ? message::flag_source_outage : 0) |
                                 (events_truncated ? message::flag_events_truncated : 0) |
                                 (result.end_of_stream ? message::flag_end_of_stream : 0) |
-                                (result.predicted ? message::flag_predicted : 0));
+                                (result.predicted ? message::flag_predicted : 0) |
+                                (result.predicted && result.observed ? message::flag_observed : 0));
   put<std::uint16_t>(header + offset::header_length, static_cast<std::uint16_t>(header_length));
   put<std::uint32_t>(header + offset::stream_id, result.stream_id);
   put<std::uint32_t>(header + offset::frames_dropped, result.frames_dropped);
@@ -360,6 +361,7 @@ DecodeError decode_message(const std::uint8_t* data, std::size_t size, DecodedMe
   frame.source_outage = (out.flags & message::flag_source_outage) != 0;
   frame.end_of_stream = (out.flags & message::flag_end_of_stream) != 0;
   frame.predicted = (out.flags & message::flag_predicted) != 0;
+  frame.observed = frame.predicted && (out.flags & message::flag_observed) != 0;
   frame.times = FrameTimes{};
   frame.times.captured_ns = get_i64(data + offset::captured_ns);
   // Unsigned addition: a hostile latency must not be signed-overflow UB.

@@ -39,6 +39,9 @@ constexpr std::uint8_t flag_source_outage = 0x02;     // no picture: the source 
 constexpr std::uint8_t flag_events_truncated = 0x04;  // fewer events than the frame had
 constexpr std::uint8_t flag_end_of_stream = 0x08;     // the stream's last message (no tracks)
 constexpr std::uint8_t flag_predicted = 0x10;  // a skipped frame: the tracks' predicted boxes
+/// With flag_predicted: the boxes were followed in the image (a track's score is how well: 0 for
+/// one the image lost, whose box is its prediction). docs/full-rate.md, "Observed boxes".
+constexpr std::uint8_t flag_observed = 0x20;
 
 /// The largest UDP payload we send by default: fits one unfragmented datagram on any IPv6 path
 /// (1280-byte minimum MTU - 40 IPv6 - 8 UDP = 1232) and through VPN/tunnel overheads; see the doc.

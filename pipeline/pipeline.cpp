@@ -12,6 +12,7 @@
 #include "pipeline/detect_stage.hpp"
 #include "pipeline/run_control.hpp"
 #include "pipeline/sink_stage.hpp"
+#include "pipeline/thumbnail_tap.hpp"
 #include "pipeline/track_stage.hpp"
 #include "pipeline/wake_signal.hpp"
 
@@ -50,6 +51,9 @@ struct Pipeline::Stages {
   PipelineOptions options;
   RunControl control;
   WakeSignal frames_ready;  // the detect stage sleeps here until any source publishes
+  // Before the captures: their threads call these taps, so they go after them.
+  std::vector<std::unique_ptr<ThumbnailTap>> thumbnail_taps;  // per input with follow_image
+  std::vector<std::unique_ptr<TapFanout>> tap_fanouts;
   std::unique_ptr<OutageBoard> outage_board;  // the capture stages' outages, together
   std::vector<std::unique_ptr<CaptureStage>> captures;
   std::unique_ptr<DetectStage> detect;
@@ -75,12 +79,25 @@ struct Pipeline::Stages {
     for (auto& input : inputs) {
       captures.push_back(
           std::make_unique<CaptureStage>(std::move(input.source), capture, &frames_ready));
-      captures.back()->set_tap(input.tap);
+      FrameTap* tap = input.tap;
+      SpscQueue<Thumbnail>* thumbnails = nullptr;
+      if (options.follow_image) {
+        thumbnail_taps.push_back(std::make_unique<ThumbnailTap>());
+        thumbnails = &thumbnail_taps.back()->queue();
+        if (tap == nullptr) {
+          tap = thumbnail_taps.back().get();
+        } else {
+          tap_fanouts.push_back(std::make_unique<TapFanout>(
+              std::vector<FrameTap*>{thumbnail_taps.back().get(), tap}));
+          tap = tap_fanouts.back().get();
+        }
+      }
+      captures.back()->set_tap(tap);
       captures.back()->set_outage_board(outage_board.get());
       slots.push_back(&captures.back()->slot());
       const platform::SourceInfo& info = captures.back()->source().info();
       trackers.push_back({input.tracker, input.events, input.stream_id, input.events_mailbox,
-                          frame_side(info.width), frame_side(info.height)});
+                          frame_side(info.width), frame_side(info.height), thumbnails});
       stream_ids.push_back(input.stream_id);
       max_detections =
           std::max(max_detections, static_cast<std::size_t>(input.tracker.max_detections));

@@ -54,6 +54,11 @@ struct PipelineOptions {
   /// Full-rate output (docs/full-rate.md): a message for every camera frame; those the detector
   /// skipped carry the tracks' predicted boxes, flagged predicted.
   bool full_rate{false};
+  /// Follow the tracks' boxes in the image through the frames the detector skips (a gray
+  /// thumbnail of every camera frame, sparse optical flow): the skipped frames' messages carry
+  /// observed boxes, and each track starts the next association where the image showed it
+  /// (docs/full-rate.md, "Observed boxes").
+  bool follow_image{false};
   std::size_t queue_capacity{4};  // items in each of the two queues (at least one per source)
   /// Several sources: once one has a new frame, how long the detector waits for the others'
   /// before it runs the batch without them.

@@ -10,8 +10,10 @@
 #include "pipeline/events_mailbox.hpp"
 #include "pipeline/spsc_queue.hpp"
 #include "pipeline/stage_items.hpp"
+#include "pipeline/thumbnail_tap.hpp"
 #include "tracker/tracker.hpp"
 #include "tracker/tracker_config.hpp"
+#include "vision/box_follower.hpp"
 
 namespace rtmot::pipeline {
 
@@ -25,6 +27,11 @@ struct TrackInput {
   /// The source's picture size, sent with every message (a ground station's canvas); 0: unknown.
   std::uint16_t frame_width{0};
   std::uint16_t frame_height{0};
+  /// Every camera frame's gray thumbnail (pipeline/thumbnail_tap.hpp; not owned): the tracks'
+  /// boxes are followed through the frames the detector skipped, the skipped frames' messages
+  /// (full-rate output) carry the boxes the image showed, and the tracker's priors are corrected
+  /// with them before each association (docs/full-rate.md, "Observed boxes"). Null: not followed.
+  SpscQueue<Thumbnail>* thumbnails{nullptr};
 };
 
 class TrackStage {
@@ -62,6 +69,17 @@ class TrackStage {
     std::int64_t last_pts_ns{0};
     std::uint32_t last_frames_dropped{0};
 
+    // Following the image (TrackInput::thumbnails); all null/empty when not followed.
+    SpscQueue<Thumbnail>* thumbnails{nullptr};
+    std::unique_ptr<vision::BoxFollower> follower;
+    std::int64_t followed_frame{0};  // the follower's latest frame (0: none)
+    // The tracks being followed, at followed_frame: those matched at the last processed frame
+    // whose boxes the image has followed since. Reserved for max_tracks: no allocation.
+    std::vector<tracker::ObservedBox> followed;
+    std::vector<float> followed_confidence;  // of each of `followed`, its last step's
+    std::vector<tracker::Box> boxes;         // scratch for the follower
+    std::vector<vision::FollowedBox> moved;  // scratch for the follower
+
     /// Frames before `frame_number` that did not become a processed message: dropped somewhere.
     std::uint32_t dropped_before(std::int64_t frame_number) const;
     /// The header every message of the stream carries, in one place: the stream, the run (a
@@ -73,6 +91,14 @@ class TrackStage {
 
   void finish_streams(const std::atomic<bool>& abort);
   bool send_predicted(const DetectedFrame& in, Stream& stream, const std::atomic<bool>& abort);
+  /// Takes the stream's thumbnails up to `frame_number`, following its boxes frame by frame;
+  /// whether the follower's latest frame is then `frame_number` with boxes still followed.
+  static bool follow_until(Stream& stream, std::int64_t frame_number);
+  /// After a processed frame: follow the tracks it matched from there.
+  static void start_following(Stream& stream);
+  /// An observed message's tracks: the predicted ones, where followed at the boxes the image
+  /// showed, each scored by how well it was followed (0: not followed, its box predicted).
+  static void apply_followed(const Stream& stream, std::vector<tracker::TrackReport>& tracks);
 
   SpscQueue<DetectedFrame>& input_;
   const bool keep_images_;

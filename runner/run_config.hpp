@@ -86,6 +86,9 @@ struct DetectorConfig {
   /// A colour signature per detection from the image (vision/), used where the tracker's
   /// appearance gate or weight is on.
   bool appearance{true};
+  /// Between detections, follow the tracks' boxes in the image (vision/box_follower.hpp;
+  /// docs/full-rate.md, "Observed boxes").
+  bool follow_image{false};
 };
 
 struct OutputConfig {

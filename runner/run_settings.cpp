@@ -300,6 +300,12 @@ std::vector<RunSetting> detector_settings() {
               "gate and weight (tracker.appearance_gate, appearance_weight; docs/appearance.md); "
               "off: the tracker sees boxes only",
               [](RunConfig& c) -> bool& { return c.detector.appearance; }),
+      boolean("detector.follow_image", "--follow-image",
+              "between detections, follow each track's box in the image (optical flow on a gray "
+              "thumbnail of every camera frame): the frames the detector skipped get observed "
+              "boxes and the next association starts where the image showed the tracks "
+              "(docs/full-rate.md)",
+              [](RunConfig& c) -> bool& { return c.detector.follow_image; }),
       text("detector.det_file", "--det-file",
            "replay: a MOTChallenge det.txt (the flag also sets kind replay)",
            [](RunConfig& c) -> std::string& { return c.detector.det_file; }),

@@ -661,6 +661,7 @@ pipeline::PipelineOptions make_options(const RunConfig& config) {
   // the queues.
   options.keep_images = false;
   options.full_rate = config.output.full_rate;
+  options.follow_image = config.detector.follow_image;
   options.threads = config.threads;
   return options;
 }

@@ -33,6 +33,14 @@ struct Detection {
   Appearance appearance;  // from the image (vision/), when there is one
 };
 
+/// Where the image showed a track at an update's time (the pipeline follows boxes through the
+/// frames the detector skipped: vision/box_follower.hpp). Not a detection: it moves the track's
+/// motion model but neither confirms nor matches it.
+struct ObservedBox {
+  std::int32_t id{0};  // the track's, as reported
+  Box box;
+};
+
 /// What the tracker reports for a track in one frame: update() reports the confirmed ones,
 /// Tracker::track_table() every live one.
 struct TrackReport {

@@ -104,7 +104,8 @@ struct Tracker::State {
 
   // One frame: predict, associate in up to three rounds, start tracks, settle states and report.
   const std::vector<TrackReport>& update(const std::vector<Detection>& detections,
-                                         double time_seconds) {
+                                         double time_seconds,
+                                         const std::vector<ObservedBox>* observed) {
     ++frame_count;
     if (frame_count > 1) last_gap_seconds = time_seconds - last_update_time;
     last_update_time = time_seconds;
@@ -113,6 +114,7 @@ struct Tracker::State {
     if (frame_count > 1) elapsed_frames += dt;
     split_by_score(detections);
     predict_tracks(dt);
+    if (observed != nullptr) correct_with_observed(*observed);
     first_round();
     if (cascades) cascade_round();
     if (config.second_round && !low.empty()) second_round();
@@ -183,6 +185,22 @@ struct Tracker::State {
       }
     }
     order.resize(kept);
+  }
+
+  // Each observed track's prior moves to what the image showed, before any association sees it.
+  // A linear search per box: a frame holds tens of tracks, and this allocates nothing.
+  void correct_with_observed(const std::vector<ObservedBox>& observed) {
+    for (const ObservedBox& seen : observed) {
+      if (!is_finite(seen.box) || seen.box.w <= 0.F || seen.box.h <= 0.F) continue;
+      for (const int slot : order) {
+        Track& track = slots[slot];
+        if (track.id != seen.id) continue;
+        correct(track.predictor, seen.box);
+        const Box corrected = current_box(track.predictor);
+        if (is_finite(corrected)) track.predicted = corrected;
+        break;
+      }
+    }
   }
 
   // SORT's association: the high-score detections against every live track (with the cascade,
@@ -627,7 +645,13 @@ Tracker& Tracker::operator=(Tracker&&) noexcept = default;
 
 const std::vector<TrackReport>& Tracker::update(const std::vector<Detection>& detections,
                                                 double time_seconds) {
-  return state_->update(detections, time_seconds);
+  return state_->update(detections, time_seconds, nullptr);
+}
+
+const std::vector<TrackReport>& Tracker::update(const std::vector<Detection>& detections,
+                                                double time_seconds,
+                                                const std::vector<ObservedBox>& observed) {
+  return state_->update(detections, time_seconds, observed.empty() ? nullptr : &observed);
 }
 
 void Tracker::reset() {

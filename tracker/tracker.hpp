@@ -35,6 +35,13 @@ class Tracker {
   /// call. Allocates nothing once the storage has grown to the scene's size.
   const std::vector<TrackReport>& update(const std::vector<Detection>& detections,
                                          double time_seconds);
+  /// The same, with boxes the image showed at `time_seconds` for some live tracks (by id; unknown
+  /// ids are ignored): each such track's motion model is corrected with its box after the
+  /// prediction, before the association, as by a measurement that does not count as a match (no
+  /// hit, no score, nothing learnt). Empty `observed`: exactly update(detections, time_seconds).
+  const std::vector<TrackReport>& update(const std::vector<Detection>& detections,
+                                         double time_seconds,
+                                         const std::vector<ObservedBox>& observed);
 
   /// The tracks the last update() reported with at least `min_hits` matches in a row, each with
   /// its box predicted `steps` of the tracker's own time steps after that update (a nominal frame

@@ -1,0 +1,139 @@
+#include "vision/lucas_kanade.hpp"
+
+#include <cmath>
+#include <opencv2/imgproc.hpp>
+
+namespace rtmot::vision {
+namespace {
+
+/// A window of `side` x `side` pixels around `centre`, sampled bilinearly from `image` (CV_32F)
+/// into `out` row by row; false when any sample would fall outside the image. One sub-pixel
+/// offset for the whole window, so the four weights are computed once.
+bool sample_window(const cv::Mat& image, cv::Point2f centre, int side, float* out) {
+  const int half = side / 2;
+  const float fx = std::floor(centre.x);
+  const float fy = std::floor(centre.y);
+  const int x0 = static_cast<int>(fx) - half;
+  const int y0 = static_cast<int>(fy) - half;
+  if (x0 < 0 || y0 < 0 || x0 + side >= image.cols || y0 + side >= image.rows) return false;
+  const float ax = centre.x - fx;
+  const float ay = centre.y - fy;
+  const float w00 = (1.F - ax) * (1.F - ay);
+  const float w01 = ax * (1.F - ay);
+  const float w10 = (1.F - ax) * ay;
+  const float w11 = ax * ay;
+  for (int r = 0; r < side; ++r) {
+    const float* top = image.ptr<float>(y0 + r) + x0;
+    const float* bottom = image.ptr<float>(y0 + r + 1) + x0;
+    float* row = out + r * side;
+    for (int c = 0; c < side; ++c) {
+      row[c] = w00 * top[c] + w01 * top[c + 1] + w10 * bottom[c] + w11 * bottom[c + 1];
+    }
+  }
+  return true;
+}
+
+bool finite(cv::Point2f p) {
+  return std::isfinite(p.x) && std::isfinite(p.y);
+}
+
+}  // namespace
+
+void LucasKanadePyramid::build(const cv::Mat& gray, const LucasKanadeConfig& config) {
+  const auto wanted = static_cast<std::size_t>(config.levels + 1);
+  image_.resize(wanted);
+  dx_.resize(wanted);
+  dy_.resize(wanted);
+  gray.convertTo(image_[0], CV_32F);
+  std::size_t built = 1;
+  for (; built < wanted; ++built) {
+    const cv::Mat& below = image_[built - 1];
+    // A level smaller than a few windows adds nothing but border.
+    if (below.cols < 4 * config.window || below.rows < 4 * config.window) break;
+    cv::pyrDown(below, image_[built]);
+  }
+  image_.resize(built);  // shrinking keeps the other levels' buffers
+  dx_.resize(built);
+  dy_.resize(built);
+  for (std::size_t level = 0; level < built; ++level) {
+    // Scharr's kernel sums to 32 per unit slope: scaled to intensity per pixel.
+    cv::Scharr(image_[level], dx_[level], CV_32F, 1, 0, 1.0 / 32.0);
+    cv::Scharr(image_[level], dy_[level], CV_32F, 0, 1, 1.0 / 32.0);
+  }
+}
+
+void track_points(const LucasKanadePyramid& from, const LucasKanadePyramid& to,
+                  const std::vector<cv::Point2f>& from_points, std::vector<cv::Point2f>& to_points,
+                  std::vector<unsigned char>& status, const LucasKanadeConfig& config,
+                  std::vector<float>& window_scratch) {
+  const int side = config.window | 1;
+  const std::size_t area = static_cast<std::size_t>(side) * static_cast<std::size_t>(side);
+  window_scratch.resize(4 * area);
+  float* const i_window = window_scratch.data();
+  float* const gx_window = i_window + area;
+  float* const gy_window = gx_window + area;
+  float* const j_window = gy_window + area;
+  const int top_level = std::min(from.levels(), to.levels()) - 1;
+  to_points.resize(from_points.size());
+  status.assign(from_points.size(), 0);
+  const float converged_squared = config.converged * config.converged;
+  for (std::size_t k = 0; k < from_points.size(); ++k) {
+    const cv::Point2f start = from_points[k];
+    to_points[k] = start;
+    if (!finite(start) || top_level < 0) continue;
+    cv::Point2f guess(0.F, 0.F);  // the displacement found at coarser levels, this level's pixels
+    bool lost = false;
+    for (int level = top_level; level >= 0 && !lost; --level) {
+      const float scale = 1.F / static_cast<float>(1 << level);
+      const cv::Point2f at(start.x * scale, start.y * scale);
+      if (!sample_window(from.image(level), at, side, i_window) ||
+          !sample_window(from.dx(level), at, side, gx_window) ||
+          !sample_window(from.dy(level), at, side, gy_window)) {
+        lost = true;
+        break;
+      }
+      double gxx = 0.0;
+      double gxy = 0.0;
+      double gyy = 0.0;
+      for (std::size_t p = 0; p < area; ++p) {
+        gxx += static_cast<double>(gx_window[p]) * gx_window[p];
+        gxy += static_cast<double>(gx_window[p]) * gy_window[p];
+        gyy += static_cast<double>(gy_window[p]) * gy_window[p];
+      }
+      const double det = gxx * gyy - gxy * gxy;
+      const double smaller_eigenvalue =
+          0.5 * (gxx + gyy - std::sqrt((gxx - gyy) * (gxx - gyy) + 4.0 * gxy * gxy));
+      if (smaller_eigenvalue / static_cast<double>(area) < config.min_eigenvalue || det <= 0.0) {
+        lost = true;
+        break;
+      }
+      cv::Point2f step(0.F, 0.F);
+      for (int iteration = 0; iteration < config.iterations; ++iteration) {
+        const cv::Point2f there = at + guess + step;
+        if (!finite(there) || !sample_window(to.image(level), there, side, j_window)) {
+          lost = true;
+          break;
+        }
+        double bx = 0.0;
+        double by = 0.0;
+        for (std::size_t p = 0; p < area; ++p) {
+          const double difference = static_cast<double>(i_window[p]) - j_window[p];
+          bx += difference * gx_window[p];
+          by += difference * gy_window[p];
+        }
+        const auto eta_x = static_cast<float>((gyy * bx - gxy * by) / det);
+        const auto eta_y = static_cast<float>((gxx * by - gxy * bx) / det);
+        step.x += eta_x;
+        step.y += eta_y;
+        if (eta_x * eta_x + eta_y * eta_y < converged_squared) break;
+      }
+      if (lost) break;
+      guess = level > 0 ? (guess + step) * 2.F : guess + step;
+    }
+    if (lost || !finite(guess)) continue;
+    to_points[k] = start + guess;
+    status[k] = 1;
+  }
+}
+
+}  // namespace rtmot::vision
