@@ -83,7 +83,7 @@ void TrackStage::run(const std::atomic<bool>& abort) {
     // model guessed. Between consecutive frames the detections alone decide: there the image
     // added nothing (docs/full-rate.md: chosen on the first halves of both videos, MOTA lower).
     const bool followed = stream.follower && !in->outage &&
-                          follow_until(stream, in->info.frame_number) &&
+                          follow_until(stream, in->info.frame_number, true) &&
                           in->info.frame_number > stream.last_frame_number + 1;
     const auto& reports = followed
                               ? stream.tracker->update(in->detections, seconds, stream.followed)
@@ -144,7 +144,7 @@ bool TrackStage::send_predicted(const DetectedFrame& in, Stream& stream,
     messages::FrameResult& result = out->result;
     // Into the slot's reserved track storage: no allocation.
     stream.tracker->predict_reported_at(static_cast<double>(skipped.pts_ns) * 1e-9, result.tracks);
-    const bool observed = stream.follower && follow_until(stream, skipped.frame_number);
+    const bool observed = stream.follower && follow_until(stream, skipped.frame_number, false);
     if (observed) apply_followed(stream, result.tracks);
     result.events.clear();
     stream.stamp(result, skipped.frame_number, skipped.pts_ns,
@@ -161,7 +161,7 @@ bool TrackStage::send_predicted(const DetectedFrame& in, Stream& stream,
   return true;
 }
 
-bool TrackStage::follow_until(Stream& stream, std::int64_t frame_number) {
+bool TrackStage::follow_until(Stream& stream, std::int64_t frame_number, bool processed) {
   while (const Thumbnail* next = stream.thumbnails->try_front()) {
     if (next->info.frame_number > frame_number) break;
     // A frame missing in between (lost by the source, or its thumbnail dropped): the image cannot
@@ -173,7 +173,11 @@ bool TrackStage::follow_until(Stream& stream, std::int64_t frame_number) {
     }
     stream.follower->push(next->gray, next->scale);
     stream.followed_frame = next->info.frame_number;
-    if (!stream.followed.empty() && stream.follower->ready()) {
+    // The processed frame right after the last one needs no following: its detections decide
+    // alone (run()), and the tracks are followed from it on afterwards.
+    const bool wanted = !(processed && next->info.frame_number == frame_number &&
+                          frame_number == stream.last_frame_number + 1);
+    if (wanted && !stream.followed.empty() && stream.follower->ready()) {
       stream.boxes.clear();
       for (const tracker::ObservedBox& box : stream.followed) stream.boxes.push_back(box.box);
       stream.follower->follow(stream.boxes, stream.moved);

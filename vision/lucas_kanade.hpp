@@ -16,9 +16,11 @@ struct LucasKanadeConfig {
   int levels = 2;           // pyramid levels above the image itself
   int iterations = 10;      // at most, per level
   float converged = 0.03F;  // stop iterating once a step is this small, pixels
-  /// A point whose window's smaller gradient eigenvalue (per pixel, squared intensity) is below
-  /// this has nothing to lock on (a flat wall, the sky): not followed.
-  float min_eigenvalue = 1e-3F * 255.F * 255.F;
+  /// A point whose window's smaller gradient eigenvalue (per pixel, in squared intensity levels
+  /// per pixel of slope) is below this has nothing to lock on (a flat wall, the sky): not
+  /// followed. 0.1 is OpenCV's default for calcOpticalFlowPyrLK (1e-4 on its scale of Scharr
+  /// sums / 2^20), so as permissive: the forward-backward check is what rejects a wrong lock.
+  float min_eigenvalue = 0.1F;
 };
 
 /// One frame as the tracker needs it: its pyramid (float) and, per level, the gradients that a

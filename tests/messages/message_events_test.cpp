@@ -285,6 +285,41 @@ TEST(MessagePredicted, APredictedFrameIsFlaggedInBinaryAndJson) {
   EXPECT_EQ(stream.sequences.clashes(), 0U);
 }
 
+// Following the image (docs/full-rate.md, "Observed boxes"): a skipped frame whose boxes the image
+// followed carries flag bit 5 with bit 4, and "observed":true in JSON lines; a processed frame
+// cannot be observed (the flag is only read and written beside predicted).
+TEST(MessageObserved, AnObservedFrameIsFlaggedInBinaryAndJsonAndOnlyWithPredicted) {
+  const auto frames = test::frames_from_detections("PETS09-S2L1", 20);
+  FrameResult observed = frames.back();
+  ASSERT_FALSE(observed.tracks.empty());
+  observed.predicted = true;
+  observed.observed = true;
+  FrameResult processed = frames.back();
+  processed.observed = true;  // meaningless without predicted: never sent
+  std::vector<std::uint8_t> buffer(message::safe_udp_payload);
+  DecodedMessage decoded;
+  MessageEncoder encoder;
+  for (const FrameResult* sent : {&observed, &processed}) {
+    const bool flagged = sent->predicted;
+    const std::size_t size = encoder.encode(*sent, buffer.data(), buffer.size());
+    ASSERT_EQ(decode_message(buffer.data(), size, decoded), DecodeError::none);
+    EXPECT_EQ(decoded.frame.observed, flagged);
+    EXPECT_EQ(buffer[5],
+              flagged ? message::flag_predicted | message::flag_observed : std::uint8_t{0});
+    fmt::memory_buffer line;
+    append_json_line(*sent, static_cast<std::uint32_t>(sent->tracks.size()), false,
+                     JsonLineExtras{1, nullptr}, line);
+    const std::string text(line.data(), line.size());
+    EXPECT_EQ(text.find(R"("observed":true)") != std::string::npos, flagged);
+    std::string problem;
+    ASSERT_TRUE(decode_json_line(reinterpret_cast<const std::uint8_t*>(line.data()), line.size(),
+                                 decoded, problem))
+        << problem;
+    EXPECT_EQ(decoded.frame.observed, flagged);
+    EXPECT_EQ((decoded.flags & message::flag_observed) != 0, flagged);
+  }
+}
+
 TEST(SequenceAccounting, ABoardRestartedWithinTheWindowIsARestartByItsRunId) {
   SequenceAccounting accounting;
   for (std::uint64_t s = 0; s < 71; ++s)

@@ -114,6 +114,38 @@ TEST(SteadyStatePredictions, AllocatesNothingAfterWarmUp) {
   EXPECT_GT(boxes, 0);
 }
 
+// Following the image (the pipeline's observed boxes): an update that first corrects the
+// followed tracks' priors allocates nothing either.
+TEST(SteadyStateObserved, AllocatesNothingAfterWarmUp) {
+  const auto dir = test::shared_path("data/mot15-train/PETS09-S2L1");
+  RTMOT_REQUIRE_FILE(dir / "det" / "det.txt");
+  const test::MotSequence sequence = test::load_mot_sequence(dir);
+  TrackerConfig config = *find_preset(default_preset_name());
+  config.frame_rate = 7.0;
+  Tracker tracker(config);
+  std::vector<ObservedBox> observed;
+  observed.reserve(static_cast<std::size_t>(config.max_tracks));
+  const std::size_t half = sequence.frames.size() / 2;
+  long during = 0;
+  long corrected = 0;
+  for (std::size_t f = 0; f < sequence.frames.size(); f += 3) {
+    const test::CountingScope counting;
+    const auto& reports = tracker.update(sequence.frames[f], f / 7.0, observed);
+    // The next update's observations: each reported track a little to the right, as an image
+    // would show a walker (a copy within the reserved capacity).
+    observed.clear();
+    for (const TrackReport& track : reports) {
+      Box moved = track.box;
+      moved.x += 3.F;
+      observed.push_back({track.id, moved});
+    }
+    corrected += static_cast<long>(observed.size());
+    if (f >= half) during += counting.allocations();
+  }
+  EXPECT_EQ(during, 0);
+  EXPECT_GT(corrected, 0);
+}
+
 TEST(AllocationCounter, CountsAllocations) {
   const test::CountingScope counting;
   auto p = std::make_unique<int>(3);
