@@ -95,8 +95,10 @@ TEST(BoxFollower, PeopleFollowedThroughASecondEndNearerTheirTruthThanBoxesLeftBe
   std::cout << people << " people followed through " << kSteps << " frames: mean IoU with the "
             << "truth " << followed_iou << " followed, " << static_iou << " left behind; "
             << followed_share << " of the steps followed\n";
-  EXPECT_GT(followed_iou, static_iou + 0.2);
-  EXPECT_GT(followed_iou, 0.6);
+  // Measured (default config, GStreamer's decoding): 48 people, IoU 0.62 followed against 0.24
+  // left behind, 0.97 of the steps followed. Margins for other decoders and CPUs.
+  EXPECT_GT(followed_iou, static_iou + 0.25);
+  EXPECT_GT(followed_iou, 0.5);
   EXPECT_GT(followed_share, 0.9);
 }
 
@@ -130,6 +132,7 @@ TEST(BoxFollower, FindsAKnownSubPixelShiftOfATexturedPatch) {
     std::cout << "shift (" << dx << ", " << dy << "): found (" << out[0].box.x - box.x << ", "
               << out[0].box.y - box.y << "), size x" << out[0].box.w / box.w << ", confidence "
               << out[0].confidence << "\n";
+    // Measured: within 0.05 px of the shift.
     EXPECT_NEAR(out[0].box.center_x() - box.center_x(), dx, 0.5F);
     EXPECT_NEAR(out[0].box.center_y() - box.center_y(), dy, 0.5F);
     EXPECT_NEAR(out[0].box.w / box.w, 1.F, 0.02F);
