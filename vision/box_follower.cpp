@@ -70,7 +70,8 @@ void BoxFollower::push(const cv::Mat& gray_thumbnail, float scale) {
   // for the new frame (same size: no allocation). Derivatives are kept with each level because
   // every frame is the start of a flow twice: forwards from it once it is the previous frame, and
   // backwards from it (the round-trip check) while it is the latest. The input is copied, never
-  // referenced (tryReuseInputImage off): the caller reuses its thumbnail buffer.
+  // referenced (tryReuseInputImage off): the caller reuses its thumbnail buffer. OpenCV 4.6's
+  // derivative filter allocates row scratch inside: counted, 4 blocks, 9 KB a push() of 384x288.
   std::swap(previous_pyramid_, latest_pyramid_);
   cv::buildOpticalFlowPyramid(gray_thumbnail, latest_pyramid_,
                               cv::Size(config_.window, config_.window), config_.pyramid_levels,
@@ -126,8 +127,9 @@ void BoxFollower::follow(const std::vector<tracker::Box>& boxes, std::vector<Fol
   if (from_points_.empty()) return;
 
   // Forwards, then back from where the points went; no error output (its extra pass over each
-  // window is not used: the round trip decides). OpenCV allocates a little inside each call (it
-  // copies the pyramids' Mat headers into vectors of its own); the pixel buffers are all ours.
+  // window is not used: the round trip decides). OpenCV 4.6 allocates a little inside each call
+  // (copies of the pyramids' Mat headers in vectors of its own): counted with malloc interposed,
+  // 6 blocks, 2.5 KB a follow() of 20 boxes; the pixel and point buffers are all ours, kept.
   const cv::Size window(config_.window, config_.window);
   cv::calcOpticalFlowPyrLK(previous_pyramid_, latest_pyramid_, from_points_, to_points_, status_,
                            cv::noArray(), window, config_.pyramid_levels, kCriteria);

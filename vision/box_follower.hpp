@@ -33,8 +33,9 @@ struct FollowedBox {
 };
 
 /// One per camera. Frames are pushed in order; follow() moves boxes from the previous frame to
-/// the latest one. Allocates nothing once it has seen a frame of the camera's size and as many
-/// boxes as it will get (its buffers are kept).
+/// the latest one. Allocates nothing of its own once it has seen a frame of the camera's size and
+/// as many boxes as it will get (its buffers are kept); OpenCV's calls inside allocate small
+/// scratch (box_follower.cpp says what).
 class BoxFollower {
  public:
   explicit BoxFollower(const BoxFollowerConfig& config = {});
