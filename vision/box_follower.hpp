@@ -22,13 +22,13 @@ struct BoxFollowerConfig {
   int window = 9;               // Lucas-Kanade window side, thumbnail pixels
   int pyramid_levels = 2;       // above the thumbnail itself
   float max_round_trip = 1.0F;  // forward-backward error a trusted point may have, thumbnail px
-  float min_trusted = 0.3F;     // share of a box's points that must be trusted to move it
+  float min_trusted = 0.3F;     // share of points trusted and agreeing (confidence) to move it
 };
 
 /// Where one box went.
 struct FollowedBox {
   tracker::Box box;       // frame pixels (the input box when not followed)
-  float confidence{0.F};  // share of its points trusted, 0..1
+  float confidence{0.F};  // share of its points trusted and agreeing with its motion, 0..1
   bool followed{false};   // confidence >= min_trusted: `box` is where the image says it went
 };
 

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <iostream>
 #include <limits>
@@ -96,16 +97,18 @@ TEST(BoxFollower, PeopleFollowedThroughASecondEndNearerTheirTruthThanBoxesLeftBe
             << "truth " << followed_iou << " followed, " << static_iou << " left behind; "
             << followed_share << " of the steps followed\n";
   // Measured (default config, GStreamer's decoding): 48 people, IoU 0.62 followed against 0.24
-  // left behind, 0.97 of the steps followed. Margins for other decoders and CPUs.
+  // left behind, 0.95 of the steps followed. Margins for other decoders and CPUs.
   EXPECT_GT(followed_iou, static_iou + 0.25);
   EXPECT_GT(followed_iou, 0.5);
-  EXPECT_GT(followed_share, 0.9);
+  EXPECT_GT(followed_share, 0.85);
 }
 
-// A frame of flat gray with a smooth random texture over `patch`, shifted by (dx, dy) frame pixels.
-cv::Mat textured_frame(const cv::Size& size, const cv::Rect& patch, float dx, float dy) {
+// A frame of flat gray with a smooth random texture over `patch`, shifted by (dx, dy) frame pixels;
+// another `seed`, another texture.
+cv::Mat textured_frame(const cv::Size& size, const cv::Rect& patch, float dx, float dy,
+                       std::uint64_t seed = 29) {
   cv::Mat texture(patch.size(), CV_8UC1);
-  cv::RNG rng(29);  // the same texture every time
+  cv::RNG rng(seed);  // the same texture for the same seed
   rng.fill(texture, cv::RNG::UNIFORM, 0, 256);
   cv::GaussianBlur(texture, texture, cv::Size(0, 0), 2.0);
   cv::Mat frame(size, CV_8UC1, cv::Scalar(128));
@@ -163,6 +166,26 @@ TEST(BoxFollower, FollowsAPatchThatGrowsAsItComesNearer) {
   EXPECT_NEAR(out[0].box.w / box.w, 1.1F, 0.03F);
   EXPECT_NEAR(out[0].box.center_x(), box.center_x(), 1.F);
   EXPECT_NEAR(out[0].box.center_y(), box.center_y(), 1.F);
+}
+
+TEST(BoxFollower, WhatIsNoLongerThereIsNotFollowed) {
+  // The box's pixels replaced by others (a cut, an occluder): a quarter of the points come back
+  // to where they started by chance, but they go different ways. Measured: confidence 0.125
+  // (the two points nearest the median motion agree with it, as any two would).
+  const cv::Size size(640, 480);
+  const cv::Rect patch(200, 100, 120, 240);
+  BoxFollower follower;
+  follower.push(gray_thumbnail(textured_frame(size, patch, 0.F, 0.F, 29)), kHalf);
+  follower.push(gray_thumbnail(textured_frame(size, patch, 0.F, 0.F, 30)), kHalf);
+  const tracker::Box box{200.F, 100.F, 120.F, 240.F};
+  std::vector<FollowedBox> out;
+  follower.follow({box}, out);
+  ASSERT_EQ(out.size(), 1U);
+  std::cout << "another texture: confidence " << out[0].confidence << "\n";
+  EXPECT_FALSE(out[0].followed);
+  EXPECT_LT(out[0].confidence, 0.2F);
+  EXPECT_EQ(out[0].box.x, box.x);
+  EXPECT_EQ(out[0].box.y, box.y);
 }
 
 TEST(BoxFollower, AFlatImageHasNothingToFollow) {
