@@ -1,20 +1,39 @@
-// What the image work of issue 29 costs per frame: the colour signature
-// (vision/colour_signature.hpp) of 20 person-sized boxes (48 x 120 px, a grid over the frame) on
-// vtest.avi's 768 x 576 frames, one thread (the detect stage's, after the SSD). Reported per frame
-// as wall time and as the process's CPU time (one thread works: a loaded machine inflates it less);
-// boxes_per_s for scale. docs/appearance.md, "Cost".
+// What the image work of issue 29 costs per frame, on vtest.avi's 768 x 576 frames, one thread:
+// - the colour signature (vision/colour_signature.hpp) of 20 person-sized boxes (48 x 120 px, a
+//   grid over the frame; the detect stage's thread, after the SSD). docs/appearance.md, "Cost".
+// - following 20 such boxes from one frame to the next (vision/box_follower.hpp): the gray
+//   half-size thumbnail of a frame (capture's work), the follower's pyramid of it (push), and
+//   push + follow of 20 boxes (the track stage's work per camera frame). OpenCV's own thread pool
+//   is held to one thread (cv::setNumThreads(1)) so the figures are one core's.
+// Reported per frame as wall time and as the process's CPU time (one thread works: a loaded
+// machine inflates it less); boxes_per_s for scale.
 #include <benchmark/benchmark.h>
 
+#include <opencv2/core/utility.hpp>
+#include <opencv2/imgproc.hpp>
 #include <string>
 #include <vector>
 
 #include "bench_frames.hpp"
 #include "tracker/appearance.hpp"
+#include "vision/box_follower.hpp"
 #include "vision/colour_signature.hpp"
 
 namespace {
 
 constexpr int kBoxes = 20;
+
+// 20 person-sized boxes in a grid over a 768 x 576 frame.
+std::vector<rtmot::tracker::Box> person_boxes() {
+  std::vector<rtmot::tracker::Box> boxes;
+  const int columns = 5;
+  for (int i = 0; i < kBoxes; ++i) {
+    const float x = 40.F + static_cast<float>(i % columns) * 140.F;
+    const float y = 30.F + static_cast<float>(i / columns) * 130.F;
+    boxes.push_back({x, y, 48.F, 120.F});
+  }
+  return boxes;
+}
 
 void BM_ColourSignature(benchmark::State& state) {
   std::string error;
@@ -23,13 +42,7 @@ void BM_ColourSignature(benchmark::State& state) {
     state.SkipWithError(error.c_str());
     return;
   }
-  std::vector<rtmot::tracker::Box> boxes;
-  const int columns = 5;
-  for (int i = 0; i < kBoxes; ++i) {
-    const float x = 40.F + static_cast<float>(i % columns) * 140.F;
-    const float y = 30.F + static_cast<float>(i / columns) * 130.F;
-    boxes.push_back({x, y, 48.F, 120.F});
-  }
+  const std::vector<rtmot::tracker::Box> boxes = person_boxes();
   rtmot::vision::ColourSignature signature;
   rtmot::tracker::Appearance out;
   std::size_t frame = 0;
@@ -46,6 +59,98 @@ void BM_ColourSignature(benchmark::State& state) {
                  ", " + std::to_string(kBoxes) + " boxes a frame");
 }
 BENCHMARK(BM_ColourSignature)
+    ->Unit(benchmark::kMicrosecond)
+    ->MeasureProcessCPUTime()
+    ->UseRealTime();
+
+// Follower cases: consecutive frames (what the camera gives between detections).
+constexpr int kFollowFrames = 8;
+constexpr float kThumbnailScale = 0.5F;
+
+void make_gray_thumbnail(const cv::Mat& frame, cv::Mat& small, cv::Mat& gray) {
+  cv::resize(frame, small, cv::Size(), kThumbnailScale, kThumbnailScale, cv::INTER_AREA);
+  cv::cvtColor(small, gray, cv::COLOR_BGR2GRAY);
+}
+
+void BM_GrayThumbnail(benchmark::State& state) {
+  cv::setNumThreads(1);
+  std::string error;
+  const std::vector<cv::Mat> frames = rtmot::bench::load_bench_frames(kFollowFrames, 1, error);
+  if (frames.empty()) {
+    state.SkipWithError(error.c_str());
+    return;
+  }
+  cv::Mat small;
+  cv::Mat gray;
+  std::size_t frame = 0;
+  for (auto _ : state) {
+    make_gray_thumbnail(frames[frame++ % frames.size()], small, gray);
+    benchmark::DoNotOptimize(gray.data);
+  }
+  state.SetLabel(std::to_string(frames.front().cols) + "x" + std::to_string(frames.front().rows) +
+                 " -> " + std::to_string(gray.cols) + "x" + std::to_string(gray.rows) + " gray");
+}
+BENCHMARK(BM_GrayThumbnail)->Unit(benchmark::kMicrosecond)->MeasureProcessCPUTime()->UseRealTime();
+
+std::vector<cv::Mat> gray_thumbnails(const std::vector<cv::Mat>& frames) {
+  std::vector<cv::Mat> thumbnails;
+  cv::Mat small;
+  for (const auto& frame : frames) {
+    cv::Mat gray;
+    make_gray_thumbnail(frame, small, gray);
+    thumbnails.push_back(gray);
+  }
+  return thumbnails;
+}
+
+// push() alone: the pyramid with its derivatives, once per camera frame.
+void BM_BoxFollowerPush(benchmark::State& state) {
+  cv::setNumThreads(1);
+  std::string error;
+  const auto thumbnails = gray_thumbnails(rtmot::bench::load_bench_frames(kFollowFrames, 1, error));
+  if (thumbnails.empty()) {
+    state.SkipWithError(error.c_str());
+    return;
+  }
+  rtmot::vision::BoxFollower follower;
+  std::size_t frame = 0;
+  for (auto _ : state) follower.push(thumbnails[frame++ % thumbnails.size()], kThumbnailScale);
+}
+BENCHMARK(BM_BoxFollowerPush)
+    ->Unit(benchmark::kMicrosecond)
+    ->MeasureProcessCPUTime()
+    ->UseRealTime();
+
+// A camera frame's whole follower work: push() and follow() of 20 boxes (4 of them, on this grid,
+// partly outside the frame, as at a frame's edges).
+void BM_BoxFollowerFollow(benchmark::State& state) {
+  cv::setNumThreads(1);
+  std::string error;
+  const auto thumbnails = gray_thumbnails(rtmot::bench::load_bench_frames(kFollowFrames, 1, error));
+  if (thumbnails.empty()) {
+    state.SkipWithError(error.c_str());
+    return;
+  }
+  const std::vector<rtmot::tracker::Box> boxes = person_boxes();
+  rtmot::vision::BoxFollower follower;
+  follower.push(thumbnails.back(), kThumbnailScale);
+  std::vector<rtmot::vision::FollowedBox> out;
+  std::size_t frame = 0;
+  int followed = 0;
+  for (auto _ : state) {
+    follower.push(thumbnails[frame++ % thumbnails.size()], kThumbnailScale);
+    follower.follow(boxes, out);
+    for (const auto& box : out) followed += box.followed ? 1 : 0;
+  }
+  state.counters["boxes_per_s"] = benchmark::Counter(
+      static_cast<double>(state.iterations()) * kBoxes, benchmark::Counter::kIsRate);
+  state.counters["followed_share"] =
+      static_cast<double>(followed) / (static_cast<double>(state.iterations()) * kBoxes);
+  state.SetLabel(std::to_string(thumbnails.front().cols) + "x" +
+                 std::to_string(thumbnails.front().rows) + " gray, " + std::to_string(kBoxes) +
+                 " boxes a frame");
+}
+BENCHMARK(BM_BoxFollowerFollow)
     ->Unit(benchmark::kMicrosecond)
     ->MeasureProcessCPUTime()
     ->UseRealTime();

@@ -1,44 +1,24 @@
 // The colour signature (vision/colour_signature.hpp) on the demo video's people: one person's
 // signature in the next frame lies nearer to their own than to anyone else's, for nearly everyone,
 // with the ground truth of PETS09-S2L1 (vtest.avi's frames) saying who is who.
+#include "vision/colour_signature.hpp"
+
 #include <gtest/gtest.h>
 
-#include <fstream>
 #include <iostream>
 #include <map>
 #include <set>
-#include <sstream>
 #include <vector>
 
-#include "shared_data.hpp"
+#include "s2l1_ground_truth.hpp"
 #include "tracker/box_geometry.hpp"
-#include "vision/colour_signature.hpp"
 #include "vtest_frames.hpp"
 
 namespace rtmot::vision {
 namespace {
 
-using Boxes = std::map<int, tracker::Box>;  // id -> box
-
-// The ground truth's boxes of the frames wanted, by frame and id.
-std::map<int, Boxes> ground_truth(const std::set<int>& frames) {
-  const auto path = test::shared_path("data/mot15-train/PETS09-S2L1/gt/gt.txt");
-  std::ifstream in(path);
-  EXPECT_TRUE(in) << "missing test data file: " << path;
-  std::map<int, Boxes> boxes;
-  std::string line;
-  while (std::getline(in, line)) {
-    std::istringstream fields(line);
-    char comma = 0;
-    int frame = 0;
-    int id = 0;
-    tracker::Box box;
-    fields >> frame >> comma >> id >> comma >> box.x >> comma >> box.y >> comma >> box.w >> comma >>
-        box.h;
-    if (frames.count(frame) != 0) boxes[frame][id] = box;
-  }
-  return boxes;
-}
+using Boxes = test::S2l1Boxes;
+using test::s2l1_ground_truth;
 
 // A person the signature can be asked about: tall enough, inside the frame, and not half hidden
 // behind another (the tracker does not learn from those either).
@@ -61,7 +41,7 @@ TEST(ColourSignature, APersonInTheNextFrameIsNearestToThemselves) {
   }
   const auto frames = test::vtest_frames(numbers);
   ASSERT_EQ(frames.size(), numbers.size());
-  const auto truth = ground_truth(numbers);
+  const auto truth = s2l1_ground_truth(numbers);
   ColourSignature signature;
   int asked = 0;
   int nearest_is_self = 0;
