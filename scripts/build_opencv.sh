@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Builds the minimal OpenCV rtmot needs (core, imgproc, imgcodecs, dnn, video; with --cuda also
+# Builds the minimal OpenCV the detector needs (core, imgproc, imgcodecs, dnn; with --cuda also
 # cudev and the CUDA/cuDNN DNN backend) into a prefix, pinned to one version, so that every machine
 # runs the same DNN code: Debian 12's OpenCV 4.6 runs our SSD 1.6x slower on the CPU than 4.10
 # (docs/gpu.md), and JetPack's OpenCV has no CUDA at all.
@@ -166,7 +166,7 @@ log "OpenCV source $found_version ($stage/opencv)"
 [[ $found_version == "$VERSION" ]] || die "expected OpenCV $VERSION, the source is $found_version"
 
 # ---- configure
-modules="core,imgproc,imgcodecs,dnn,video"
+modules="core,imgproc,imgcodecs,dnn"
 args=(
   -DCMAKE_BUILD_TYPE=Release -DCMAKE_INSTALL_PREFIX="$prefix"
   -DBUILD_SHARED_LIBS=ON -DOPENCV_GENERATE_PKGCONFIG=OFF

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <opencv2/video/tracking.hpp>
 #include <stdexcept>
 #include <string>
 
@@ -33,7 +32,15 @@ constexpr float kMaxDisagreement = 2.F;
 // Lucas-Kanade's iterations per pyramid level. Most points converge in a few; those that do not
 // (little texture, a moving edge) cost the most and are rarely trusted anyway. On S2L1 (tests)
 // 10 instead of OpenCV's 30 or 20 gave the same IoU and sub-pixel shifts at about 2/3 the time.
-const cv::TermCriteria kCriteria(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 10, 0.03);
+constexpr int kIterations = 10;
+
+LucasKanadeConfig lucas_kanade_of(const BoxFollowerConfig& config) {
+  LucasKanadeConfig lk;
+  lk.window = config.window;
+  lk.levels = config.pyramid_levels;
+  lk.iterations = kIterations;
+  return lk;
+}
 
 bool usable(const tracker::Box& box) {
   return std::isfinite(box.x) && std::isfinite(box.y) && std::isfinite(box.w) &&
@@ -67,20 +74,18 @@ void BoxFollower::push(const cv::Mat& gray_thumbnail, float scale) {
         std::to_string(gray_thumbnail.type()) + ", " + std::to_string(gray_thumbnail.cols) + "x" +
         std::to_string(gray_thumbnail.rows) + ")");
   // Another size or scale than the last frame's is another camera set-up: nothing to follow across.
-  if (frames_ > 0 && (latest_pyramid_.empty() ||
-                      latest_pyramid_[0].size() != gray_thumbnail.size() || scale != scale_))
+  if (frames_ > 0 && (latest_.levels() == 0 || latest_.image(0).size() != gray_thumbnail.size() ||
+                      scale != scale_))
     frames_ = 0;
   // The previous frame's pyramid becomes the one to follow from; its buffers are rebuilt in place
   // for the new frame (same size: no allocation). Derivatives are kept with each level because
   // every frame is the start of a flow twice: forwards from it once it is the previous frame, and
-  // backwards from it (the round-trip check) while it is the latest. The input is copied, never
-  // referenced (tryReuseInputImage off): the caller reuses its thumbnail buffer. OpenCV 4.6's
-  // derivative filter allocates row scratch inside: counted, 4 blocks, 9 KB a push() of 384x288.
-  std::swap(previous_pyramid_, latest_pyramid_);
-  cv::buildOpticalFlowPyramid(gray_thumbnail, latest_pyramid_,
-                              cv::Size(config_.window, config_.window), config_.pyramid_levels,
-                              /*withDerivatives=*/true, cv::BORDER_REFLECT_101, cv::BORDER_CONSTANT,
-                              /*tryReuseInputImage=*/false);
+  // backwards from it (the round-trip check) while it is the latest. The input is converted into
+  // the pyramid, never referenced: the caller reuses its thumbnail buffer. OpenCV's pyrDown and
+  // Scharr allocate small row scratch inside (OpenCV 4.6, counted with malloc interposed for its
+  // own pyramid builder, which runs the same filters: a few blocks, about 9 KB a push of 384x288).
+  std::swap(previous_, latest_);
+  latest_.build(gray_thumbnail, lucas_kanade_of(config_));
   scale_ = scale;
   frames_ = std::min(frames_ + 1, 2);
 }
@@ -100,7 +105,7 @@ void BoxFollower::follow(const std::vector<tracker::Box>& boxes, std::vector<Fol
 
   // Every box's grid of points, in one list (one Lucas-Kanade call for all boxes);
   // first_point_[i]..first_point_[i + 1] are box i's.
-  const cv::Size image = latest_pyramid_[0].size();
+  const cv::Size image = latest_.image(0).size();
   const float right_edge = static_cast<float>(image.width - 1);
   const float bottom_edge = static_cast<float>(image.height - 1);
   from_points_.clear();
@@ -130,15 +135,11 @@ void BoxFollower::follow(const std::vector<tracker::Box>& boxes, std::vector<Fol
   first_point_[boxes.size()] = static_cast<int>(from_points_.size());
   if (from_points_.empty()) return;
 
-  // Forwards, then back from where the points went; no error output (its extra pass over each
-  // window is not used: the round trip decides). OpenCV 4.6 allocates a little inside each call
-  // (copies of the pyramids' Mat headers in vectors of its own): counted with malloc interposed,
-  // 6 blocks, 2.5 KB a follow() of 20 boxes; the pixel and point buffers are all ours, kept.
-  const cv::Size window(config_.window, config_.window);
-  cv::calcOpticalFlowPyrLK(previous_pyramid_, latest_pyramid_, from_points_, to_points_, status_,
-                           cv::noArray(), window, config_.pyramid_levels, kCriteria);
-  cv::calcOpticalFlowPyrLK(latest_pyramid_, previous_pyramid_, to_points_, back_points_,
-                           back_status_, cv::noArray(), window, config_.pyramid_levels, kCriteria);
+  // Forwards, then back from where the points went: the round trip decides which to trust. All
+  // buffers are ours and kept: no allocation.
+  const LucasKanadeConfig lk = lucas_kanade_of(config_);
+  track_points(previous_, latest_, from_points_, to_points_, status_, lk, window_scratch_);
+  track_points(latest_, previous_, to_points_, back_points_, back_status_, lk, window_scratch_);
 
   const float round_trip_squared = config_.max_round_trip * config_.max_round_trip;
   for (std::size_t i = 0; i < boxes.size(); ++i) {

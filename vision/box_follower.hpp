@@ -1,6 +1,6 @@
 #pragma once
 // Following boxes through the frames the detector skipped: sparse optical flow (pyramidal
-// Lucas-Kanade, OpenCV's calcOpticalFlowPyrLK) on a grid of points inside each box, from one gray
+// Lucas-Kanade, vision/lucas_kanade.hpp) on a grid of points inside each box, from one gray
 // thumbnail of the camera's frames to the next. A box moves by its points' median displacement
 // and scales by the median ratio of their pairwise distances; points that do not come back to
 // where they started when followed backwards (forward-backward error) are not trusted, so an
@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "tracker/box.hpp"
+#include "vision/lucas_kanade.hpp"
 
 namespace rtmot::vision {
 
@@ -34,8 +35,8 @@ struct FollowedBox {
 
 /// One per camera. Frames are pushed in order; follow() moves boxes from the previous frame to
 /// the latest one. Allocates nothing of its own once it has seen a frame of the camera's size and
-/// as many boxes as it will get (its buffers are kept); OpenCV's calls inside allocate small
-/// scratch (box_follower.cpp says what).
+/// as many boxes as it will get (its buffers are kept); OpenCV's filters that build the pyramid
+/// allocate small row scratch inside (box_follower.cpp says what).
 class BoxFollower {
  public:
   explicit BoxFollower(const BoxFollowerConfig& config = {});
@@ -57,10 +58,11 @@ class BoxFollower {
   BoxFollowerConfig config_;
   // Implementation's buffers (pyramids of the two frames, points, status, errors), kept across
   // calls: see box_follower.cpp.
-  std::vector<cv::Mat> previous_pyramid_;
-  std::vector<cv::Mat> latest_pyramid_;
-  std::vector<int> first_point_;  // box i's points: [first_point_[i], first_point_[i + 1])
-  std::vector<int> trusted_;      // one box's trusted points, by index
+  LucasKanadePyramid previous_;
+  LucasKanadePyramid latest_;
+  std::vector<float> window_scratch_;  // Lucas-Kanade's per-point windows
+  std::vector<int> first_point_;       // box i's points: [first_point_[i], first_point_[i + 1])
+  std::vector<int> trusted_;           // one box's trusted points, by index
   std::vector<cv::Point2f> from_points_;
   std::vector<cv::Point2f> to_points_;
   std::vector<cv::Point2f> back_points_;

@@ -1,5 +1,6 @@
 #include "vision/lucas_kanade.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <opencv2/imgproc.hpp>
 
@@ -7,27 +8,46 @@ namespace rtmot::vision {
 namespace {
 
 /// A window of `side` x `side` pixels around `centre`, sampled bilinearly from `image` (CV_32F)
-/// into `out` row by row; false when any sample would fall outside the image. One sub-pixel
-/// offset for the whole window, so the four weights are computed once.
+/// into `out` row by row; false when the centre itself is outside the image. One sub-pixel offset
+/// for the whole window, so the four weights are computed once. Near the border the samples
+/// repeat the edge pixels (as OpenCV's tracker does): a person half out of the picture is followed
+/// by what is still in it.
 bool sample_window(const cv::Mat& image, cv::Point2f centre, int side, float* out) {
   const int half = side / 2;
+  if (!(centre.x >= 0.F) || !(centre.y >= 0.F) || !(centre.x <= image.cols - 1.F) ||
+      !(centre.y <= image.rows - 1.F))
+    return false;
   const float fx = std::floor(centre.x);
   const float fy = std::floor(centre.y);
   const int x0 = static_cast<int>(fx) - half;
   const int y0 = static_cast<int>(fy) - half;
-  if (x0 < 0 || y0 < 0 || x0 + side >= image.cols || y0 + side >= image.rows) return false;
   const float ax = centre.x - fx;
   const float ay = centre.y - fy;
   const float w00 = (1.F - ax) * (1.F - ay);
   const float w01 = ax * (1.F - ay);
   const float w10 = (1.F - ax) * ay;
   const float w11 = ax * ay;
+  if (x0 >= 0 && y0 >= 0 && x0 + side < image.cols && y0 + side < image.rows) {
+    for (int r = 0; r < side; ++r) {
+      const float* top = image.ptr<float>(y0 + r) + x0;
+      const float* bottom = image.ptr<float>(y0 + r + 1) + x0;
+      float* row = out + r * side;
+      for (int c = 0; c < side; ++c) {
+        row[c] = w00 * top[c] + w01 * top[c + 1] + w10 * bottom[c] + w11 * bottom[c + 1];
+      }
+    }
+    return true;
+  }
+  const auto clamp_x = [&](int x) { return std::clamp(x, 0, image.cols - 1); };
+  const auto clamp_y = [&](int y) { return std::clamp(y, 0, image.rows - 1); };
   for (int r = 0; r < side; ++r) {
-    const float* top = image.ptr<float>(y0 + r) + x0;
-    const float* bottom = image.ptr<float>(y0 + r + 1) + x0;
+    const float* top = image.ptr<float>(clamp_y(y0 + r));
+    const float* bottom = image.ptr<float>(clamp_y(y0 + r + 1));
     float* row = out + r * side;
     for (int c = 0; c < side; ++c) {
-      row[c] = w00 * top[c] + w01 * top[c + 1] + w10 * bottom[c] + w11 * bottom[c + 1];
+      const int left = clamp_x(x0 + c);
+      const int right = clamp_x(x0 + c + 1);
+      row[c] = w00 * top[left] + w01 * top[right] + w10 * bottom[left] + w11 * bottom[right];
     }
   }
   return true;
