@@ -16,9 +16,11 @@
 namespace rtmot::vision {
 
 struct BoxFollowerConfig {
-  // grid x grid points per box, over its inner part. The cost is per point (about 3 us both ways
-  // on this VM); 4 gave S2L1's people the IoU that 6 did (0.62 vs 0.63 after 7 frames) at 2.6x
-  // less time (bench/vision_bench.cpp).
+  // grid x grid points per box, over its inner part. The cost is per point (bench/vision_bench:
+  // 20 boxes followed 2.7 ms at 4, 2.0 ms at 3 on this VM); on the first half of S2L1 (the
+  // choosing protocol, docs/full-rate.md) 4 scored higher behind a slow detector (MOTA 28.2 against
+  // 24.9 at 250 ms; IDF1 summed over 100/250/500 ms 100.0 against 97.8); 6 gave S2L1's people the
+  // IoU that 4 did (0.63 vs 0.62 after 7 frames) at 2.6x the time.
   int grid = 4;
   int window = 9;               // Lucas-Kanade window side, thumbnail pixels
   int pyramid_levels = 2;       // above the thumbnail itself
