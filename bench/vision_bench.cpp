@@ -18,6 +18,7 @@
 #include "tracker/appearance.hpp"
 #include "vision/box_follower.hpp"
 #include "vision/colour_signature.hpp"
+#include "vision/gray_thumbnail.hpp"
 
 namespace {
 
@@ -65,11 +66,10 @@ BENCHMARK(BM_ColourSignature)
 
 // Follower cases: consecutive frames (what the camera gives between detections).
 constexpr int kFollowFrames = 8;
-constexpr float kThumbnailScale = 0.5F;
 
-void make_gray_thumbnail(const cv::Mat& frame, cv::Mat& small, cv::Mat& gray) {
-  cv::resize(frame, small, cv::Size(), kThumbnailScale, kThumbnailScale, cv::INTER_AREA);
-  cv::cvtColor(small, gray, cv::COLOR_BGR2GRAY);
+// The product's thumbnail (vision/gray_thumbnail.hpp), at the product's scale for the frame.
+float thumbnail_scale(const cv::Mat& frame) {
+  return rtmot::vision::gray_thumbnail_scale(frame.cols);
 }
 
 void BM_GrayThumbnail(benchmark::State& state) {
@@ -80,11 +80,12 @@ void BM_GrayThumbnail(benchmark::State& state) {
     state.SkipWithError(error.c_str());
     return;
   }
-  cv::Mat small;
+  rtmot::vision::GrayThumbnail maker;
+  const float scale = thumbnail_scale(frames.front());
   cv::Mat gray;
   std::size_t frame = 0;
   for (auto _ : state) {
-    make_gray_thumbnail(frames[frame++ % frames.size()], small, gray);
+    maker.make(frames[frame++ % frames.size()], scale, gray);
     benchmark::DoNotOptimize(gray.data);
   }
   state.SetLabel(std::to_string(frames.front().cols) + "x" + std::to_string(frames.front().rows) +
@@ -92,29 +93,40 @@ void BM_GrayThumbnail(benchmark::State& state) {
 }
 BENCHMARK(BM_GrayThumbnail)->Unit(benchmark::kMicrosecond)->MeasureProcessCPUTime()->UseRealTime();
 
-std::vector<cv::Mat> gray_thumbnails(const std::vector<cv::Mat>& frames) {
-  std::vector<cv::Mat> thumbnails;
-  cv::Mat small;
+struct Thumbnails {
+  std::vector<cv::Mat> gray;
+  float scale{1.F};
+};
+
+// vtest.avi's first frames as the pipeline's thumbnails; none (and the benchmark skipped) when
+// the video cannot be read.
+Thumbnails thumbnails_or_skip(benchmark::State& state) {
+  cv::setNumThreads(1);
+  std::string error;
+  const std::vector<cv::Mat> frames = rtmot::bench::load_bench_frames(kFollowFrames, 1, error);
+  Thumbnails thumbnails;
+  if (frames.empty()) {
+    state.SkipWithError(error.c_str());
+    return thumbnails;
+  }
+  rtmot::vision::GrayThumbnail maker;
+  thumbnails.scale = thumbnail_scale(frames.front());
   for (const auto& frame : frames) {
     cv::Mat gray;
-    make_gray_thumbnail(frame, small, gray);
-    thumbnails.push_back(gray);
+    maker.make(frame, thumbnails.scale, gray);
+    thumbnails.gray.push_back(gray);
   }
   return thumbnails;
 }
 
 // push() alone: the pyramid with its derivatives, once per camera frame.
 void BM_BoxFollowerPush(benchmark::State& state) {
-  cv::setNumThreads(1);
-  std::string error;
-  const auto thumbnails = gray_thumbnails(rtmot::bench::load_bench_frames(kFollowFrames, 1, error));
-  if (thumbnails.empty()) {
-    state.SkipWithError(error.c_str());
-    return;
-  }
+  const Thumbnails thumbnails = thumbnails_or_skip(state);
+  if (thumbnails.gray.empty()) return;
   rtmot::vision::BoxFollower follower;
   std::size_t frame = 0;
-  for (auto _ : state) follower.push(thumbnails[frame++ % thumbnails.size()], kThumbnailScale);
+  for (auto _ : state)
+    follower.push(thumbnails.gray[frame++ % thumbnails.gray.size()], thumbnails.scale);
 }
 BENCHMARK(BM_BoxFollowerPush)
     ->Unit(benchmark::kMicrosecond)
@@ -124,21 +136,16 @@ BENCHMARK(BM_BoxFollowerPush)
 // A camera frame's whole follower work: push() and follow() of 20 boxes (4 of them, on this grid,
 // partly outside the frame, as at a frame's edges).
 void BM_BoxFollowerFollow(benchmark::State& state) {
-  cv::setNumThreads(1);
-  std::string error;
-  const auto thumbnails = gray_thumbnails(rtmot::bench::load_bench_frames(kFollowFrames, 1, error));
-  if (thumbnails.empty()) {
-    state.SkipWithError(error.c_str());
-    return;
-  }
+  const Thumbnails thumbnails = thumbnails_or_skip(state);
+  if (thumbnails.gray.empty()) return;
   const std::vector<rtmot::tracker::Box> boxes = person_boxes();
   rtmot::vision::BoxFollower follower;
-  follower.push(thumbnails.back(), kThumbnailScale);
+  follower.push(thumbnails.gray.back(), thumbnails.scale);
   std::vector<rtmot::vision::FollowedBox> out;
   std::size_t frame = 0;
   int followed = 0;
   for (auto _ : state) {
-    follower.push(thumbnails[frame++ % thumbnails.size()], kThumbnailScale);
+    follower.push(thumbnails.gray[frame++ % thumbnails.gray.size()], thumbnails.scale);
     follower.follow(boxes, out);
     for (const auto& box : out) followed += box.followed ? 1 : 0;
   }
@@ -146,8 +153,8 @@ void BM_BoxFollowerFollow(benchmark::State& state) {
       static_cast<double>(state.iterations()) * kBoxes, benchmark::Counter::kIsRate);
   state.counters["followed_share"] =
       static_cast<double>(followed) / (static_cast<double>(state.iterations()) * kBoxes);
-  state.SetLabel(std::to_string(thumbnails.front().cols) + "x" +
-                 std::to_string(thumbnails.front().rows) + " gray, " + std::to_string(kBoxes) +
+  state.SetLabel(std::to_string(thumbnails.gray.front().cols) + "x" +
+                 std::to_string(thumbnails.gray.front().rows) + " gray, " + std::to_string(kBoxes) +
                  " boxes a frame");
 }
 BENCHMARK(BM_BoxFollowerFollow)
