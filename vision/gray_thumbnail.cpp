@@ -18,6 +18,8 @@ void GrayThumbnail::make(const cv::Mat& bgr, float scale, cv::Mat& gray) {
   cv::resize(bgr, small_, size, 0.0, 0.0, cv::INTER_AREA);
   if (small_.channels() == 3) {
     cv::cvtColor(small_, gray, cv::COLOR_BGR2GRAY);
+  } else if (small_.channels() == 4) {
+    cv::cvtColor(small_, gray, cv::COLOR_BGRA2GRAY);
   } else {
     small_.copyTo(gray);
   }

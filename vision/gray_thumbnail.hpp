@@ -15,7 +15,7 @@ constexpr int kGrayThumbnailWidth = 480;
 
 class GrayThumbnail {
  public:
-  /// `bgr` (8-bit, 3 channels, or already gray) at `scale`, into `gray` (8-bit, one channel).
+  /// `bgr` (8-bit: BGR, BGRA or already gray) at `scale`, into `gray` (8-bit, one channel).
   /// Allocates nothing once `gray` and this object have seen a frame of this size.
   void make(const cv::Mat& bgr, float scale, cv::Mat& gray);
 
