@@ -127,9 +127,9 @@ TEST(FollowImage, SkippedFramesCarryTheBoxesTheImageShowed) {
   ASSERT_GT(observed.with_tracks, 10) << "the detector kept up: nothing was skipped";
   EXPECT_EQ(predicted.observed, 0);
   // A track is followed from each processed frame on: natively every such message is observed
-  // (measured 100 %). How many is the machine's: a track stage that falls more than the thumbnail
-  // ring behind the camera (ThreadSanitizer's 5-15x) loses the image for the frames in between
-  // (58 % observed under TSan); what those that are observed show is not.
+  // (measured 100 %). How many is the machine's: under ThreadSanitizer (the track stage 5-15x
+  // slower) 58 % were, the others predicted (a thumbnail the full ring dropped ends the
+  // following until the next processed frame). What the observed ones show is asserted below.
   EXPECT_GE(observed.observed, 10);
   // Measured in 8 runs: 11.7-13.3 px predicted, 1.1-2.4 px followed (the patch is drawn at whole
   // pixels, and the boxes are followed from the tracker's posterior, which lags the swing).
