@@ -233,13 +233,15 @@ PipelineReport Pipeline::run(const std::atomic<bool>& stop) {
   track.join();
   sink.join();
   s.control.rethrow_first_error();
-  // Said once, at the end: the frames the image could not follow (the track stage more than the
-  // ring's 64 frames behind the camera) were predicted instead.
+  // Said once, at the end: the frames the image could not follow (the track stage, waiting for a
+  // slow detector or slow itself, more than the ring's 64 frames behind the camera) were
+  // predicted instead.
   for (std::size_t i = 0; i < s.thumbnail_taps.size(); ++i) {
     if (const std::int64_t dropped = s.thumbnail_taps[i]->dropped(); dropped > 0) {
-      spdlog::warn("{}: {} frames not followed in the image (the detector was more than 64 frames "
-                   "late); their boxes were predicted",
-                   s.captures[i]->source().info().uri, dropped);
+      spdlog::warn(
+          "{}: {} frames not followed in the image (the track stage was more than 64 "
+          "camera frames behind); their boxes were predicted",
+          s.captures[i]->source().info().uri, dropped);
     }
   }
   return s.report();
