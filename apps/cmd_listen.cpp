@@ -90,8 +90,9 @@ void print_message(const messages::DecodedMessage& message, messages::Arrival ar
       "stream {} seq {} frame {}: {} tracks{}{}, latency {:.1f} ms, skipped {}{}{}\n",
       frame.stream_id, frame.sequence, frame.frame_number, frame.tracks.size(),
       message.truncated() ? fmt::format(" of {} (truncated)", message.total_track_count) : "",
-      frame.predicted ? " predicted" : "", to_ms(static_cast<double>(message.latency_ns())),
-      frame.frames_dropped, describe(arrival), frame.end_of_stream ? " (end of stream)" : "");
+      frame.predicted ? (frame.observed ? " predicted, observed" : " predicted") : "",
+      to_ms(static_cast<double>(message.latency_ns())), frame.frames_dropped, describe(arrival),
+      frame.end_of_stream ? " (end of stream)" : "");
   for (const auto& event : frame.events) {  // docs/events.md
     fmt::print("  event {} {} track {}{}{}\n", events::kEventKindNames.name(event.kind),
                event.index, event.track_id,

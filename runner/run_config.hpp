@@ -88,7 +88,7 @@ struct DetectorConfig {
   bool appearance{true};
   /// Between detections, follow the tracks' boxes in the image (vision/box_follower.hpp;
   /// docs/full-rate.md, "Observed boxes").
-  bool follow_image{false};
+  bool follow_image{true};
 };
 
 struct OutputConfig {

@@ -415,6 +415,28 @@ std::vector<CatalogueCase> hostile_cases() {
        },
        {},
        100},
+      {"listen_names_observed_frames",
+       "a full-rate message file: a processed frame, a predicted one, one the image followed",
+       [](Workspace& ws, Vars&) {
+         std::vector<messages::FrameResult> frames{frame(0, 0, 0), frame(0, 1, 100'000'000),
+                                                   frame(0, 2, 200'000'000)};
+         frames[1].predicted = true;
+         frames[2].predicted = true;
+         frames[2].observed = true;
+         write_messages(ws, "full_rate.bin", frames);
+       },
+       {"listen", "--read", "{dir}/full_rate.bin"},
+       ExitCode::ok,
+       {},
+       [](const Workspace& ws) {
+         const std::string out = read_text(ws.path(".stdout"));
+         EXPECT_NE(out.find("seq 0 frame 1: 0 tracks, latency"), std::string::npos) << out;
+         EXPECT_NE(out.find("seq 1 frame 2: 0 tracks predicted, latency"), std::string::npos)
+             << out;
+         EXPECT_NE(out.find("seq 2 frame 3: 0 tracks predicted, observed, latency"),
+                   std::string::npos)
+             << out;
+       }},
 
       // ---- 5. Config values without ranges (outside tracker:) -----------------------------------
       {"run_config_nan_value",
