@@ -45,7 +45,8 @@ struct ObservedBox {
 /// Tracker::track_table() every live one.
 struct TrackReport {
   // 1-based; never two live tracks with one id. A new track re-identified (reid_gate) as one lost
-  // or removed carries that one's id from its first report on.
+  // or removed carries that one's id from its first report on (born partly hidden: from its first
+  // clear sighting within a second of its birth; docs/appearance.md).
   std::int32_t id{0};
   Box box;                   // the filtered (posterior) box
   float score{0.F};          // score of the detection matched in this frame

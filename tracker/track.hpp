@@ -57,7 +57,9 @@ struct Track {
   TrackLife life;
   Appearance appearance;            // learnt from its unoccluded matches (invalid without images)
   double last_seen_seconds{0.0};    // the update time of its last match (or birth)
+  double born_seconds{0.0};         // the update time of its birth
   bool first_confirmed_now{false};  // confirmed for the first time by the update in progress
+  bool model_started_now{false};    // its appearance model began in the update in progress
   bool taken_over{false};           // a re-identified track took its id: it ends in this update
   // Born at or above strong_birth_range_cut: confirmed sooner.
   bool strong_birth{false};

@@ -31,6 +31,11 @@ constexpr float kReidMargin = 0.1F;
 // How far a person may have gone while unseen: a walker covers about one body height a second;
 // twice that, plus one height for the boxes' own error.
 constexpr float kReidHeightsPerSecond = 2.F;
+// A track born where another detection covered it (out of a crossing) has no appearance when it
+// is first confirmed; it may still take a lost one's id at its first unoccluded sighting, if that
+// comes this soon after its birth (docs/appearance.md: 1 s and 3 s chose the same on both first
+// halves; a later change of id would undo more of what the track has reported).
+constexpr double kLateReidSeconds = 1.0;
 
 const TrackerConfig& validated(const TrackerConfig& config) {
   if (const auto problem = config_problem(config))
@@ -176,6 +181,7 @@ struct Tracker::State {
         track.streak_frames = 0.0;
       }
       track.streak_frames += dt;
+      track.model_started_now = false;
       ++track.steps_since_update;
       track.frames_since_update += dt;
       if (is_finite(track.predicted)) {
@@ -335,6 +341,7 @@ struct Tracker::State {
       track.at_last_observation = *kalman;
     }
     track.last_observation = detection.box;
+    track.model_started_now = !track.appearance.valid && detection.appearance.valid;
     if (detection.appearance.valid) {  // valid: no other detection covers it
       blend_appearance(track.appearance, detection.appearance,
                        static_cast<float>(config.appearance_momentum));
@@ -426,6 +433,8 @@ struct Tracker::State {
     track.class_id = detection.class_id;
     track.appearance = detection.appearance;
     track.last_seen_seconds = last_update_time;
+    track.born_seconds = last_update_time;
+    track.model_started_now = false;
     track.first_confirmed_now = false;
     track.taken_over = false;
     track.life.born();
@@ -472,11 +481,16 @@ struct Tracker::State {
 
   // Re-identification (config.reid_gate): each track confirmed for the first time in this update
   // may take the id of a lost track (still coasting) or of a removed one (`departed`). It happens
-  // before the track is first reported, so its id never changes in the output.
+  // before the track is first reported, so its id does not change in the output; except for a
+  // track born partly hidden, whose first unoccluded sighting comes after its first report
+  // (kLateReidSeconds): its id changes there, once.
   void reidentify_newly_confirmed() {
     for (const int slot : order) {
       Track& track = slots[slot];
-      if (!track.first_confirmed_now || !track.appearance.valid) continue;
+      const bool seen_late = track.model_started_now && !track.first_confirmed_now &&
+                             track.life.stage() == TrackStage::confirmed &&
+                             last_update_time - track.born_seconds <= kLateReidSeconds;
+      if (!(track.first_confirmed_now || seen_late) || !track.appearance.valid) continue;
       const float gate = static_cast<float>(config.reid_gate);
       float best = std::numeric_limits<float>::infinity();
       float second = best;

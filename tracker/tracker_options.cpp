@@ -298,8 +298,9 @@ std::vector<TrackerOption> make_table() {
            "other detection overlaps",
            &C::appearance_momentum, 0.0, 0.999),
       real("reid_gate",
-           "re-identification: a track confirmed for the first time takes the id of a lost or "
-           "removed track of its class that looks at most this far from it (Hellinger distance), "
+           "re-identification: a track confirmed for the first time (born partly hidden: at its "
+           "first clear sighting within 1 s of its birth) takes the id of a lost or removed track "
+           "of its class that looks at most this far from it (Hellinger distance), "
            "was last seen at most reid_max_gap_s before within a walker's reach, and that no other "
            "such track nearly matches (docs/appearance.md; 0: off)",
            &C::reid_gate, 0.0, 1.0),

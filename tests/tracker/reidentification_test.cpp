@@ -106,6 +106,68 @@ TEST(Reidentification, ANewTrackTakesOverTheIdOfALostOneThatStillCoasts) {
   EXPECT_EQ(tracker.live_tracks(), 1);  // the coasting track ended when its id was taken over
 }
 
+// A person comes back out from behind someone (their box partly covered: no appearance), is
+// confirmed under a new id, and steps clear `covered` frames after their return: within a second
+// of the new track's birth it takes the old id there (its id changes once in the output); later,
+// the new id stays. The person who covered them keeps theirs throughout.
+struct BackFromBehind {
+  std::int32_t first{0};    // the person's id before they left
+  std::int32_t covered{0};  // their id while covered
+  std::int32_t last{0};     // their id at the end
+  std::int32_t other_first{0};
+  std::int32_t other_last{0};
+};
+
+BackFromBehind back_from_behind(int covered_frames) {
+  const Appearance looks = colour(3);
+  const Appearance other = colour(9);
+  std::vector<std::vector<Detection>> frames;
+  for (int k = 0; k < 10; ++k) {
+    frames.push_back(
+        {person(100.F + 5.F * static_cast<float>(k), 200.F, looks), person(330.F, 200.F, other)});
+  }
+  for (int k = 0; k < 20; ++k) frames.push_back({person(330.F, 200.F, other)});
+  // Back at x 300: the other person's box (x 330) covers a quarter of theirs.
+  for (int k = 0; k < covered_frames; ++k) {
+    frames.push_back({person(300.F, 200.F, looks), person(330.F, 200.F, other)});
+  }
+  for (int k = 0; k < 10; ++k) {
+    frames.push_back(
+        {person(280.F - 5.F * static_cast<float>(k), 200.F, looks), person(330.F, 200.F, other)});
+  }
+  Tracker tracker(config(0.3));
+  const auto ids = run(tracker, frames);
+  // Reports are in track order: the person's first track, then the other's; later the new one.
+  BackFromBehind seen;
+  seen.first = ids[5].at(0);
+  seen.other_first = ids[5].at(1);
+  const auto& while_covered = ids[static_cast<std::size_t>(30 + covered_frames - 1)];
+  for (const std::int32_t id : while_covered) {
+    if (id != seen.other_first) seen.covered = id;
+  }
+  for (const std::int32_t id : ids.back()) {
+    if (id == seen.other_first) {
+      seen.other_last = id;
+    } else {
+      seen.last = id;
+    }
+  }
+  return seen;
+}
+
+TEST(Reidentification, APersonBackFromBehindSomeoneTakesTheirIdAtTheFirstClearSighting) {
+  const BackFromBehind soon = back_from_behind(5);  // clear 0.5 s after the new track's birth
+  EXPECT_NE(soon.covered, 0) << "the new track was not reported while covered";
+  EXPECT_NE(soon.covered, soon.first);  // no appearance yet: a new id
+  EXPECT_EQ(soon.last, soon.first);     // the old id, from the first clear sighting
+  EXPECT_EQ(soon.other_last, soon.other_first);
+
+  const BackFromBehind late = back_from_behind(15);  // clear 1.5 s after: too late
+  EXPECT_NE(late.covered, 0);
+  EXPECT_EQ(late.last, late.covered);
+  EXPECT_EQ(late.other_last, late.other_first);
+}
+
 // Two people who look alike leave; one comes back: which of them is not known, so neither id.
 TEST(Reidentification, TwoWhoLookAlikeGiveNeitherId) {
   std::vector<std::vector<Detection>> frames;
