@@ -135,11 +135,12 @@ void BoxFollower::follow(const std::vector<tracker::Box>& boxes, std::vector<Fol
   first_point_[boxes.size()] = static_cast<int>(from_points_.size());
   if (from_points_.empty()) return;
 
-  // Forwards, then back from where the points went: the round trip decides which to trust. All
-  // buffers are ours and kept: no allocation.
+  // Forwards, then back from where the points went (those that went somewhere: no other is
+  // trusted): the round trip decides which to trust. All buffers are ours and kept: no allocation.
   const LucasKanadeConfig lk = lucas_kanade_of(config_);
   track_points(previous_, latest_, from_points_, to_points_, status_, lk, window_scratch_);
-  track_points(latest_, previous_, to_points_, back_points_, back_status_, lk, window_scratch_);
+  track_points(latest_, previous_, to_points_, back_points_, back_status_, lk, window_scratch_,
+               &status_);
 
   const float round_trip_squared = config_.max_round_trip * config_.max_round_trip;
   for (std::size_t i = 0; i < boxes.size(); ++i) {
