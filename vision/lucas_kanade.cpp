@@ -72,7 +72,7 @@ void sample_window(const cv::Mat& image, const WindowAt& at, int side_at_run_tim
   const float w10 = at.w10;
   const float w11 = at.w11;
   if (wholly_inside(image.size(), at, side)) {
-    const std::size_t stride = image.step1();
+    const std::size_t stride = image.step[0] / sizeof(float);  // step1() is not inlined
     const float* top = image.ptr<float>(at.y0) + at.x0;
     const Float4 v00 = splat(w00);
     const Float4 v01 = splat(w01);
