@@ -63,6 +63,11 @@ BoxFollower::BoxFollower(const BoxFollowerConfig& config) : config_(config) {
     throw std::invalid_argument(
         "BoxFollowerConfig: grid >= 2, window >= 3, pyramid_levels >= 0, max_round_trip > 0 and "
         "min_trusted in [0, 1] are required");
+  // One box's points at most: the per-box buffers never grow after this.
+  const auto per_box =
+      static_cast<std::size_t>(config_.grid) * static_cast<std::size_t>(config_.grid);
+  trusted_.reserve(per_box);
+  scratch_.reserve(per_box);
 }
 
 void BoxFollower::push(const cv::Mat& gray_thumbnail, float scale) {
@@ -108,6 +113,16 @@ void BoxFollower::follow(const std::vector<tracker::Box>& boxes, std::vector<Fol
   const cv::Size image = latest_.image(0).size();
   const float right_edge = static_cast<float>(image.width - 1);
   const float bottom_edge = static_cast<float>(image.height - 1);
+  // Room for every box's whole grid at once: boxes that move into the picture, or grow, get more
+  // points without these buffers growing frame after frame (no allocation once this many boxes
+  // were seen; tests/vision/box_follower_allocation_test.cpp).
+  const std::size_t most_points = boxes.size() * static_cast<std::size_t>(config_.grid) *
+                                  static_cast<std::size_t>(config_.grid);
+  from_points_.reserve(most_points);
+  to_points_.reserve(most_points);
+  back_points_.reserve(most_points);
+  status_.reserve(most_points);
+  back_status_.reserve(most_points);
   from_points_.clear();
   first_point_.resize(boxes.size() + 1);
   for (std::size_t i = 0; i < boxes.size(); ++i) {
@@ -135,11 +150,12 @@ void BoxFollower::follow(const std::vector<tracker::Box>& boxes, std::vector<Fol
   first_point_[boxes.size()] = static_cast<int>(from_points_.size());
   if (from_points_.empty()) return;
 
-  // Forwards, then back from where the points went: the round trip decides which to trust. All
-  // buffers are ours and kept: no allocation.
+  // Forwards, then back from where the points went (those that went somewhere: no other is
+  // trusted): the round trip decides which to trust. All buffers are ours and kept: no allocation.
   const LucasKanadeConfig lk = lucas_kanade_of(config_);
   track_points(previous_, latest_, from_points_, to_points_, status_, lk, window_scratch_);
-  track_points(latest_, previous_, to_points_, back_points_, back_status_, lk, window_scratch_);
+  track_points(latest_, previous_, to_points_, back_points_, back_status_, lk, window_scratch_,
+               &status_);
 
   const float round_trip_squared = config_.max_round_trip * config_.max_round_trip;
   for (std::size_t i = 0; i < boxes.size(); ++i) {

@@ -16,8 +16,9 @@
 namespace rtmot::vision {
 
 struct BoxFollowerConfig {
-  // grid x grid points per box, over its inner part. The cost is per point (bench/vision_bench:
-  // 20 boxes followed 2.7 ms at 4, 2.0 ms at 3 on this VM); on the first half of S2L1 (the
+  // grid x grid points per box, over its inner part. The cost is per point (bench/vision_bench,
+  // push + follow of 20 boxes, CPU time on this 2-core VM at load 1-5: 1.2-1.8 ms at 4, 1.0-1.2 ms
+  // at 3; docs/full-rate.md, "Observed boxes"); on the first half of S2L1 (the
   // choosing protocol, docs/full-rate.md) 4 scored higher behind a slow detector (MOTA 28.2 against
   // 24.9 at 250 ms; IDF1 summed over 100/250/500 ms 100.0 against 97.8); 6 gave S2L1's people the
   // IoU that 4 did (0.63 vs 0.62 after 7 frames) at 2.6x the time.

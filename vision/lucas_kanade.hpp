@@ -41,10 +41,13 @@ class LucasKanadePyramid {
 
 /// Where each of `from_points` (pixels of `from`'s level 0) went in `to`; status 1 where it was
 /// followed (inside both images, a textured window, a finite solution). `window_scratch` holds
-/// one window's samples (kept by the caller: no allocation per call once grown).
+/// one window's samples (kept by the caller: no allocation per call once grown). With `only`
+/// (one entry per point), the points whose entry is 0 are not followed (status 0): the round
+/// trip back needs only those that went somewhere.
 void track_points(const LucasKanadePyramid& from, const LucasKanadePyramid& to,
                   const std::vector<cv::Point2f>& from_points, std::vector<cv::Point2f>& to_points,
                   std::vector<unsigned char>& status, const LucasKanadeConfig& config,
-                  std::vector<float>& window_scratch);
+                  std::vector<float>& window_scratch,
+                  const std::vector<unsigned char>* only = nullptr);
 
 }  // namespace rtmot::vision

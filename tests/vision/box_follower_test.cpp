@@ -144,6 +144,34 @@ TEST(BoxFollower, FindsAKnownSubPixelShiftOfATexturedPatch) {
   }
 }
 
+TEST(BoxFollower, FindsTheShiftWithWindowsOfOtherSides) {
+  // The default window (9) runs loops compiled for its side; any other side the same loops with
+  // the side known at run time (vision/lucas_kanade.cpp). Both must find the shift; an even side
+  // is the odd one above it.
+  const cv::Size size(640, 480);
+  const cv::Rect patch(200, 100, 120, 240);
+  const tracker::Box box{200.F, 100.F, 120.F, 240.F};
+  const float dx = 3.4F;
+  const float dy = -2.2F;
+  for (const int window : {5, 8, 13}) {
+    BoxFollowerConfig config;
+    config.window = window;
+    BoxFollower follower(config);
+    follower.push(gray_thumbnail(textured_frame(size, patch, 0.F, 0.F)), kHalf);
+    follower.push(gray_thumbnail(textured_frame(size, patch, dx, dy)), kHalf);
+    std::vector<FollowedBox> out;
+    follower.follow({box}, out);
+    ASSERT_EQ(out.size(), 1U);
+    ASSERT_TRUE(out[0].followed) << "window " << window;
+    std::cout << "window " << window << ": found (" << out[0].box.center_x() - box.center_x()
+              << ", " << out[0].box.center_y() - box.center_y() << "), confidence "
+              << out[0].confidence << "\n";
+    EXPECT_NEAR(out[0].box.center_x() - box.center_x(), dx, 0.5F) << "window " << window;
+    EXPECT_NEAR(out[0].box.center_y() - box.center_y(), dy, 0.5F) << "window " << window;
+    EXPECT_GT(out[0].confidence, 0.9F) << "window " << window;
+  }
+}
+
 TEST(BoxFollower, FollowsAPatchThatGrowsAsItComesNearer) {
   const cv::Size size(640, 480);
   const cv::Rect patch(200, 100, 120, 240);
