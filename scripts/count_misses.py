@@ -27,18 +27,11 @@ import configparser
 import os
 import sys
 
+from box_iou import iou
+
 KINDS = ["same id", "different ids", "one end only", "neither end"]
 BAND_PX = 2.0
 MIN_IOU = 0.4
-
-
-def iou(a, b):
-    w = min(a[0] + a[2], b[0] + b[2]) - max(a[0], b[0])
-    h = min(a[1] + a[3], b[1] + b[3]) - max(a[1], b[1])
-    if w <= 0 or h <= 0:
-        return 0.0
-    inter = w * h
-    return inter / (a[2] * a[3] + b[2] * b[3] - inter)
 
 
 def read_rows(path, keep):

@@ -30,6 +30,8 @@ import os
 import sys
 from collections import Counter, defaultdict
 
+from box_iou import iou
+
 OVERLAP_IOU, MATCH_IOU, WINDOW, GAP = 0.3, 0.5, 7, 3
 SCALE, MARGIN = 2, 24
 
@@ -46,15 +48,6 @@ def read_boxes(path, skip_ignored):
                 continue
             frames[int(fields[0])][int(fields[1])] = tuple(float(v) for v in fields[2:6])
     return frames
-
-
-def iou(a, b):
-    w = min(a[0] + a[2], b[0] + b[2]) - max(a[0], b[0])
-    h = min(a[1] + a[3], b[1] + b[3]) - max(a[1], b[1])
-    if w <= 0 or h <= 0:
-        return 0.0
-    inter = w * h
-    return inter / (a[2] * a[3] + b[2] * b[3] - inter)
 
 
 def centre_inside(a, b):
