@@ -114,8 +114,9 @@ void PipelineMetrics::observe(const messages::FrameResult& result) {
     stream.in_outage = result.source_outage;
   }
   if (id != stream_ids_.end() && result.predicted) {
-    streams_[static_cast<std::size_t>(id - stream_ids_.begin())].predicted_messages.fetch_add(
-        1, relaxed);
+    StreamCounters& stream = streams_[static_cast<std::size_t>(id - stream_ids_.begin())];
+    stream.predicted_messages.fetch_add(1, relaxed);
+    if (result.observed) stream.observed_messages.fetch_add(1, relaxed);
   }
   if (!result.source_outage && !result.end_of_stream && !result.predicted) {
     for (const auto& [stage, name] : pipeline::kStageNames.entries()) {
@@ -168,6 +169,10 @@ std::string PipelineMetrics::render() const {
   per_stream("rtmot_predicted_messages_total", "counter",
              "Messages of skipped frames with the tracks' predicted boxes (full-rate output).",
              [](const StreamCounters& s) { return s.predicted_messages.load(relaxed); });
+  per_stream("rtmot_observed_messages_total", "counter",
+             "Of the predicted messages, those whose boxes were followed in the image (flagged "
+             "observed; --follow-image).",
+             [](const StreamCounters& s) { return s.observed_messages.load(relaxed); });
   per_stream("rtmot_tracks", "gauge", "Tracks reported in the source's last processed frame.",
              [](const StreamCounters& s) { return s.tracks_last_frame.load(relaxed); });
   per_stream("rtmot_tracks_reported_total", "counter",

@@ -107,6 +107,7 @@ class PipelineMetrics {
     std::atomic<std::uint64_t> outages{0};
     std::atomic<std::uint64_t> outage_frames{0};
     std::atomic<std::uint64_t> predicted_messages{0};  // full-rate output's skipped frames
+    std::atomic<std::uint64_t> observed_messages{0};   // of those, followed in the image
     std::atomic<std::uint64_t> tracks_reported{0};
     std::atomic<std::uint32_t> tracks_last_frame{0};
     std::atomic<bool> up{false};  // false until its first frame: a cold start is not "up"

@@ -91,7 +91,8 @@ TEST(Metrics, EndpointServesPrometheusText) {
 }
 
 // Full-rate output (docs/full-rate.md): a skipped frame's predicted message is counted apart, not
-// as a processed frame, and has no place in the latency histograms.
+// as a processed frame, and has no place in the latency histograms. Those whose boxes were followed
+// in the image (observed) are counted among them too.
 TEST(Metrics, PredictedMessagesAreCountedApart) {
   auto frames = test::frames_from_detections("TUD-Stadtmitte", 40);
   PipelineMetrics metrics({}, {frames.front().stream_id});
@@ -100,11 +101,14 @@ TEST(Metrics, PredictedMessagesAreCountedApart) {
   MetricsSink sink(metrics);
   for (std::size_t i = 0; i < frames.size(); ++i) {
     frames[i].predicted = i % 4 != 0;  // a detector 4 frames slow
+    // The image followed the boxes on the first two skipped frames after each detection only.
+    frames[i].observed = frames[i].predicted && i % 4 != 3;
     sink.write(frames[i]);
   }
   const std::string response = http_get(port, "/metrics");
   EXPECT_EQ(value_of(response, R"(rtmot_frames_processed_total{stream="7"})"), 10.0);
   EXPECT_EQ(value_of(response, R"(rtmot_predicted_messages_total{stream="7"})"), 30.0);
+  EXPECT_EQ(value_of(response, R"(rtmot_observed_messages_total{stream="7"})"), 20.0);
   EXPECT_EQ(value_of(response, R"(rtmot_stage_latency_seconds_count{stage="end_to_end"})"), 10.0);
   // The page's per-source capture->sent: one source, so the pipeline's own (the same frames).
   const nlohmann::json status = metrics.status();
