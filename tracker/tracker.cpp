@@ -36,6 +36,11 @@ constexpr float kReidHeightsPerSecond = 2.F;
 // comes this soon after its birth (docs/appearance.md: 1 s and 3 s chose the same on both first
 // halves; a later change of id would undo more of what the track has reported).
 constexpr double kLateReidSeconds = 1.0;
+// There, the new track's model is one sighting, so it must look closer than reid_gate asks at
+// first confirmation. Chosen with the detector's latency in view (docs/appearance.md, round 18:
+// both first halves every frame and behind a 250 ms detector; 0.3 and 0.5 summed less IDF1; with
+// none, one late id behind the slow detector went to the wrong person).
+constexpr float kLateReidGate = 0.4F;
 
 const TrackerConfig& validated(const TrackerConfig& config) {
   if (const auto problem = config_problem(config))
@@ -483,7 +488,7 @@ struct Tracker::State {
   // may take the id of a lost track (still coasting) or of a removed one (`departed`). It happens
   // before the track is first reported, so its id does not change in the output; except for a
   // track born partly hidden, whose first unoccluded sighting comes after its first report
-  // (kLateReidSeconds): its id changes there, once.
+  // (kLateReidSeconds, and only at kLateReidGate): its id changes there, once.
   void reidentify_newly_confirmed() {
     for (const int slot : order) {
       Track& track = slots[slot];
@@ -491,7 +496,8 @@ struct Tracker::State {
                              track.life.stage() == TrackStage::confirmed &&
                              last_update_time - track.born_seconds <= kLateReidSeconds;
       if (!(track.first_confirmed_now || seen_late) || !track.appearance.valid) continue;
-      const float gate = static_cast<float>(config.reid_gate);
+      const float gate = seen_late ? std::min(kLateReidGate, static_cast<float>(config.reid_gate))
+                                   : static_cast<float>(config.reid_gate);
       float best = std::numeric_limits<float>::infinity();
       float second = best;
       int best_lost = -1;      // a slot

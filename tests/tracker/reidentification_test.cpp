@@ -118,7 +118,8 @@ struct BackFromBehind {
   std::int32_t other_last{0};
 };
 
-BackFromBehind back_from_behind(int covered_frames) {
+BackFromBehind back_from_behind(int covered_frames, const Appearance& looks_back = colour(3),
+                                double reid_gate = 0.3) {
   const Appearance looks = colour(3);
   const Appearance other = colour(9);
   std::vector<std::vector<Detection>> frames;
@@ -132,10 +133,10 @@ BackFromBehind back_from_behind(int covered_frames) {
     frames.push_back({person(300.F, 200.F, looks), person(330.F, 200.F, other)});
   }
   for (int k = 0; k < 10; ++k) {
-    frames.push_back(
-        {person(280.F - 5.F * static_cast<float>(k), 200.F, looks), person(330.F, 200.F, other)});
+    frames.push_back({person(280.F - 5.F * static_cast<float>(k), 200.F, looks_back),
+                      person(330.F, 200.F, other)});
   }
-  Tracker tracker(config(0.3));
+  Tracker tracker(config(reid_gate));
   const auto ids = run(tracker, frames);
   // Reports are in track order: the person's first track, then the other's; later the new one.
   BackFromBehind seen;
@@ -166,6 +167,35 @@ TEST(Reidentification, APersonBackFromBehindSomeoneTakesTheirIdAtTheFirstClearSi
   EXPECT_NE(late.covered, 0);
   EXPECT_EQ(late.last, late.covered);
   EXPECT_EQ(late.other_last, late.other_first);
+}
+
+// Split between two bins: `share` in `bin`, the rest in the next.
+Appearance two_bins(int bin, float share) {
+  Appearance appearance = colour(bin);
+  appearance.bins[static_cast<std::size_t>(bin)] = share;
+  appearance.bins[static_cast<std::size_t>(bin + 1)] = 1.F - share;
+  return appearance;
+}
+
+// At the first clear sighting the new track's model is one sighting: with the preset's gate (0.6)
+// a return that looks 0.5 away from before keeps its new id there (kLateReidGate 0.4), and one
+// 0.3 away takes the old id; at first confirmation, the same 0.5 takes it.
+TEST(Reidentification, AtTheFirstClearSightingOnlyACloseLikenessGivesTheOldId) {
+  const Appearance changed = two_bins(3, 0.5625F);  // Hellinger 0.5 from colour(3)
+  const Appearance alike = two_bins(3, 0.8281F);    // 0.3
+  ASSERT_NEAR(appearance_distance(colour(3), changed), 0.5F, 1e-3F);
+  ASSERT_NEAR(appearance_distance(colour(3), alike), 0.3F, 1e-3F);
+
+  const BackFromBehind far = back_from_behind(5, changed, 0.6);
+  EXPECT_NE(far.covered, 0);
+  EXPECT_NE(far.covered, far.first);
+  EXPECT_EQ(far.last, far.covered);
+  const BackFromBehind close = back_from_behind(5, alike, 0.6);
+  EXPECT_EQ(close.last, close.first);
+  EXPECT_EQ(close.other_last, close.other_first);
+
+  const auto [first, last] = back_after(0.6, 20, 150.F, colour(3), changed);
+  EXPECT_EQ(last, first);
 }
 
 // Two people who look alike leave; one comes back: which of them is not known, so neither id.
