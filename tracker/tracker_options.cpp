@@ -297,15 +297,13 @@ std::vector<TrackerOption> make_table() {
            "a track's appearance keeps this share of itself at each match by a detection no "
            "other detection overlaps",
            &C::appearance_momentum, 0.0, 0.999),
-      real(
-          "reid_gate",
-          "re-identification: a track confirmed for the first time (born partly hidden: at its "
-          "first clear sighting within 1 s of its birth, and then within at most 0.4) takes the id "
-          "of a lost or removed track "
-          "of its class that looks at most this far from it (Hellinger distance), "
-          "was last seen at most reid_max_gap_s before within a walker's reach, and that no other "
-          "such track nearly matches (docs/appearance.md; 0: off)",
-          &C::reid_gate, 0.0, 1.0),
+      real("reid_gate",
+           "re-identification: a track confirmed for the first time (born partly hidden: at its "
+           "first clear sighting within 1 s of its birth, then within at most 0.4) takes the id "
+           "of a lost or removed track of its class that looks at most this far from it "
+           "(Hellinger distance), was last seen at most reid_max_gap_s before within a walker's "
+           "reach, and that no other such track nearly matches (docs/appearance.md; 0: off)",
+           &C::reid_gate, 0.0, 1.0),
       real("reid_max_gap_s", "the longest gap re-identification bridges, in seconds",
            &C::reid_max_gap_s, 0.0, 3600.0),
       integer("particle_count",
