@@ -76,6 +76,20 @@ class SlowPatchDetector : public detector::Detector {
   std::string describe() const override { return "slow patch"; }
 };
 
+// The same, but from its seventh frame on it misses the patch every other frame: each match then
+// finds the track again (TrackReport::hits 1).
+class BlinkingPatchDetector : public SlowPatchDetector {
+ public:
+  void detect(const cv::Mat& bgr, std::int64_t frame_number,
+              std::vector<tracker::Detection>& out) override {
+    SlowPatchDetector::detect(bgr, frame_number, out);
+    if (++calls_ > 6 && calls_ % 2 == 1) out.clear();
+  }
+
+ private:
+  long calls_{0};
+};
+
 struct SkippedFrames {
   long with_tracks{0};  // skipped frames' messages that carry a track
   long observed{0};     // of those, flagged observed
@@ -84,7 +98,8 @@ struct SkippedFrames {
   double median_error_px{-1.0};
 };
 
-SkippedFrames run(bool follow_image) {
+std::vector<messages::FrameResult> run_pipeline(std::unique_ptr<detector::Detector> detector,
+                                                bool follow_image) {
   test_parts::Collected collected;
   PipelineOptions options = test_parts::quiet(PlaybackMode::realtime);
   options.full_rate = true;
@@ -92,15 +107,19 @@ SkippedFrames run(bool follow_image) {
   tracker::TrackerConfig config = *tracker::find_preset(tracker::default_preset_name());
   config.frame_rate = kFps;
   {
-    Pipeline pipeline(std::make_unique<SwingingPatchCamera>(),
-                      std::make_unique<SlowPatchDetector>(), config,
+    Pipeline pipeline(std::make_unique<SwingingPatchCamera>(), std::move(detector), config,
                       test_parts::sinks_into(collected), options);
     const std::atomic<bool> stop{false};
     pipeline.run(stop);
   }
+  return std::move(collected.results);
+}
+
+SkippedFrames run(bool follow_image) {
   SkippedFrames skipped;
   std::vector<double> errors;
-  for (const messages::FrameResult& result : collected.results) {
+  for (const messages::FrameResult& result :
+       run_pipeline(std::make_unique<SlowPatchDetector>(), follow_image)) {
     if (!result.predicted || result.tracks.empty()) continue;
     ++skipped.with_tracks;
     if (result.observed) ++skipped.observed;
@@ -135,6 +154,49 @@ TEST(FollowImage, SkippedFramesCarryTheBoxesTheImageShowed) {
   // pixels, and the boxes are followed from the tracker's posterior, which lags the swing).
   EXPECT_LT(observed.median_error_px, 4.0);
   EXPECT_LT(observed.median_error_px * 3.0, predicted.median_error_px);
+}
+
+// A track the last processed frame found again (matched once after a miss) is shown on the
+// skipped frames after it where the image followed it (kObservedMinHits), at the patch; with
+// predicted boxes only, it waits for a second match in a row (tracker::kPredictedMinHits).
+long skipped_frames_showing_a_track_found_again(bool follow_image, double* median_error_px) {
+  long showing = 0;
+  bool found_again = false;  // the last processed frame reported the track with hits 1
+  std::vector<double> errors;
+  for (const messages::FrameResult& result :
+       run_pipeline(std::make_unique<BlinkingPatchDetector>(), follow_image)) {
+    if (!result.predicted) {
+      found_again = result.tracks.size() == 1 && result.tracks[0].hits == 1;
+      continue;
+    }
+    if (!found_again || result.tracks.empty()) continue;
+    ++showing;
+    for (const tracker::TrackReport& track : result.tracks) {
+      if (result.observed && track.score > 0.F) {
+        errors.push_back(std::abs(track.box.x - patch_at(result.frame_number).x));
+      }
+    }
+  }
+  if (!errors.empty()) {
+    std::nth_element(errors.begin(), errors.begin() + errors.size() / 2, errors.end());
+    *median_error_px = errors[errors.size() / 2];
+  }
+  return showing;
+}
+
+TEST(FollowImage, ATrackFoundAgainIsShownWhereTheImageFollowedIt) {
+  double unused = -1.0;
+  EXPECT_EQ(skipped_frames_showing_a_track_found_again(false, &unused), 0);
+  double median_error_px = -1.0;
+  const long showing = skipped_frames_showing_a_track_found_again(true, &median_error_px);
+  std::cout << "skipped frames showing a track found again: " << showing << ", median error "
+            << median_error_px << " px\n";
+  // Measured 48-54 natively in 3 runs; fewer where the track stage is slower (ThreadSanitizer).
+  EXPECT_GE(showing, 5);
+  // Measured 3.0-3.2 px (the boxes follow the posterior of a track just found again, which lags
+  // the swing more); predicted boxes were 12 px off (the test above).
+  EXPECT_GE(median_error_px, 0.0);
+  EXPECT_LT(median_error_px, 6.0);
 }
 
 }  // namespace

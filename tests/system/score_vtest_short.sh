@@ -27,7 +27,7 @@ score boxes every,250 --follow-image false
 score image 250
 cat "$work/scores.tsv"
 # label latency processed MOTA IDF1 DetA AssA
-expected=$'boxes/every 150 39.6 55.9 43.8 37.2\nboxes/250 43 16.6 40.4 29.6 31.4\nimage/250 43 26.5 47.5 33.6 35.4'
+expected=$'boxes/every 150 39.6 55.9 43.8 37.2\nboxes/250 43 16.6 40.4 29.6 31.4\nimage/250 43 30.6 49.7 36.6 35.3'
 awk -F'\t' -v tolerance="$tolerance" -v expected="$expected" '
   BEGIN {
     n = split(expected, lines, "\n")
