@@ -38,9 +38,9 @@ class TrackStage {
  public:
   /// `full_rate`: before each processed frame, one result per frame its source skipped since its
   /// last processed one (DetectedFrame::trail), flagged predicted, with the tracks the tracker
-  /// reported last (tracker::kPredictedMinHits) at their boxes predicted for that frame's pts; where
-  /// the image was followed into that frame, flagged observed too, with every track reported last
-  /// (kObservedMinHits, track_stage.cpp) at the boxes the image showed (docs/full-rate.md).
+  /// reported last (tracker::kPredictedMinHits) at their boxes predicted for that frame's pts;
+  /// where the image was followed into that frame, flagged observed too, with every track reported
+  /// last (kObservedMinHits, track_stage.cpp) at the boxes the image showed (docs/full-rate.md).
   TrackStage(const std::vector<TrackInput>& inputs, SpscQueue<DetectedFrame>& input,
              std::size_t queue_capacity, bool keep_images, bool full_rate = false);
 
