@@ -10,7 +10,8 @@
 //
 // LeakSanitizer: libx265 (x265enc, H.265 video) leaves the buffers FrameFilter::init allocates for
 // each frame thread when the encoder closes: 74 blocks per encoder in x265 3.5, every one allocated
-// under x265_encoder_open; the Encoder object itself is not among the leaks (a leaked element would be).
+// under x265_encoder_open; the Encoder object itself is not among the leaks (a leaked element
+// would be).
 //
 // ThreadSanitizer: GLib's mutexes and atomics (futex-based, in uninstrumented libraries) are
 // invisible to TSan, so it reports "races" and lock-order inversions inside GLib, GIO and GStreamer
