@@ -48,8 +48,7 @@ class Associator {
   /// gate_frames, distance_gate_max) of the candidate's predicted centre, in the predicted box's
   /// sizes, and their heights are within kDistanceRoundHeightRatio; the assignment prefers the
   /// closer pairs. The appearance weighs in as in associate().
-  void associate_by_distance(const TrackerConfig& config,
-                             const std::vector<Detection>& detections,
+  void associate_by_distance(const TrackerConfig& config, const std::vector<Detection>& detections,
                              const std::vector<AssociationCandidate>& candidates,
                              std::vector<AssociationMatch>& matches);
 

@@ -18,8 +18,10 @@ inline float iou(const Box& a, const Box& b) {
 
 /// The share of `box`'s area that `other` covers, in [0, 1].
 inline float covered_share(const Box& box, const Box& other) {
-  const float ix = std::max(0.F, std::min(box.x + box.w, other.x + other.w) - std::max(box.x, other.x));
-  const float iy = std::max(0.F, std::min(box.y + box.h, other.y + other.h) - std::max(box.y, other.y));
+  const float ix =
+      std::max(0.F, std::min(box.x + box.w, other.x + other.w) - std::max(box.x, other.x));
+  const float iy =
+      std::max(0.F, std::min(box.y + box.h, other.y + other.h) - std::max(box.y, other.y));
   const float area = box.w * box.h;
   return area > 0.F ? ix * iy / area : 0.F;
 }

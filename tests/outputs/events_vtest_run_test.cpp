@@ -66,10 +66,11 @@ TEST_F(EventsVtestRun, ListenMqttAndMetricsAgree) {
   ASSERT_TRUE(wait_for_text(folder_ / "mqtt.err", "subscribed to", 20s))
       << test::read_text(folder_ / "mqtt.err");
 
-  // configs/events-demo.yaml's lines and zone. Tiles off: every frame would be 7 SSD passes, and the
-  // subject is the events' three roads (tiles: detector_video_tests).
+  // configs/events-demo.yaml's lines and zone. Tiles off: every frame would be 7 SSD passes, and
+  // the subject is the events' three roads (tiles: detector_video_tests).
   const auto config = folder_ / "run.yaml";
-  std::ofstream(config) << "source:\n  uri: " << video_.string() << R"(
+  std::ofstream(config)
+      << "source:\n  uri: " << video_.string() << R"(
   events:
     dwell_s: 3
     lines:
@@ -81,8 +82,9 @@ playback:
   mode: every-frame
 detector:
   kind: ssd
-  model: )" << model_.string()
-                        << "\n  score_threshold: 0.5\n  classes: [1]\n  tiles: off\ntracker:\n  preset: rtmot\n";
+  model: )"
+      << model_.string()
+      << "\n  score_threshold: 0.5\n  classes: [1]\n  tiles: off\ntracker:\n  preset: rtmot\n";
   const unsigned short metrics_port = test::free_tcp_port();
   const auto binary = folder_ / "m.bin";
   test::ChildProcess run(

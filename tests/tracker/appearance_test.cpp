@@ -1,12 +1,13 @@
 // The tracker's use of appearance (tracker/appearance.hpp): the distance, the model's update, and
 // the association's gate and preference (tracker/association.hpp) where the boxes alone would
 // swap two people.
+#include "tracker/appearance.hpp"
+
 #include <gtest/gtest.h>
 
 #include <map>
 #include <vector>
 
-#include "tracker/appearance.hpp"
 #include "tracker/association.hpp"
 
 namespace rtmot::tracker {
