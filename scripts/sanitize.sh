@@ -9,7 +9,7 @@
 #               ThreadSanitizer can find something.
 # Uses clang (SANITIZE_CC/SANITIZE_CXX to change it): see configure() below for why.
 # Suppressions for uninstrumented system libraries only: TSan's in scripts/sanitizers/tsan.supp; LSan's
-# are compiled into every executable by platform/ (platform/sanitizer/lsan_suppressions.cpp).
+# are compiled into every executable by platform/ (platform/sanitizer/suppressions.cpp).
 # Prints the wall time of each half. Usage: scripts/sanitize.sh [asan|tsan|all]
 # Env: JOBS (default 2), ASAN_DIR, TSAN_DIR (build folders), TSAN_TARGETS (test programs run under TSan).
 set -euo pipefail
