@@ -42,6 +42,17 @@ constexpr double kLateReidSeconds = 1.0;
 // none, one late id behind the slow detector went to the wrong person).
 constexpr float kLateReidGate = 0.4F;
 
+// Crossing resolution (part of re-identification; docs/appearance.md, round 19): two tracks whose
+// boxes overlap this much (one covers this share of the other) may trade people, and...
+constexpr float kCrossingShare = 0.3F;
+// ...are told apart by their first clear sightings within this long after they last overlapped
+// (a crossing of walkers is over in a second or two; later, a sighting is the track's own).
+constexpr double kCrossingSeconds = 2.0;
+// The crossed pairing must be closer than the kept one by this much, summed over both: a trade
+// undone wrongly costs two ids. Chosen on both first halves (docs/appearance.md: 0.05 and 0.15
+// and a share of 0.1 chose the same; a tie goes to the larger margin).
+constexpr float kCrossingMargin = 0.15F;
+
 const TrackerConfig& validated(const TrackerConfig& config) {
   if (const auto problem = config_problem(config))
     throw std::invalid_argument("tracker: " + *problem);
@@ -69,7 +80,8 @@ struct Tracker::State {
         score_cut(0.0, c.score_range_cut, kScoreWindow,
                   c.strong_birth_range_cut > 0.0 || (extension && extension->needs_score_range()),
                   c.score_range_cap, c.score_range_cap_below),
-        cascades(c.confirmed_tracks_first || (extension && extension->cascades())) {
+        cascades(c.confirmed_tracks_first || (extension && extension->cascades())),
+        resolves_crossings(c.reid_gate > 0.0) {
     const auto tracks = static_cast<std::size_t>(config.max_tracks);
     const auto detections = static_cast<std::size_t>(config.max_detections);
     slots.resize(tracks);
@@ -347,7 +359,9 @@ struct Tracker::State {
     }
     track.last_observation = detection.box;
     track.model_started_now = !track.appearance.valid && detection.appearance.valid;
-    if (detection.appearance.valid) {  // valid: no other detection covers it
+    if (detection.appearance.valid && track.appearance.valid && track.crossing_partner != 0) {
+      track.held_sighting = detection.appearance;  // resolve_crossings() decides whose it is
+    } else if (detection.appearance.valid) {       // valid: no other detection covers it
       blend_appearance(track.appearance, detection.appearance,
                        static_cast<float>(config.appearance_momentum));
     }
@@ -442,6 +456,8 @@ struct Tracker::State {
     track.model_started_now = false;
     track.first_confirmed_now = false;
     track.taken_over = false;
+    track.crossing_partner = 0;
+    track.held_sighting.valid = false;
     track.life.born();
     track.strong_birth = config.strong_birth_range_cut > 0.0 &&
                          detection.score >= score_cut.range_point(config.strong_birth_range_cut);
@@ -462,6 +478,7 @@ struct Tracker::State {
       track.life.settle(track.matched_now() && confirmed(track));
       track.first_confirmed_now = !was_confirmed && track.life.stage() == TrackStage::confirmed;
     }
+    if (resolves_crossings) resolve_crossings();
     if (!departed.empty()) reidentify_newly_confirmed();
     std::size_t kept = 0;
     for (const int slot : order) {
@@ -482,6 +499,80 @@ struct Tracker::State {
       }
     }
     order.resize(kept);
+    if (resolves_crossings) note_crossings();
+  }
+
+  Track* live_track_with_id(std::int32_t id) {
+    for (const int slot : order)
+      if (slots[slot].id == id && !slots[slot].taken_over) return &slots[slot];
+    return nullptr;
+  }
+
+  // The crossing is over for `track`: its held sighting joins its model.
+  void end_crossing(Track& track) const {
+    if (track.held_sighting.valid)
+      blend_appearance(track.appearance, track.held_sighting,
+                       static_cast<float>(config.appearance_momentum));
+    track.held_sighting.valid = false;
+    track.crossing_partner = 0;
+  }
+
+  // Two tracks whose boxes overlapped (note_crossings) may have traded people, the motion model
+  // being all that decided while neither was seen clearly. Once each has a clear sighting, each
+  // sighting is compared with both models (frozen since the overlap): if the crossed pairing is
+  // closer by kCrossingMargin, and each crossed pair is within reid_gate, the two trade ids and
+  // models, so each id goes on with the person it was given to. Then (and when the window
+  // closes or the partner is gone) the sightings join the models.
+  void resolve_crossings() {
+    for (const int slot : order) {
+      Track& a = slots[slot];
+      if (a.crossing_partner == 0) continue;
+      Track* b = live_track_with_id(a.crossing_partner);
+      if (b == nullptr || b->crossing_partner != a.id ||
+          last_update_time - a.crossing_seconds > kCrossingSeconds) {
+        end_crossing(a);
+        continue;
+      }
+      if (!a.held_sighting.valid || !b->held_sighting.valid) continue;
+      const float kept = appearance_distance(a.appearance, a.held_sighting) +
+                         appearance_distance(b->appearance, b->held_sighting);
+      const float a_is_b = appearance_distance(b->appearance, a.held_sighting);
+      const float b_is_a = appearance_distance(a.appearance, b->held_sighting);
+      if (a_is_b + b_is_a + kCrossingMargin < kept &&
+          std::max(a_is_b, b_is_a) <= static_cast<float>(config.reid_gate)) {
+        std::swap(a.id, b->id);
+        std::swap(a.appearance, b->appearance);
+      }
+      end_crossing(a);
+      end_crossing(*b);
+    }
+  }
+
+  // Confirmed tracks with models whose boxes now overlap (one covers more than kCrossingShare of
+  // the other) become partners for kCrossingSeconds; a track that meets a third ends its
+  // crossing with the one before.
+  void note_crossings() {
+    for (std::size_t i = 0; i < order.size(); ++i) {
+      Track& a = slots[order[i]];
+      if (!a.appearance.valid || !a.life.ever_confirmed()) continue;
+      const Box box_a = current_box(a.predictor);
+      for (std::size_t j = i + 1; j < order.size(); ++j) {
+        Track& b = slots[order[j]];
+        if (!b.appearance.valid || !b.life.ever_confirmed()) continue;
+        const Box box_b = current_box(b.predictor);
+        if (std::max(covered_share(box_a, box_b), covered_share(box_b, box_a)) <= kCrossingShare)
+          continue;
+        for (Track* t : {&a, &b}) {
+          const std::int32_t other = t == &a ? b.id : a.id;
+          if (t->crossing_partner == 0 || t->crossing_partner == other) continue;
+          if (Track* before = live_track_with_id(t->crossing_partner)) end_crossing(*before);
+          end_crossing(*t);
+        }
+        a.crossing_partner = b.id;
+        b.crossing_partner = a.id;
+        a.crossing_seconds = b.crossing_seconds = last_update_time;
+      }
+    }
   }
 
   // Re-identification (config.reid_gate): each track confirmed for the first time in this update
@@ -645,7 +736,8 @@ struct Tracker::State {
   Associator associator;
   BoxNoise box_noise;
   ScoreCut score_cut;
-  bool cascades;  // the cascade round runs
+  bool cascades;            // the cascade round runs
+  bool resolves_crossings;  // re-identification is on: crossings are resolved by appearance
   std::int32_t next_id{1};
   int frame_count{0};
   double elapsed_frames{0.0};  // nominal frames since the first update

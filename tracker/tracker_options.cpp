@@ -302,7 +302,9 @@ std::vector<TrackerOption> make_table() {
            "first clear sighting within 1 s of its birth, then within at most 0.4) takes the id "
            "of a lost or removed track of its class that looks at most this far from it "
            "(Hellinger distance), was last seen at most reid_max_gap_s before within a walker's "
-           "reach, and that no other such track nearly matches (docs/appearance.md; 0: off)",
+           "reach, and that no other such track nearly matches; and two tracks whose boxes "
+           "overlapped trade ids when their next clear sightings each look like the other's, "
+           "within this (docs/appearance.md; 0: off)",
            &C::reid_gate, 0.0, 1.0),
       real("reid_max_gap_s", "the longest gap re-identification bridges, in seconds",
            &C::reid_max_gap_s, 0.0, 3600.0),

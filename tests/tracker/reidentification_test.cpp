@@ -4,6 +4,7 @@
 // live tracks never share one.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <set>
 #include <vector>
 
@@ -229,6 +230,54 @@ TEST(Reidentification, TheOneWhoLooksLikeThemIsChosenNotTheNearest) {
   ASSERT_EQ(ids.back().size(), 1U);
   // Reports are in track order: the second person's track is the second reported.
   EXPECT_EQ(ids.back()[0], ids[5][1]);
+}
+
+// Two people walk towards each other, meet, and each turns back the way they came. The motion
+// model carries each track on through the meeting, so each takes the other person; their first
+// clear sightings after it look like the other track's model, and the tracks trade ids back.
+// Returns the ids reported at the first person's box (the one who came from the left) before the
+// meeting and at the end.
+std::pair<std::int32_t, std::int32_t> ids_after_a_meeting(double reid_gate,
+                                                          const Appearance& left_looks,
+                                                          const Appearance& right_looks) {
+  std::vector<std::vector<Detection>> frames;
+  std::vector<float> left_x;
+  float left = 100.F;
+  float right = 300.F;
+  for (int k = 0; k < 10; ++k, left += 10.F, right -= 10.F) {  // meet at 200
+    frames.push_back({person(left, 200.F, left_looks), person(right, 200.F, right_looks)});
+    left_x.push_back(left);
+  }
+  for (int k = 0; k < 10; ++k, left -= 10.F, right += 10.F) {  // and turn back
+    frames.push_back({person(left, 200.F, left_looks), person(right, 200.F, right_looks)});
+    left_x.push_back(left);
+  }
+  Tracker tracker(config(reid_gate));
+  std::int32_t before = 0;
+  std::int32_t after = 0;
+  for (std::size_t k = 0; k < frames.size(); ++k) {
+    const auto& reports = tracker.update(frames[k], static_cast<double>(k) / kFps);
+    for (const TrackReport& r : reports) {
+      if (std::abs(r.box.x - left_x[k]) > 15.F) continue;  // the other person's box
+      if (k == 5) before = r.id;
+      if (k + 1 == frames.size()) after = r.id;
+    }
+  }
+  return {before, after};
+}
+
+TEST(Reidentification, TwoWhoMeetAndTurnBackKeepTheirIdsByTheirLooks) {
+  const auto [motion_before, motion_after] = ids_after_a_meeting(0.0, colour(3), colour(20));
+  ASSERT_NE(motion_before, 0);
+  ASSERT_NE(motion_after, 0);
+  EXPECT_NE(motion_after, motion_before) << "boxes alone: the tracks trade people at the meeting";
+
+  const auto [before, after] = ids_after_a_meeting(0.6, colour(3), colour(20));
+  EXPECT_EQ(after, before);
+
+  // Two who look alike cannot be told apart: the motion model's outcome stands.
+  const auto [alike_before, alike_after] = ids_after_a_meeting(0.6, colour(3), colour(3));
+  EXPECT_NE(alike_after, alike_before);
 }
 
 }  // namespace
