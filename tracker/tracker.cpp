@@ -42,8 +42,9 @@ constexpr double kLateReidSeconds = 1.0;
 // none, one late id behind the slow detector went to the wrong person).
 constexpr float kLateReidGate = 0.4F;
 
-// Crossing resolution (part of re-identification; docs/appearance.md, round 19): two tracks whose
-// boxes overlap this much (one covers this share of the other) may trade people, and...
+// Crossing resolution (resolve_crossings, with re-identification; docs/appearance.md, round 19):
+// two tracks whose boxes overlap this much (one covers this share of the other) may trade people,
+// and...
 constexpr float kCrossingShare = 0.3F;
 // ...are told apart by their first clear sightings within this long after they last overlapped
 // (a crossing of walkers is over in a second or two; later, a sighting is the track's own).
@@ -81,7 +82,7 @@ struct Tracker::State {
                   c.strong_birth_range_cut > 0.0 || (extension && extension->needs_score_range()),
                   c.score_range_cap, c.score_range_cap_below),
         cascades(c.confirmed_tracks_first || (extension && extension->cascades())),
-        resolves_crossings(c.reid_gate > 0.0) {
+        resolves_crossings(c.resolve_crossings && c.reid_gate > 0.0) {
     const auto tracks = static_cast<std::size_t>(config.max_tracks);
     const auto detections = static_cast<std::size_t>(config.max_detections);
     slots.resize(tracks);
@@ -737,7 +738,7 @@ struct Tracker::State {
   BoxNoise box_noise;
   ScoreCut score_cut;
   bool cascades;            // the cascade round runs
-  bool resolves_crossings;  // re-identification is on: crossings are resolved by appearance
+  bool resolves_crossings;  // resolve_crossings with re-identification on
   std::int32_t next_id{1};
   int frame_count{0};
   double elapsed_frames{0.0};  // nominal frames since the first update

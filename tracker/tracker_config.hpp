@@ -154,6 +154,10 @@ struct TrackerConfig {
   /// appearance, when no other one is nearly as near. A lost one it takes over ends. 0 = off.
   double reid_gate{0.0};
   double reid_max_gap_s{5.0};
+  /// With re-identification on: two confirmed tracks whose boxes overlapped trade ids and models
+  /// when their first clear sightings after it each look like the other's model (the motion model
+  /// gave each the other person). Measured, not in a preset (docs/appearance.md, round 19).
+  bool resolve_crossings{false};
 
   // --- particle filter ---
   int particle_count{100};

@@ -302,12 +302,15 @@ std::vector<TrackerOption> make_table() {
            "first clear sighting within 1 s of its birth, then within at most 0.4) takes the id "
            "of a lost or removed track of its class that looks at most this far from it "
            "(Hellinger distance), was last seen at most reid_max_gap_s before within a walker's "
-           "reach, and that no other such track nearly matches; and two tracks whose boxes "
-           "overlapped trade ids when their next clear sightings each look like the other's, "
-           "within this (docs/appearance.md; 0: off)",
+           "reach, and that no other such track nearly matches (docs/appearance.md; 0: off)",
            &C::reid_gate, 0.0, 1.0),
       real("reid_max_gap_s", "the longest gap re-identification bridges, in seconds",
            &C::reid_max_gap_s, 0.0, 3600.0),
+      flag("resolve_crossings",
+           "with re-identification on (reid_gate): two confirmed tracks whose boxes overlapped "
+           "trade ids when their first clear sightings after it each look like the other's model "
+           "(docs/appearance.md: measured, in no preset)",
+           &C::resolve_crossings),
       integer("particle_count",
               "particles per track (particle predictor); max_tracks x particle_count is at most " +
                   std::to_string(limits::kMaxParticleStorage),

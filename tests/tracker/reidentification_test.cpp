@@ -237,7 +237,7 @@ TEST(Reidentification, TheOneWhoLooksLikeThemIsChosenNotTheNearest) {
 // clear sightings after it look like the other track's model, and the tracks trade ids back.
 // Returns the ids reported at the first person's box (the one who came from the left) before the
 // meeting and at the end.
-std::pair<std::int32_t, std::int32_t> ids_after_a_meeting(double reid_gate,
+std::pair<std::int32_t, std::int32_t> ids_after_a_meeting(bool resolve_crossings,
                                                           const Appearance& left_looks,
                                                           const Appearance& right_looks) {
   std::vector<std::vector<Detection>> frames;
@@ -252,7 +252,9 @@ std::pair<std::int32_t, std::int32_t> ids_after_a_meeting(double reid_gate,
     frames.push_back({person(left, 200.F, left_looks), person(right, 200.F, right_looks)});
     left_x.push_back(left);
   }
-  Tracker tracker(config(reid_gate));
+  TrackerConfig with = config(0.6);
+  with.resolve_crossings = resolve_crossings;
+  Tracker tracker(with);
   std::int32_t before = 0;
   std::int32_t after = 0;
   for (std::size_t k = 0; k < frames.size(); ++k) {
@@ -267,16 +269,16 @@ std::pair<std::int32_t, std::int32_t> ids_after_a_meeting(double reid_gate,
 }
 
 TEST(Reidentification, TwoWhoMeetAndTurnBackKeepTheirIdsByTheirLooks) {
-  const auto [motion_before, motion_after] = ids_after_a_meeting(0.0, colour(3), colour(20));
+  const auto [motion_before, motion_after] = ids_after_a_meeting(false, colour(3), colour(20));
   ASSERT_NE(motion_before, 0);
   ASSERT_NE(motion_after, 0);
-  EXPECT_NE(motion_after, motion_before) << "boxes alone: the tracks trade people at the meeting";
+  EXPECT_NE(motion_after, motion_before) << "without it: the tracks trade people at the meeting";
 
-  const auto [before, after] = ids_after_a_meeting(0.6, colour(3), colour(20));
+  const auto [before, after] = ids_after_a_meeting(true, colour(3), colour(20));
   EXPECT_EQ(after, before);
 
   // Two who look alike cannot be told apart: the motion model's outcome stands.
-  const auto [alike_before, alike_after] = ids_after_a_meeting(0.6, colour(3), colour(3));
+  const auto [alike_before, alike_after] = ids_after_a_meeting(true, colour(3), colour(3));
   EXPECT_NE(alike_after, alike_before);
 }
 
