@@ -108,6 +108,10 @@ std::optional<std::string> config_problem(const TrackerConfig& config) {
     return "appearance_gate and appearance_weight must be in [0, 1]";
   if (!(config.appearance_momentum >= 0.0 && config.appearance_momentum < 1.0))
     return "appearance_momentum must be in [0, 1)";
+  if (config.resolve_crossings && !(config.reid_gate > 0.0))
+    return "resolve_crossings needs re-identification on (reid_gate above 0): its trades are "
+           "bounded "
+           "by reid_gate";
   return std::nullopt;
 }
 

@@ -220,5 +220,15 @@ TEST(TrackerOptions, ParticleStorageIsCheckedAsAWhole) {
   EXPECT_FALSE(config_problem(config).has_value()) << "no particles are allocated for kalman";
 }
 
+// A setting that would do nothing is refused, naming what it needs: crossing resolution without
+// re-identification (the sort preset has none).
+TEST(TrackerOptions, CrossingResolutionNeedsReidentification) {
+  TrackerConfig config = with_options(*find_preset("sort"), {{"resolve_crossings", "true"}});
+  ASSERT_TRUE(config_problem(config).has_value());
+  EXPECT_NE(config_problem(config)->find("reid_gate"), std::string::npos);
+  config = with_options(*find_preset("rtmot"), {{"resolve_crossings", "true"}});
+  EXPECT_FALSE(config_problem(config).has_value());
+}
+
 }  // namespace
 }  // namespace rtmot::tracker
