@@ -63,7 +63,7 @@ struct Track {
   bool taken_over{false};           // a re-identified track took its id: it ends in this update
   // Born at or above strong_birth_range_cut: confirmed sooner.
   bool strong_birth{false};
-  // Crossing resolution (re-identification): the id of the track whose box last overlapped this
+  // Crossing resolution (resolve_crossings): the id of the track whose box last overlapped this
   // one's, when, and this track's latest clear sighting since, held back from its model until the
   // two are told apart.
   std::int32_t crossing_partner{0};  // 0: none

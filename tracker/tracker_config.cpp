@@ -110,8 +110,7 @@ std::optional<std::string> config_problem(const TrackerConfig& config) {
     return "appearance_momentum must be in [0, 1)";
   if (config.resolve_crossings && !(config.reid_gate > 0.0))
     return "resolve_crossings needs re-identification on (reid_gate above 0): its trades are "
-           "bounded "
-           "by reid_gate";
+           "bounded by reid_gate";
   return std::nullopt;
 }
 
