@@ -81,8 +81,7 @@ struct Tracker::State {
         score_cut(0.0, c.score_range_cut, kScoreWindow,
                   c.strong_birth_range_cut > 0.0 || (extension && extension->needs_score_range()),
                   c.score_range_cap, c.score_range_cap_below),
-        cascades(c.confirmed_tracks_first || (extension && extension->cascades())),
-        resolves_crossings(c.resolve_crossings && c.reid_gate > 0.0) {
+        cascades(c.confirmed_tracks_first || (extension && extension->cascades())) {
     const auto tracks = static_cast<std::size_t>(config.max_tracks);
     const auto detections = static_cast<std::size_t>(config.max_detections);
     slots.resize(tracks);
@@ -479,7 +478,7 @@ struct Tracker::State {
       track.life.settle(track.matched_now() && confirmed(track));
       track.first_confirmed_now = !was_confirmed && track.life.stage() == TrackStage::confirmed;
     }
-    if (resolves_crossings) resolve_crossings();
+    if (config.resolve_crossings) resolve_crossings();  // config_problem: reid_gate is on
     if (!departed.empty()) reidentify_newly_confirmed();
     std::size_t kept = 0;
     for (const int slot : order) {
@@ -500,7 +499,7 @@ struct Tracker::State {
       }
     }
     order.resize(kept);
-    if (resolves_crossings) note_crossings();
+    if (config.resolve_crossings) note_crossings();
   }
 
   Track* live_track_with_id(std::int32_t id) {
@@ -737,8 +736,7 @@ struct Tracker::State {
   Associator associator;
   BoxNoise box_noise;
   ScoreCut score_cut;
-  bool cascades;            // the cascade round runs
-  bool resolves_crossings;  // resolve_crossings with re-identification on
+  bool cascades;  // the cascade round runs
   std::int32_t next_id{1};
   int frame_count{0};
   double elapsed_frames{0.0};  // nominal frames since the first update
