@@ -69,14 +69,6 @@ struct Track {
   std::int32_t crossing_partner{0};  // 0: none
   double crossing_seconds{0.0};
   Appearance held_sighting;
-  // Reclaiming (reclaim_margin): matched in the update in progress after missed updates, with
-  // what it looked like before and where and when it was seen before the gap.
-  bool reacquired_now{false};
-  float reacquired_distance{0.F};  // between the model before the match and the detection
-  Appearance model_before_gap;
-  Appearance reacquired_sighting;
-  Box box_before_gap;
-  double seen_before_gap_seconds{0.0};
 
   /// Matched (or born) in the update in progress.
   bool matched_now() const { return steps_since_update == 0; }

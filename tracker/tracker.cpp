@@ -70,15 +70,6 @@ bool usable(const Detection& detection) {
 // The update is a sequence of named passes over a table of track slots (see update()). Every
 // buffer below is sized at construction; a pass only clears and refills them.
 struct Tracker::State {
-  // Removed tracks re-identification may give their id back to (id 0: an empty entry), kept in a
-  // ring (`departed`).
-  struct Departed {
-    std::int32_t id{0};
-    std::int32_t class_id{0};
-    Box last_box;
-    double last_seen_seconds{0.0};
-    Appearance appearance;
-  };
   State(const TrackerConfig& c, std::unique_ptr<TrackerExtension> e)
       : config(validated(c)),
         extension(std::move(e)),
@@ -146,7 +137,6 @@ struct Tracker::State {
     split_by_score(detections);
     predict_tracks(dt);
     if (observed != nullptr) correct_with_observed(*observed);
-    if (config.merged_share > 0.0) drop_merged_detections();
     first_round();
     if (cascades) cascade_round();
     if (config.second_round && !low.empty()) second_round();
@@ -209,7 +199,6 @@ struct Tracker::State {
       }
       track.streak_frames += dt;
       track.model_started_now = false;
-      track.reacquired_now = false;
       ++track.steps_since_update;
       track.frames_since_update += dt;
       if (is_finite(track.predicted)) {
@@ -219,29 +208,6 @@ struct Tracker::State {
       }
     }
     order.resize(kept);
-  }
-
-  // A box around two people walking side by side (the detector merged them) would drag one
-  // track onto both and leave the other coasting: it continues neither and starts no track.
-  void drop_merged_detections() {
-    const auto share = static_cast<float>(config.merged_share);
-    const auto spans_two = [&](const Detection& detection) {
-      for (std::size_t i = 0; i < order.size(); ++i) {
-        const Track& a = slots[order[i]];
-        if (!a.life.ever_confirmed() || covered_share(a.predicted, detection.box) < share) continue;
-        for (std::size_t j = i + 1; j < order.size(); ++j) {
-          const Track& b = slots[order[j]];
-          if (!b.life.ever_confirmed() || covered_share(b.predicted, detection.box) < share)
-            continue;
-          const float apart = std::abs(a.predicted.center_x() - b.predicted.center_x());
-          if (apart >= 0.25F * (a.predicted.w + b.predicted.w)) return true;
-        }
-      }
-      return false;
-    };
-    high.erase(std::remove_if(high.begin(), high.end(), spans_two), high.end());
-    low.erase(std::remove_if(low.begin(), low.end(), spans_two), low.end());
-    high_taken.assign(high.size(), 0);
   }
 
   // Each observed track's prior moves to what the image showed, before any association sees it.
@@ -391,7 +357,6 @@ struct Tracker::State {
     if (config.observation_centric_reupdate && kalman != nullptr) {
       track.at_last_observation = *kalman;
     }
-    if (config.reclaim_margin > 0.0) note_reacquisition(track, detection);
     track.last_observation = detection.box;
     track.model_started_now = !track.appearance.valid && detection.appearance.valid;
     if (detection.appearance.valid && track.appearance.valid && track.crossing_partner != 0) {
@@ -407,20 +372,6 @@ struct Tracker::State {
     track.score = detection.score;
     track.score_sum += detection.score;
     ++track.matches;
-  }
-
-  // Reclaiming (reclaim_margin): a confirmed track matched after missed updates keeps what it
-  // looked like and where it was before the gap, until reclaim_reacquired() has decided whether
-  // the detection is its person's. Called before the match changes the track.
-  static void note_reacquisition(Track& track, const Detection& detection) {
-    track.reacquired_now = track.steps_since_update > 1 && track.life.ever_confirmed() &&
-                           track.appearance.valid && detection.appearance.valid;
-    if (!track.reacquired_now) return;
-    track.reacquired_distance = appearance_distance(track.appearance, detection.appearance);
-    track.model_before_gap = track.appearance;
-    track.reacquired_sighting = detection.appearance;
-    track.box_before_gap = track.last_observation;
-    track.seen_before_gap_seconds = track.last_seen_seconds;
   }
 
   // OC-SORT's ORU: replay the lost frames from the last observation along a straight line to the
@@ -503,7 +454,6 @@ struct Tracker::State {
     track.last_seen_seconds = last_update_time;
     track.born_seconds = last_update_time;
     track.model_started_now = false;
-    track.reacquired_now = false;
     track.first_confirmed_now = false;
     track.taken_over = false;
     track.crossing_partner = 0;
@@ -528,8 +478,7 @@ struct Tracker::State {
       track.life.settle(track.matched_now() && confirmed(track));
       track.first_confirmed_now = !was_confirmed && track.life.stage() == TrackStage::confirmed;
     }
-    if (config.resolve_crossings) resolve_crossings();      // config_problem: reid_gate is on
-    if (config.reclaim_margin > 0.0) reclaim_reacquired();  // the same
+    if (config.resolve_crossings) resolve_crossings();  // config_problem: reid_gate is on
     if (!departed.empty()) reidentify_newly_confirmed();
     std::size_t kept = 0;
     for (const int slot : order) {
@@ -626,52 +575,6 @@ struct Tracker::State {
     }
   }
 
-  // A track that coasted and was found again may have taken a neighbour whose own track lost
-  // them meanwhile (docs/appearance.md: most of S2L1's id changes are such takeovers). If the
-  // detection looks closer, by more than reclaim_margin, to a lost track of its class seen after
-  // this one went missing and within a walker's reach (and no other such track nearly as close,
-  // kReidMargin, nor further than reid_gate), the person keeps the lost track's id: this track
-  // takes that id and model, the lost one ends, and this track's own id, with its model and
-  // place from before the gap, waits with the removed tracks for its person's return.
-  void reclaim_reacquired() {
-    for (const int slot : order) {
-      Track& track = slots[slot];
-      if (!track.reacquired_now || track.taken_over) continue;
-      float best = std::numeric_limits<float>::infinity();
-      float second = best;
-      int owner = -1;
-      for (const int other : order) {
-        const Track& lost = slots[other];
-        if (other == slot || lost.taken_over || lost.life.stage() != TrackStage::lost ||
-            !lost.appearance.valid || lost.class_id != track.class_id ||
-            !(lost.last_seen_seconds > track.seen_before_gap_seconds) ||
-            !within_reach(lost.last_observation, lost.last_seen_seconds, track))
-          continue;
-        const float distance = appearance_distance(lost.appearance, track.reacquired_sighting);
-        if (distance < best) {
-          second = best;
-          best = distance;
-          owner = other;
-        } else if (distance < second) {
-          second = distance;
-        }
-      }
-      if (owner < 0 || best > static_cast<float>(config.reid_gate) || second < best + kReidMargin ||
-          !(best + static_cast<float>(config.reclaim_margin) < track.reacquired_distance))
-        continue;
-      Track& lost = slots[owner];
-      remember(Departed{track.id, track.class_id, track.box_before_gap,
-                        track.seen_before_gap_seconds, track.model_before_gap});
-      track.id = lost.id;
-      track.appearance = lost.appearance;
-      blend_appearance(track.appearance, track.reacquired_sighting,
-                       static_cast<float>(config.appearance_momentum));
-      track.crossing_partner = 0;
-      track.held_sighting.valid = false;
-      lost.taken_over = true;
-    }
-  }
-
   // Re-identification (config.reid_gate): each track confirmed for the first time in this update
   // may take the id of a lost track (still coasting) or of a removed one (`departed`). It happens
   // before the track is first reported, so its id does not change in the output; except for a
@@ -744,13 +647,8 @@ struct Tracker::State {
   // when the table is full; entries older than reid_max_gap_s are never taken).
   void remember_departure(const Track& track) {
     if (departed.empty() || !track.life.ever_confirmed() || !track.appearance.valid) return;
-    remember(Departed{track.id, track.class_id, track.last_observation, track.last_seen_seconds,
-                      track.appearance});
-  }
-
-  // Into the ring of removed tracks (sized when re-identification is on).
-  void remember(const Departed& gone) {
-    departed[next_departed] = gone;
+    departed[next_departed] = Departed{track.id, track.class_id, track.last_observation,
+                                       track.last_seen_seconds, track.appearance};
     next_departed = (next_departed + 1) % departed.size();
   }
 
@@ -825,6 +723,14 @@ struct Tracker::State {
   std::vector<AssociationMatch> round_matches;
   std::vector<TrackReport> reports;
   std::vector<TrackReport> table;  // track_table()'s
+  // Removed tracks re-identification may give their id back to (id 0: an empty entry), a ring.
+  struct Departed {
+    std::int32_t id{0};
+    std::int32_t class_id{0};
+    Box last_box;
+    double last_seen_seconds{0.0};
+    Appearance appearance;
+  };
   std::vector<Departed> departed;  // sized max_tracks when re-identification is on, else empty
   std::size_t next_departed{0};
   Associator associator;

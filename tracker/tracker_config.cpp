@@ -111,11 +111,6 @@ std::optional<std::string> config_problem(const TrackerConfig& config) {
   if (config.resolve_crossings && !(config.reid_gate > 0.0))
     return "resolve_crossings needs re-identification on (reid_gate above 0): its trades are "
            "bounded by reid_gate";
-  if (!(config.reclaim_margin >= 0.0 && config.reclaim_margin <= 1.0))
-    return "reclaim_margin must be in [0, 1]";
-  if (config.reclaim_margin > 0.0 && !(config.reid_gate > 0.0))
-    return "reclaim_margin needs re-identification on (reid_gate above 0): a reclaimed id is "
-           "bounded by reid_gate, and the id given up waits with the removed ones";
   return std::nullopt;
 }
 

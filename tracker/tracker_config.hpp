@@ -158,16 +158,6 @@ struct TrackerConfig {
   /// when their first clear sightings after it each look like the other's model (the motion model
   /// gave each the other person). Measured, not in a preset (docs/appearance.md, round 19).
   bool resolve_crossings{false};
-  /// With re-identification on: a confirmed track found again after missed updates whose new
-  /// detection looks closer, by more than this margin, to another lost track nearby that was seen
-  /// after it went missing gives that person back: the track takes the lost one's id and model,
-  /// and its own id waits with the removed ones for its person (a coasting track took a
-  /// neighbour whose own track had just lost them). 0 = off.
-  double reclaim_margin{0.0};
-  /// A detection that covers at least this share of the predicted boxes of two confirmed tracks
-  /// standing side by side (centres at least half a width apart) is one box around two people:
-  /// it continues neither track and starts none. 0 = off.
-  double merged_share{0.0};
 
   // --- particle filter ---
   int particle_count{100};

@@ -311,17 +311,6 @@ std::vector<TrackerOption> make_table() {
            "trade ids when their first clear sightings after it each look like the other's model "
            "(docs/appearance.md: measured, in no preset)",
            &C::resolve_crossings),
-      real("reclaim_margin",
-           "with re-identification on (reid_gate): a confirmed track found again after missed "
-           "updates whose new detection looks closer by more than this to another lost track "
-           "nearby, seen after it went missing, takes that track's id, and its own waits for "
-           "re-identification (docs/appearance.md; 0: off)",
-           &C::reclaim_margin, 0.0, 1.0),
-      real("merged_share",
-           "a detection covering at least this share of each of two confirmed tracks' predicted "
-           "boxes side by side is one box around two people: it continues neither and starts no "
-           "track (0: off)",
-           &C::merged_share, 0.0, 1.0),
       integer("particle_count",
               "particles per track (particle predictor); max_tracks x particle_count is at most " +
                   std::to_string(limits::kMaxParticleStorage),
