@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "messages/frame_result.hpp"
+#include "tracker/box.hpp"
 
 namespace rtmot::pipeline {
 
@@ -18,6 +19,9 @@ struct SinkFrame {
   cv::Mat& image;     // the picture, only when the pipeline keeps images; a consumer may draw on it
   double recent_fps;  // frames sent per second over the sink's last window of max(stats interval,
                       // 1 s), whether or not the log line is on; 0 before the first window
+  /// The detections the tracker was given at this frame, when the pipeline keeps them
+  /// (PipelineOptions::keep_detections) and the frame was processed; else empty.
+  const std::vector<tracker::Detection>& detections;
 };
 
 class FrameConsumer {

@@ -112,7 +112,7 @@ struct Pipeline::Stages {
     detect = std::make_unique<DetectStage>(std::move(detectors), std::move(slots), frames_ready,
                                            detect_options);
     track = std::make_unique<TrackStage>(trackers, detect->output(), options.queue_capacity,
-                                         keep_images, options.full_rate);
+                                         keep_images, options.full_rate, options.keep_detections);
     // One source: the length the run will see, for the progress line's position and ETA (it ends
     // at --max-frames when that comes first).
     std::int64_t total_frames = 0;

@@ -54,6 +54,9 @@ struct PipelineOptions {
   /// Full-rate output (docs/full-rate.md): a message for every camera frame; those the detector
   /// skipped carry the tracks' predicted boxes, flagged predicted.
   bool full_rate{false};
+  /// Hand each processed frame's detections, as the tracker got them, to the consumers
+  /// (SinkFrame::detections: output.mot_detections). A copy into storage reserved per queue slot.
+  bool keep_detections{false};
   /// Follow the tracks' boxes in the image through the frames the detector skips (a gray
   /// thumbnail of every camera frame, sparse optical flow): the skipped frames' messages carry
   /// observed boxes, and each track starts the next association where the image showed it

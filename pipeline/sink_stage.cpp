@@ -60,7 +60,8 @@ void SinkStage::run(const std::atomic<bool>& abort) {
       }
     }
     // A predicted frame's picture was never kept (the capture stage passed it over).
-    const SinkFrame frame{result, result.predicted ? no_image_ : in->image, recent_fps_};
+    const SinkFrame frame{result, result.predicted ? no_image_ : in->image, recent_fps_,
+                          in->detections};
     for (const auto& consumer : consumers_) consumer->consume(frame);
     if (frame_processed && interval_ns_ > 0 && elapsed_ns >= interval_ns_) {
       log_interval(*in, elapsed_ns);

@@ -30,6 +30,9 @@ struct TrackedFrame {
   std::size_t input{0};
   messages::FrameResult result;
   cv::Mat image;  // only when the annotated video is on
+  /// What the tracker was given at a processed frame, only when they are kept
+  /// (PipelineOptions::keep_detections); empty in every other message.
+  std::vector<tracker::Detection> detections;
 };
 
 }  // namespace rtmot::pipeline

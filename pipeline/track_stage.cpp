@@ -22,6 +22,12 @@ int most_tracks(const std::vector<TrackInput>& inputs) {
   return most;
 }
 
+int most_detections(const std::vector<TrackInput>& inputs) {
+  int most = 0;
+  for (const auto& input : inputs) most = std::max(most, input.tracker.max_detections);
+  return most;
+}
+
 }  // namespace
 
 std::uint32_t TrackStage::Stream::dropped_before(std::int64_t frame_number) const {
@@ -45,12 +51,16 @@ void TrackStage::Stream::stamp(messages::FrameResult& result, std::int64_t frame
 }
 
 TrackStage::TrackStage(const std::vector<TrackInput>& inputs, SpscQueue<DetectedFrame>& input,
-                       std::size_t queue_capacity, bool keep_images, bool full_rate)
+                       std::size_t queue_capacity, bool keep_images, bool full_rate,
+                       bool keep_detections)
     : input_(input),
       keep_images_(keep_images),
       full_rate_(full_rate),
+      keep_detections_(keep_detections),
       output_(std::max(queue_capacity, inputs.size()), [&](TrackedFrame& item) {
         item.result.tracks.reserve(static_cast<std::size_t>(most_tracks(inputs)));
+        if (keep_detections)
+          item.detections.reserve(static_cast<std::size_t>(most_detections(inputs)));
         // Events are rare; a burst beyond this grows the slot once and it keeps the capacity.
         item.result.events.reserve(kEventsPerFrame);
       }) {
@@ -120,6 +130,8 @@ void TrackStage::run(const std::atomic<bool>& abort) {
     result.times.tracked_ns = platform::steady_now_ns();
     out->input = in->input;
     if (keep_images_) std::swap(out->image, in->image);
+    // Within the slot's reserved capacity (the detect stage keeps to the same max_detections).
+    if (keep_detections_) out->detections.assign(in->detections.begin(), in->detections.end());
     if (!in->outage) {
       ++stream.frames_processed;
       stream.last_frame_number = result.frame_number;
@@ -158,6 +170,7 @@ bool TrackStage::send_predicted(const DetectedFrame& in, Stream& stream,
                  stream.dropped_before(skipped.frame_number));
     result.predicted = true;
     result.observed = observed;
+    out->detections.clear();
     result.times = messages::FrameTimes{};
     result.times.captured_ns = skipped.capture_ns;
     result.times.tracked_ns = platform::steady_now_ns();
@@ -243,6 +256,7 @@ void TrackStage::finish_streams(const std::atomic<bool>& abort) {
     result.events.assign(decided.begin(), decided.end());
     stream.stamp(result, stream.last_frame_number, stream.last_pts_ns, stream.last_frames_dropped);
     result.end_of_stream = true;
+    out->detections.clear();
     result.times = messages::FrameTimes{};
     result.times.captured_ns = platform::steady_now_ns();
     result.times.tracked_ns = result.times.captured_ns;

@@ -41,8 +41,11 @@ class TrackStage {
   /// reported last (tracker::kPredictedMinHits) at their boxes predicted for that frame's pts;
   /// where the image was followed into that frame, flagged observed too, with every track reported
   /// last (kObservedMinHits, track_stage.cpp) at the boxes the image showed (docs/full-rate.md).
+  /// `keep_detections`: each processed frame's message carries the detections the tracker got
+  /// (TrackedFrame::detections), copied into storage reserved for the inputs' max_detections.
   TrackStage(const std::vector<TrackInput>& inputs, SpscQueue<DetectedFrame>& input,
-             std::size_t queue_capacity, bool keep_images, bool full_rate = false);
+             std::size_t queue_capacity, bool keep_images, bool full_rate = false,
+             bool keep_detections = false);
 
   /// Until the input ends; then, unless aborted, one last message per stream with lines or zones
   /// (end_of_stream) with the events its counter's finish() decides.
@@ -105,6 +108,7 @@ class TrackStage {
   SpscQueue<DetectedFrame>& input_;
   const bool keep_images_;
   const bool full_rate_;
+  const bool keep_detections_;
   std::vector<Stream> streams_;  // written by the track thread only
   SpscQueue<TrackedFrame> output_;
 };

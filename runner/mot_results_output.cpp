@@ -89,8 +89,13 @@ fs::path mot_frames_file(const fs::path& dir, const std::string& name) {
   return motio::processed_frames_file(dir, name);
 }
 
+fs::path mot_detections_file(const fs::path& dir, const std::string& name) {
+  return motio::sequence_file(dir, name, ".det.txt");
+}
+
 MotResultsOutput::MotResultsOutput(const fs::path& dir,
-                                   const std::vector<MotResultsTarget>& targets) {
+                                   const std::vector<MotResultsTarget>& targets,
+                                   bool with_detections) {
   std::error_code error;
   fs::create_directories(dir, error);
   if (error || !fs::is_directory(dir, error)) {
@@ -103,8 +108,10 @@ MotResultsOutput::MotResultsOutput(const fs::path& dir,
     streams_.push_back(Stream{target.stream_id,
                               mot_frames_file(dir, target.name),
                               motio::ResultsWriter(mot_results_file(dir, target.name)),
+                              std::nullopt,
                               {},
                               0});
+    if (with_detections) streams_.back().detections.emplace(mot_detections_file(dir, target.name));
   }
 }
 
@@ -125,7 +132,9 @@ void MotResultsOutput::consume(const pipeline::SinkFrame& frame) {
   if (frame_number <= stream->last_written) return;
   stream->results.write(frame_number, result.tracks);
   stream->last_written = frame_number;
-  if (!result.predicted) stream->frames.push_back(frame_number);
+  if (result.predicted) return;
+  stream->frames.push_back(frame_number);
+  if (stream->detections) stream->detections->write(frame_number, frame.detections);
 }
 
 void MotResultsOutput::finish() {
@@ -136,6 +145,11 @@ void MotResultsOutput::finish() {
   for (Stream& stream : streams_) {
     try {
       motio::publish_results_and_frames(stream.results, stream.frames_file, stream.frames);
+    } catch (...) {
+      if (!first) first = std::current_exception();
+    }
+    try {
+      if (stream.detections) stream.detections->close();
     } catch (...) {
       if (!first) first = std::current_exception();
     }

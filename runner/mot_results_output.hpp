@@ -8,9 +8,11 @@
 // run both ways (docs/full-rate.md).
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "motio/detections_writer.hpp"
 #include "motio/results_writer.hpp"
 #include "pipeline/frame_consumer.hpp"
 #include "runner/run_config.hpp"
@@ -37,15 +39,21 @@ std::vector<MotResultsTarget> mot_results_targets(const RunConfig& config);
 /// DIR/NAME.txt and DIR/NAME.frames.
 std::filesystem::path mot_results_file(const std::filesystem::path& dir, const std::string& name);
 std::filesystem::path mot_frames_file(const std::filesystem::path& dir, const std::string& name);
+/// DIR/NAME.det.txt (output.mot_detections).
+std::filesystem::path mot_detections_file(const std::filesystem::path& dir,
+                                          const std::string& name);
 
-/// The consumer. Both files of a source appear whole at finish() (also after a failure: what was
-/// tracked until then is kept, and the frames file says which frames that was); a run killed
-/// before leaves neither (common/output_file.hpp). Outage ticks are no processed frame.
+/// The consumer. Both files of a source (three with the detections) appear whole at finish()
+/// (also after a failure: what was tracked until then is kept, and the frames file says which
+/// frames that was); a run killed before leaves none (common/output_file.hpp). Outage ticks are no
+/// processed frame.
 class MotResultsOutput : public pipeline::FrameConsumer {
  public:
   /// Creates `dir` (and its parents) and every results file's temporary; throws InputError
-  /// (output.mot_results) when it cannot.
-  MotResultsOutput(const std::filesystem::path& dir, const std::vector<MotResultsTarget>& targets);
+  /// (output.mot_results) when it cannot. `with_detections`: also NAME.det.txt, the processed
+  /// frames' SinkFrame::detections (the pipeline must keep them: keep_detections).
+  MotResultsOutput(const std::filesystem::path& dir, const std::vector<MotResultsTarget>& targets,
+                   bool with_detections = false);
 
   void consume(const pipeline::SinkFrame& frame) override;
   void finish() override;
@@ -55,8 +63,9 @@ class MotResultsOutput : public pipeline::FrameConsumer {
     std::uint32_t stream_id;
     std::filesystem::path frames_file;
     motio::ResultsWriter results;
-    std::vector<int> frames;  // processed, ascending
-    int last_written{0};      // the last frame given rows, processed or predicted
+    std::optional<motio::DetectionsWriter> detections;  // with_detections only
+    std::vector<int> frames;                            // processed, ascending
+    int last_written{0};  // the last frame given rows, processed or predicted
   };
   std::vector<Stream> streams_;
   bool finished_{false};

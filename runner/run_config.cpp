@@ -299,6 +299,9 @@ void validate(const RunConfig& config) {
   if (config.detector.kind == DetectorKind::ssd && config.detector.model.empty()) {
     missing("detector.model", "the ssd detector needs a model file");
   }
+  if (config.output.mot_detections && config.output.mot_results.empty()) {
+    missing("output.mot_detections", "writes into the results folder: set output.mot_results");
+  }
   if (config.detector.kind == DetectorKind::replay && config.detector.det_file.empty()) {
     missing("detector.det_file", "the replay detector needs a det.txt file");
   }

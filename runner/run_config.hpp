@@ -111,6 +111,9 @@ struct OutputConfig {
   std::string web_save_to;
   /// MOTChallenge results per source, in this folder (runner/mot_results_output.hpp); empty = off.
   std::string mot_results;
+  /// With mot_results: also NAME.det.txt, every processed frame's detections as the tracker got
+  /// them (a MOTChallenge det.txt: replayed by detector.det_file, read by rtmot track).
+  bool mot_detections{false};
   /// A message for every camera frame, predicted where the detector skipped (docs/full-rate.md).
   bool full_rate{false};
 };

@@ -356,6 +356,11 @@ std::vector<RunSetting> output_settings() {
            "write MOTChallenge results per source into this folder: NAME.txt and NAME.frames "
            "(the frames processed), for rtmot eval",
            [](RunConfig& c) -> std::string& { return c.output.mot_results; }),
+      boolean("output.mot_detections", "--mot-detections",
+              "with output.mot_results: also NAME.det.txt there, each processed frame's "
+              "detections as the tracker got them (a MOTChallenge det.txt: --det-file replays "
+              "it; docs/scoring.md)",
+              [](RunConfig& c) -> bool& { return c.output.mot_detections; }),
       boolean("output.full_rate", "--full-rate",
               "a message for every camera frame: those the detector skipped carry each track's "
               "predicted box, flagged predicted (docs/full-rate.md)",

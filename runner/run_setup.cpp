@@ -351,11 +351,13 @@ RunOutputs make_outputs(const RunConfig& config, std::vector<pipeline::PipelineI
   std::unique_ptr<pipeline::FrameConsumer> mot_results;
   if (!output.mot_results.empty()) {
     const std::vector<MotResultsTarget> targets = mot_results_targets(config);
-    mot_results = std::make_unique<MotResultsOutput>(output.mot_results, targets);
+    mot_results =
+        std::make_unique<MotResultsOutput>(output.mot_results, targets, output.mot_detections);
     for (const auto& target : targets) {
       outputs.destinations.push_back(
           file_line("mot results", mot_results_file(output.mot_results, target.name).string()) +
-          " and " + target.name + ".frames");
+          " and " + target.name + ".frames" +
+          (output.mot_detections ? " and " + target.name + ".det.txt" : ""));
     }
   }
   if (output.udp) {
@@ -604,6 +606,10 @@ void check_run_files(const RunConfig& config) {
     for (const auto& target : mot_results_targets(config)) {
       outputs.push_back({mot_results_file(output.mot_results, target.name), "output.mot_results"});
       outputs.push_back({mot_frames_file(output.mot_results, target.name), "output.mot_results"});
+      if (output.mot_detections) {
+        outputs.push_back(
+            {mot_detections_file(output.mot_results, target.name), "output.mot_detections"});
+      }
     }
   }
   platform::check_files_and_open_log(inputs, outputs);
@@ -661,6 +667,7 @@ pipeline::PipelineOptions make_options(const RunConfig& config) {
   // the queues.
   options.keep_images = false;
   options.full_rate = config.output.full_rate;
+  options.keep_detections = config.output.mot_detections;
   options.follow_image = config.detector.follow_image;
   options.threads = config.threads;
   return options;

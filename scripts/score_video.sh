@@ -11,7 +11,10 @@
 # Env: SEQUENCES (default "PETS09-S2L1 ADL-Rundle-6"), FRAMES (the first N frames only; default all),
 #      SCORE_FROM (score frames N.. only: the ground truth, the results and the processed frames
 #      from N on, e.g. a second half; the run still starts at frame 1), BUILD (default build), RESCORE=1 (score a run folder again without running the pipeline
-#      again, when its run finished).
+#      again, when its run finished), REPLAY_FROM=OUT0/LABEL0 (no model: each run replays the
+#      detections an earlier run of the same sequence and latency recorded there, on the same
+#      video: byte for byte that run's detections, at replay speed; docs/scoring.md).
+# Every run records its detections (OUT/LABEL/SEQUENCE-LATENCY/mot/NAME.det.txt) for such replays.
 # vtest.avi is PETS09-S2L1, whose true rate is 7 fps while the file's header says 10: a latency L
 # at 7 fps is simulated as L x 10 / 7 on the file's clock (the same frames are skipped), and the
 # tracker is told 7 fps.
@@ -60,7 +63,13 @@ for sequence in ${SEQUENCES:-PETS09-S2L1 ADL-Rundle-6}; do
     # The ground truth of the frames run (FRAMES): scoring stops where the run stopped.
     from="${SCORE_FROM:-1}"
     awk -F, -v n="$frames" -v from="$from" '$1 <= n && $1 >= from' "$gt/gt/gt.txt" >"$run/gt/$sequence/gt/gt.txt"
-    args=(run --source "$src" --max-frames "$frames" --mot-results "$run/mot" --full-rate true)
+    args=(run --source "$src" --max-frames "$frames" --mot-results "$run/mot" --full-rate true
+          --mot-detections true)
+    if [[ -n ${REPLAY_FROM:-} ]]; then
+      recorded=("$REPLAY_FROM/$sequence-$latency/mot/"*.det.txt)
+      [[ -f ${recorded[0]} ]] || { echo "score_video.sh: no recorded detections in $REPLAY_FROM/$sequence-$latency/mot" >&2; exit 1; }
+      args+=(--det-file "${recorded[0]}")
+    fi
     if [[ $latency == every ]]; then
       args+=(--playback every-frame)
     else
@@ -74,7 +83,8 @@ for sequence in ${SEQUENCES:-PETS09-S2L1 ADL-Rundle-6}; do
       tail -n 5 "$run/run.log" >&2
       exit 1
     fi
-    produced="$(ls "$run/mot"/*.txt)"
+    produced="$(ls "$run/mot"/*.frames)"
+    produced="${produced%.frames}.txt"  # the results, not the recorded NAME.det.txt
     awk -F, -v from="$from" '$1 >= from' "$produced" >"$run/results/$sequence.txt"
     awk -v from="$from" '/^#/ || $1 >= from' "${produced%.txt}.frames" >"$run/results/$sequence.frames"
     "$rtmot" eval --gt "$run/gt" --results "$run/results" --csv "$run/eval.csv" >"$run/eval.txt" 2>&1 || {

@@ -103,8 +103,9 @@ TEST_F(MotResultsOutputTest, WritesEachStreamsRowsAndFramesAtFinish) {
   const fs::path out = dir_ / "new" / "results";  // created
   MotResultsOutput output(out, {{4, "first"}, {5, "second"}});
   cv::Mat no_image;
+  const std::vector<tracker::Detection> none;
   const auto consume = [&](const messages::FrameResult& result) {
-    output.consume(pipeline::SinkFrame{result, no_image, 0.0});
+    output.consume(pipeline::SinkFrame{result, no_image, 0.0, none});
   };
   consume(frame(4, 1, 2));
   consume(frame(5, 1, 0));
@@ -128,6 +129,44 @@ TEST_F(MotResultsOutputTest, WritesEachStreamsRowsAndFramesAtFinish) {
   std::vector<fs::path> left;
   for (const auto& entry : fs::directory_iterator(out)) left.push_back(entry.path().filename());
   EXPECT_EQ(left.size(), 4U) << "a temporary left behind";
+}
+
+// output.mot_detections: the processed frames' detections as a det.txt that the replay detector
+// and rtmot track read back; predicted frames and ticks add none.
+TEST_F(MotResultsOutputTest, WritesTheProcessedFramesDetectionsAsADetFile) {
+  const fs::path out = dir_ / "with-detections";
+  MotResultsOutput output(out, {{4, "seq"}}, true);
+  cv::Mat no_image;
+  const std::vector<tracker::Detection> two = {
+      tracker::Detection(tracker::Box{12.5F, 40.F, 30.25F, 80.F}, 0.91234F, 1),
+      tracker::Detection(tracker::Box{300.F, 41.F, 28.F, 75.5F}, 0.3F, 1)};
+  const std::vector<tracker::Detection> one = {
+      tracker::Detection(tracker::Box{14.F, 40.F, 30.F, 80.F}, 0.88F, 1)};
+  const auto consume = [&](const messages::FrameResult& result,
+                           const std::vector<tracker::Detection>& detections) {
+    output.consume(pipeline::SinkFrame{result, no_image, 0.0, detections});
+  };
+  consume(frame(4, 1, 1), two);
+  messages::FrameResult predicted = frame(4, 2, 1);
+  predicted.predicted = true;  // a skipped frame: no detections of its own
+  consume(predicted, one);
+  consume(frame(4, 3, 1), one);
+  messages::FrameResult outage = frame(4, 4, 0);
+  outage.source_outage = true;
+  consume(outage, one);
+  EXPECT_FALSE(fs::exists(out / "seq.det.txt"));  // whole at finish only
+  output.finish();
+  EXPECT_EQ(read(out / "seq.det.txt"),
+            "1,-1,12.5,40,30.25,80,0.91234,-1,-1,-1\n"
+            "1,-1,300,41,28,75.5,0.3,-1,-1,-1\n"
+            "3,-1,14,40,30,80,0.88,-1,-1,-1\n");
+  const auto rows = motio::read_mot_file(out / "seq.det.txt", motio::MotFileKind::detections);
+  ASSERT_EQ(rows.size(), 3U);
+  EXPECT_EQ(rows[2].frame, 3);
+  // Read back as the very floats recorded (the replay's tracks are then the recorded run's).
+  EXPECT_EQ(rows[0].box.w, 30.25F);
+  EXPECT_EQ(rows[0].conf, 0.91234F);
+  EXPECT_EQ(motio::read_processed_frames(out / "seq.frames", 10), (std::vector<int>{1, 3}));
 }
 
 TEST_F(MotResultsOutputTest, AFolderThatCannotBeMadeIsNamed) {
