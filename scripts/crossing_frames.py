@@ -36,17 +36,22 @@ OVERLAP_IOU, MATCH_IOU, WINDOW, GAP = 0.3, 0.5, 7, 3
 SCALE, MARGIN = 2, 24
 
 
-def read_boxes(path, skip_ignored):
-    """frame -> {id: (x, y, w, h)} from a MOTChallenge file; gt rows with conf 0 are ignored."""
-    frames = defaultdict(dict)
+def read_boxes(path, skip_ignored, by_id=True):
+    """frame -> {id: (x, y, w, h)} from a MOTChallenge file; gt rows with conf 0 are ignored.
+    by_id=False: frame -> [(x, y, w, h)], for a det.txt (whose ids are all -1)."""
+    frames = defaultdict(dict if by_id else list)
     with open(path) as f:
         for line_number, line in enumerate(f, 1):
             fields = line.strip().split(",")
             if len(fields) < 7:
-                sys.exit(f"crossing_frames.py: {path}:{line_number}: fewer than 7 fields")
+                sys.exit(f"{os.path.basename(sys.argv[0])}: {path}:{line_number}: fewer than 7 fields")
             if skip_ignored and float(fields[6]) == 0:
                 continue
-            frames[int(fields[0])][int(fields[1])] = tuple(float(v) for v in fields[2:6])
+            box = tuple(float(v) for v in fields[2:6])
+            if by_id:
+                frames[int(fields[0])][int(fields[1])] = box
+            else:
+                frames[int(fields[0])].append(box)
     return frames
 
 

@@ -45,18 +45,6 @@ def covered(box, by):
     return w * h / (box[2] * box[3]) if w > 0 and h > 0 else 0.0
 
 
-def read_detections(path):
-    """frame -> [(x, y, w, h)] from a det.txt (ids are -1: a list, not crossing_frames' dict)."""
-    frames = defaultdict(list)
-    with open(path) as f:
-        for line_number, line in enumerate(f, 1):
-            fields = line.strip().split(",")
-            if len(fields) < 7:
-                sys.exit(f"takeovers.py: {path}:{line_number}: fewer than 7 fields")
-            frames[int(fields[0])].append(tuple(float(v) for v in fields[2:6]))
-    return frames
-
-
 def merged_box_between(gt, detections, a, b, first, last):
     """Whether one detection covers MERGED_SHARE of both a's and b's boxes in a frame first..last."""
     for f in range(first, last + 1):
@@ -127,7 +115,7 @@ def main():
                          ("apart" if t[key] else "overlapping") if key == 6 else t[key] for t in found)
         print(f"{title}: " + ", ".join(f"{k} {v}" for k, v in counts.most_common()))
     if args.detections:
-        rows = read_detections(args.detections)
+        rows = read_boxes(args.detections, False, by_id=False)
         merged = sum(merged_box_between(gt, rows, t[2], t[3], max(args.first, t[7] - 1), t[0])
                      for t in found)
         print(f"with a merged box (one detection over half of each person) between: {merged} of "
