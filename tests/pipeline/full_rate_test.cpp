@@ -229,5 +229,68 @@ TEST(FullRate, ALiveSourceGetsAMessageForEveryFrameTheSlotDropped) {
   EXPECT_GT(predicted_tracks, predicted);  // the two people, once confirmed
 }
 
+// output.mot_detections through the threaded pipeline behind a slow detector (full rate, so the
+// predicted messages pass the consumer too): NAME.det.txt holds each processed frame's detections
+// as the replay detector served them, the very floats, and nothing of the skipped frames; replayed
+// in place of the sequence's det.txt, the run's results come back byte for byte.
+TEST(FullRate, TheRecordedDetectionsAreTheProcessedFramesAndReplayTheRun) {
+  const fs::path sequence = test::shared_path("data/mot15-train/TUD-Stadtmitte");
+  RTMOT_REQUIRE_FILE(sequence / "det/det.txt");
+  const motio::SequenceInfo info = motio::read_seqinfo(sequence / "seqinfo.ini");
+  const fs::path out = fs::temp_directory_path() / ("rtmot-recorded-" + std::to_string(::getpid()));
+  fs::remove_all(out);
+  const auto run_with = [&](const fs::path& det_file, const std::string& tag) {
+    runner::RunConfig config = runner::default_run_config();
+    config.source.uri = "mot-seq://" + sequence.string();
+    config.detector.kind = runner::DetectorKind::replay;
+    config.detector.det_file = det_file.string();
+    config.playback.mode = PlaybackMode::simulated;
+    config.playback.latency_ms = 200.0;
+    config.output.mot_results = (out / tag).string();
+    config.output.mot_detections = true;
+    config.output.full_rate = true;
+    config.stats_interval_s = 0.0;
+    runner::validate(config);
+    auto inputs = runner::make_inputs(config);
+    runner::RunOutputs outputs = runner::make_outputs(config, inputs);
+    Pipeline pipeline(std::move(inputs), runner::make_detector(config),
+                      std::move(outputs.consumers), runner::make_options(config));
+    const std::atomic<bool> stop{false};
+    pipeline.run(stop);
+  };
+  run_with(sequence / "det/det.txt", "live");
+  const fs::path recorded = out / "live" / (info.name + ".det.txt");
+  const std::vector<int> processed =
+      motio::read_processed_frames(out / "live" / (info.name + ".frames"), info.length);
+  ASSERT_LT(processed.size() * 4, static_cast<std::size_t>(info.length));  // most skipped
+
+  // What the tracker got at each processed frame: the file's rows of that frame at or above the
+  // detector's cut, in the file's order.
+  const float threshold = runner::default_run_config().detector.score_threshold;
+  const std::set<int> wanted(processed.begin(), processed.end());
+  std::vector<motio::MotRow> expected;
+  for (const auto& row :
+       motio::read_mot_file(sequence / "det/det.txt", motio::MotFileKind::detections)) {
+    if (wanted.count(row.frame) != 0 && row.conf >= threshold) expected.push_back(row);
+  }
+  const auto got = motio::read_mot_file(recorded, motio::MotFileKind::detections);
+  ASSERT_EQ(got.size(), expected.size());
+  ASSERT_GT(got.size(), 100U);
+  for (std::size_t i = 0; i < got.size(); ++i) {
+    EXPECT_EQ(got[i].frame, expected[i].frame) << "row " << i;
+    EXPECT_EQ(got[i].box.x, expected[i].box.x) << "row " << i;
+    EXPECT_EQ(got[i].box.y, expected[i].box.y) << "row " << i;
+    EXPECT_EQ(got[i].box.w, expected[i].box.w) << "row " << i;
+    EXPECT_EQ(got[i].box.h, expected[i].box.h) << "row " << i;
+    EXPECT_EQ(got[i].conf, expected[i].conf) << "row " << i;
+  }
+
+  run_with(recorded, "replayed");
+  EXPECT_EQ(lines_of(out / "replayed" / (info.name + ".txt")),
+            lines_of(out / "live" / (info.name + ".txt")));
+  EXPECT_EQ(lines_of(out / "replayed" / (info.name + ".det.txt")), lines_of(recorded));
+  fs::remove_all(out);
+}
+
 }  // namespace
 }  // namespace rtmot::pipeline
