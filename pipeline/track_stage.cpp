@@ -130,7 +130,8 @@ void TrackStage::run(const std::atomic<bool>& abort) {
     result.times.tracked_ns = platform::steady_now_ns();
     out->input = in->input;
     if (keep_images_) std::swap(out->image, in->image);
-    // Within the slot's reserved capacity (the detect stage keeps to the same max_detections).
+    // Within the slot's reserved capacity while a frame has at most max_detections (the
+    // detect stage reserves the same; the tracker itself takes no more).
     if (keep_detections_) out->detections.assign(in->detections.begin(), in->detections.end());
     if (!in->outage) {
       ++stream.frames_processed;

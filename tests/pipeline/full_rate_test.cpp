@@ -3,7 +3,7 @@
 // the camera, run with the option off and on. On: one message per camera frame, those of skipped
 // frames flagged predicted in the JSON lines and the binary messages alike; the processed frames'
 // messages and MOTChallenge rows are the same as with the option off (the predictions never fed
-// back into the tracker).
+// back into the tracker). And the recorded detections of such a run (output.mot_detections).
 #include <gtest/gtest.h>
 #include <unistd.h>
 
