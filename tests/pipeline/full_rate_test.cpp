@@ -49,6 +49,18 @@ std::vector<std::string> lines_of(const fs::path& file) {
   return lines;
 }
 
+// The run a configuration describes, as `rtmot run` makes it, until its input ends; its outputs
+// are whole when this returns.
+void run_to_the_end(const runner::RunConfig& config) {
+  runner::validate(config);
+  auto inputs = runner::make_inputs(config);
+  runner::RunOutputs outputs = runner::make_outputs(config, inputs);
+  Pipeline pipeline(std::move(inputs), runner::make_detector(config), std::move(outputs.consumers),
+                    runner::make_options(config));
+  const std::atomic<bool> stop{false};
+  pipeline.run(stop);
+}
+
 RunFiles run(const fs::path& sequence, double latency_ms, bool full_rate, const std::string& tag) {
   const fs::path out =
       fs::temp_directory_path() / ("rtmot-full-rate-" + std::to_string(::getpid()) + "-" + tag);
@@ -65,15 +77,7 @@ RunFiles run(const fs::path& sequence, double latency_ms, bool full_rate, const 
   config.output.binary_file = (out / "tracks.bin").string();
   config.output.full_rate = full_rate;
   config.stats_interval_s = 0.0;
-  runner::validate(config);
-  auto inputs = runner::make_inputs(config);
-  runner::RunOutputs outputs = runner::make_outputs(config, inputs);
-  {
-    Pipeline pipeline(std::move(inputs), runner::make_detector(config),
-                      std::move(outputs.consumers), runner::make_options(config));
-    const std::atomic<bool> stop{false};
-    pipeline.run(stop);
-  }
+  run_to_the_end(config);
   RunFiles files;
   for (const std::string& line : lines_of(out / "tracks.jsonl"))
     files.lines.push_back(nlohmann::json::parse(line));
@@ -250,13 +254,7 @@ TEST(FullRate, TheRecordedDetectionsAreTheProcessedFramesAndReplayTheRun) {
     config.output.mot_detections = true;
     config.output.full_rate = true;
     config.stats_interval_s = 0.0;
-    runner::validate(config);
-    auto inputs = runner::make_inputs(config);
-    runner::RunOutputs outputs = runner::make_outputs(config, inputs);
-    Pipeline pipeline(std::move(inputs), runner::make_detector(config),
-                      std::move(outputs.consumers), runner::make_options(config));
-    const std::atomic<bool> stop{false};
-    pipeline.run(stop);
+    run_to_the_end(config);
   };
   run_with(sequence / "det/det.txt", "live");
   const fs::path recorded = out / "live" / (info.name + ".det.txt");
