@@ -12,17 +12,24 @@ namespace {
 constexpr double kImpossible = -1.0;
 
 // The appearance's say in one pair, where both sides have one: beyond the gate the pair is
-// impossible; otherwise the assignment's preference is the affinity scaled down by the distance
-// (relative: pairs of large and small affinities are scaled alike, for every affinity kind).
+// impossible (or, with appearance_gate_contested, marked beyond it: whether it is refused waits
+// for the count of each side's possible pairs); otherwise the assignment's preference is the
+// affinity scaled down by the distance (relative: pairs of large and small affinities are scaled
+// alike, for every affinity kind).
 void weigh_appearance(const TrackerConfig& config, const AssociationCandidate& candidate,
-                      const Detection& detection, double& value, double& preference) {
+                      const Detection& detection, double& value, double& preference,
+                      unsigned char& beyond_gate) {
   if (candidate.appearance == nullptr || !candidate.appearance->valid ||
       !detection.appearance.valid)
     return;
   const double distance = appearance_distance(*candidate.appearance, detection.appearance);
   if (distance > config.appearance_gate) {
-    value = preference = kImpossible;
-    return;
+    if (config.appearance_gate_contested) {
+      beyond_gate = 1;
+    } else {
+      value = preference = kImpossible;
+      return;
+    }
   }
   preference = value * (1.0 - config.appearance_weight * distance);
 }
@@ -33,6 +40,7 @@ Associator::Associator(int rows, int cols) {
   const auto cells = static_cast<std::size_t>(rows) * static_cast<std::size_t>(cols);
   affinities_.reserve(cells);
   preferences_.reserve(cells);
+  beyond_gate_.reserve(cells);
   costs_.reserve(cells);
   row_hits_.reserve(static_cast<std::size_t>(rows));
   col_hits_.reserve(static_cast<std::size_t>(cols));
@@ -41,7 +49,8 @@ Associator::Associator(int rows, int cols) {
 
 // Fills the detections x candidates affinities and preferences (row-major), counts each row's and
 // column's pairs above the threshold (what tells a one-to-one frame from one the solver must
-// settle), and solves.
+// settle), refuses the contested pairs beyond the appearance gate (appearance_gate_contested), and
+// solves.
 template <typename AffinityOf, typename PreferenceOf>
 void Associator::fill_and_solve(const std::vector<Detection>& detections,
                                 const std::vector<AssociationCandidate>& candidates,
@@ -51,24 +60,49 @@ void Associator::fill_and_solve(const std::vector<Detection>& detections,
   const int rows = static_cast<int>(detections.size());
   const int cols = static_cast<int>(candidates.size());
   if (rows == 0 || cols == 0) return;
+  const auto at = [cols](int r, int c) { return static_cast<std::size_t>(r) * cols + c; };
   affinities_.resize(static_cast<std::size_t>(rows) * cols);
   preferences_.resize(affinities_.size());
-  row_hits_.assign(rows, 0);
-  col_hits_.assign(cols, 0);
+  beyond_gate_.assign(affinities_.size(), 0);
   for (int r = 0; r < rows; ++r) {
     for (int c = 0; c < cols; ++c) {
       double value = affinity_of(r, c);
       double preference = value;
-      preference_of(r, c, value, preference);
-      affinities_[static_cast<std::size_t>(r) * cols + c] = value;
-      preferences_[static_cast<std::size_t>(r) * cols + c] = preference;
-      if (value > threshold) {
+      preference_of(r, c, value, preference, beyond_gate_[at(r, c)]);
+      affinities_[at(r, c)] = value;
+      preferences_[at(r, c)] = preference;
+    }
+  }
+  count_hits(threshold, rows, cols);
+  if (refuse_contested_beyond_gate(threshold, rows, cols)) count_hits(threshold, rows, cols);
+  solve(threshold, rows, cols, matches);
+}
+
+void Associator::count_hits(double threshold, int rows, int cols) {
+  row_hits_.assign(rows, 0);
+  col_hits_.assign(cols, 0);
+  for (int r = 0; r < rows; ++r) {
+    for (int c = 0; c < cols; ++c) {
+      if (affinities_[static_cast<std::size_t>(r) * cols + c] > threshold) {
         ++row_hits_[r];
         ++col_hits_[c];
       }
     }
   }
-  solve(threshold, rows, cols, matches);
+}
+
+bool Associator::refuse_contested_beyond_gate(double threshold, int rows, int cols) {
+  bool refused = false;
+  for (int r = 0; r < rows; ++r) {
+    for (int c = 0; c < cols; ++c) {
+      const std::size_t i = static_cast<std::size_t>(r) * cols + c;
+      if (beyond_gate_[i] && affinities_[i] > threshold && (row_hits_[r] > 1 || col_hits_[c] > 1)) {
+        affinities_[i] = preferences_[i] = kImpossible;
+        refused = true;
+      }
+    }
+  }
+  return refused;
 }
 
 void Associator::associate(const TrackerConfig& config, double threshold,
@@ -81,8 +115,8 @@ void Associator::associate(const TrackerConfig& config, double threshold,
         return affinity(config, candidates[c].predicted, detections[r].box,
                         candidates[c].gate_frames, candidates[c].noise_margin);
       },
-      [&](int r, int c, double& value, double& preference) {
-        weigh_appearance(config, candidates[c], detections[r], value, preference);
+      [&](int r, int c, double& value, double& preference, unsigned char& beyond_gate) {
+        weigh_appearance(config, candidates[c], detections[r], value, preference, beyond_gate);
       },
       matches);
 }
@@ -111,8 +145,8 @@ void Associator::associate_by_distance(const TrackerConfig& config,
                               heights >= 1.0 / kDistanceRoundHeightRatio;
         return possible ? 1.0 / (1.0 + distance) : kImpossible;
       },
-      [&](int r, int c, double& value, double& preference) {
-        weigh_appearance(config, candidates[c], detections[r], value, preference);
+      [&](int r, int c, double& value, double& preference, unsigned char& beyond_gate) {
+        weigh_appearance(config, candidates[c], detections[r], value, preference, beyond_gate);
       },
       matches);
 }

@@ -62,9 +62,15 @@ class Associator {
   // row-major): the affinities decide which pairs are possible, the preferences which of them
   // the assignment takes.
   void solve(double threshold, int rows, int cols, std::vector<AssociationMatch>& matches);
+  // Each row's and column's pairs above the threshold.
+  void count_hits(double threshold, int rows, int cols);
+  // Makes impossible the pairs marked beyond the appearance gate whose row or column has another
+  // pair above the threshold; whether any was.
+  bool refuse_contested_beyond_gate(double threshold, int rows, int cols);
 
   std::vector<double> affinities_;
   std::vector<double> preferences_;
+  std::vector<unsigned char> beyond_gate_;  // pairs beyond the gate, not yet refused (contested)
   std::vector<double> costs_;
   std::vector<int> row_hits_;
   std::vector<int> col_hits_;

@@ -33,6 +33,7 @@ TrackerConfig with_every_option(TrackerConfig base) {
   base.distance_gate_per_frame = 0.5;
   base.distance_gate_max = 5.0;
   base.appearance_gate = 0.8;
+  base.appearance_gate_contested = true;
   base.appearance_weight = 0.5;
   base.reid_gate = 0.3;
   return base;

@@ -141,6 +141,11 @@ struct TrackerConfig {
   /// A track and a detection whose appearances lie further apart than this (Hellinger distance)
   /// are never matched. 1 = no gate.
   double appearance_gate{1.0};
+  /// The gate refuses only contested pairs: those whose detection or track has another pair the
+  /// affinity allows. A pair alone on both sides is matched whatever its appearance (a person whose
+  /// colours changed, seen nowhere else, is still that person); where two tracks or two detections
+  /// compete, the appearance decides.
+  bool appearance_gate_contested{false};
   /// Among the pairs the affinity allows, the assignment prefers affinity x (1 - weight x
   /// appearance distance): whether a pair is possible stays the affinity's (and the gate's)
   /// decision, which of the possible pairs is the appearance's too. 0 = off.

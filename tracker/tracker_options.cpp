@@ -289,6 +289,11 @@ std::vector<TrackerOption> make_table() {
            "detection that look further apart than this (Hellinger distance of their colour "
            "signatures) are never matched (1: no gate)",
            &C::appearance_gate, 0.0, 1.0),
+      flag("appearance_gate_contested",
+           "the appearance gate refuses only pairs whose detection or track has another pair the "
+           "affinity allows; a pair alone on both sides is matched by its motion "
+           "(docs/appearance.md: measured, in no preset)",
+           &C::appearance_gate_contested),
       real("appearance_weight",
            "among the pairs the affinity allows, the assignment prefers affinity x (1 - this x "
            "the appearance distance) (0: appearance plays no part in the choice)",

@@ -98,5 +98,40 @@ TEST(Appearance, ThePairsBeyondTheGateAreNeverMatched) {
   EXPECT_TRUE(stranger.matched(config).empty());
 }
 
+TEST(Appearance, TheContestedGateRefusesOnlyPairsWithARivalByMotion) {
+  TrackerConfig config;
+  config.appearance_gate = 0.8;
+  config.appearance_gate_contested = true;
+  // Two tracks and two detections all overlapping: every pair is contested, so the gate acts as
+  // the plain one, and the colours undo what the boxes would swap.
+  const std::map<int, int> by_colours{{0, 0}, {1, 1}};
+  EXPECT_EQ(SideBySide(true).matched(config), by_colours);
+
+  // One track, one detection where it is predicted, in colours the track never wore: alone on
+  // both sides, the pair is matched by its motion (the plain gate refuses it).
+  SideBySide changed(true);
+  changed.candidates.resize(1);
+  changed.detections.resize(1);
+  changed.detections[0].box = changed.candidates[0].predicted;
+  changed.detections[0].appearance = colour(12);
+  EXPECT_EQ(changed.matched(config), (std::map<int, int>{{0, 0}}));
+  config.appearance_gate_contested = false;
+  EXPECT_TRUE(changed.matched(config).empty());
+  config.appearance_gate_contested = true;
+
+  // The same detection with a second track beside it, red like the first: the detection now has
+  // two tracks its box allows, so the gate refuses both pairs.
+  SideBySide rival(true);
+  rival.candidates[1].appearance = &rival.red;
+  rival.detections.resize(1);
+  rival.detections[0].box = rival.candidates[0].predicted;
+  rival.detections[0].appearance = colour(12);
+  EXPECT_TRUE(rival.matched(config).empty());
+  // ...and one that looks like the second track goes to it, though its box fits the first better.
+  rival.candidates[1].appearance = &rival.blue;
+  rival.detections[0].appearance = rival.blue;
+  EXPECT_EQ(rival.matched(config), (std::map<int, int>{{1, 0}}));
+}
+
 }  // namespace
 }  // namespace rtmot::tracker

@@ -60,6 +60,7 @@ TEST(TrackerOptions, EveryKnobOfTheConfigCanBeSet) {
                                      {"distance_gate_per_frame", "0.35"},
                                      {"distance_gate_max", "3.5"},
                                      {"appearance_gate", "0.7"},
+                                     {"appearance_gate_contested", "true"},
                                      {"appearance_weight", "0.3"},
                                      {"appearance_momentum", "0.8"},
                                      {"reid_gate", "0.45"},
@@ -102,6 +103,7 @@ TEST(TrackerOptions, EveryKnobOfTheConfigCanBeSet) {
   EXPECT_DOUBLE_EQ(config.distance_gate_per_frame, 0.35);
   EXPECT_DOUBLE_EQ(config.distance_gate_max, 3.5);
   EXPECT_DOUBLE_EQ(config.appearance_gate, 0.7);
+  EXPECT_TRUE(config.appearance_gate_contested);
   EXPECT_DOUBLE_EQ(config.appearance_weight, 0.3);
   EXPECT_DOUBLE_EQ(config.appearance_momentum, 0.8);
   EXPECT_DOUBLE_EQ(config.reid_gate, 0.45);
@@ -111,7 +113,7 @@ TEST(TrackerOptions, EveryKnobOfTheConfigCanBeSet) {
   EXPECT_EQ(config.seed, 18446744073709551615ULL);
   EXPECT_EQ(config.max_tracks, 20);
   EXPECT_EQ(config.max_detections, 30);
-  EXPECT_EQ(tracker_options().size(), 42U) << "a new TrackerConfig field needs a line here too";
+  EXPECT_EQ(tracker_options().size(), 43U) << "a new TrackerConfig field needs a line here too";
 }
 
 TEST(TrackerOptions, AnAffinityBringsItsUsualThresholdUnlessOneFollows) {
