@@ -18,14 +18,14 @@ constexpr double kImpossible = -1.0;
 // alike, for every affinity kind).
 void weigh_appearance(const TrackerConfig& config, const AssociationCandidate& candidate,
                       const Detection& detection, double& value, double& preference,
-                      unsigned char& beyond_gate) {
+                      bool& beyond_gate) {
   if (candidate.appearance == nullptr || !candidate.appearance->valid ||
       !detection.appearance.valid)
     return;
   const double distance = appearance_distance(*candidate.appearance, detection.appearance);
   if (distance > config.appearance_gate) {
     if (config.appearance_gate_contested) {
-      beyond_gate = 1;
+      beyond_gate = true;
     } else {
       value = preference = kImpossible;
       return;
@@ -63,18 +63,27 @@ void Associator::fill_and_solve(const std::vector<Detection>& detections,
   const auto at = [cols](int r, int c) { return static_cast<std::size_t>(r) * cols + c; };
   affinities_.resize(static_cast<std::size_t>(rows) * cols);
   preferences_.resize(affinities_.size());
-  beyond_gate_.assign(affinities_.size(), 0);
+  beyond_gate_.clear();
+  row_hits_.assign(rows, 0);
+  col_hits_.assign(cols, 0);
   for (int r = 0; r < rows; ++r) {
     for (int c = 0; c < cols; ++c) {
       double value = affinity_of(r, c);
       double preference = value;
-      preference_of(r, c, value, preference, beyond_gate_[at(r, c)]);
+      bool beyond_gate = false;
+      preference_of(r, c, value, preference, beyond_gate);
       affinities_[at(r, c)] = value;
       preferences_[at(r, c)] = preference;
+      if (beyond_gate) beyond_gate_.push_back(at(r, c));
+      if (value > threshold) {
+        ++row_hits_[r];
+        ++col_hits_[c];
+      }
     }
   }
-  count_hits(threshold, rows, cols);
-  if (refuse_contested_beyond_gate(threshold, rows, cols)) count_hits(threshold, rows, cols);
+  if (!beyond_gate_.empty() && refuse_contested_beyond_gate(threshold, cols)) {
+    count_hits(threshold, rows, cols);
+  }
   solve(threshold, rows, cols, matches);
 }
 
@@ -91,15 +100,14 @@ void Associator::count_hits(double threshold, int rows, int cols) {
   }
 }
 
-bool Associator::refuse_contested_beyond_gate(double threshold, int rows, int cols) {
+bool Associator::refuse_contested_beyond_gate(double threshold, int cols) {
   bool refused = false;
-  for (int r = 0; r < rows; ++r) {
-    for (int c = 0; c < cols; ++c) {
-      const std::size_t i = static_cast<std::size_t>(r) * cols + c;
-      if (beyond_gate_[i] && affinities_[i] > threshold && (row_hits_[r] > 1 || col_hits_[c] > 1)) {
-        affinities_[i] = preferences_[i] = kImpossible;
-        refused = true;
-      }
+  for (const std::size_t i : beyond_gate_) {
+    const auto r = static_cast<int>(i / static_cast<std::size_t>(cols));
+    const auto c = static_cast<int>(i % static_cast<std::size_t>(cols));
+    if (affinities_[i] > threshold && (row_hits_[r] > 1 || col_hits_[c] > 1)) {
+      affinities_[i] = preferences_[i] = kImpossible;
+      refused = true;
     }
   }
   return refused;
@@ -115,7 +123,7 @@ void Associator::associate(const TrackerConfig& config, double threshold,
         return affinity(config, candidates[c].predicted, detections[r].box,
                         candidates[c].gate_frames, candidates[c].noise_margin);
       },
-      [&](int r, int c, double& value, double& preference, unsigned char& beyond_gate) {
+      [&](int r, int c, double& value, double& preference, bool& beyond_gate) {
         weigh_appearance(config, candidates[c], detections[r], value, preference, beyond_gate);
       },
       matches);
@@ -145,7 +153,7 @@ void Associator::associate_by_distance(const TrackerConfig& config,
                               heights >= 1.0 / kDistanceRoundHeightRatio;
         return possible ? 1.0 / (1.0 + distance) : kImpossible;
       },
-      [&](int r, int c, double& value, double& preference, unsigned char& beyond_gate) {
+      [&](int r, int c, double& value, double& preference, bool& beyond_gate) {
         weigh_appearance(config, candidates[c], detections[r], value, preference, beyond_gate);
       },
       matches);

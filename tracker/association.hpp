@@ -1,6 +1,7 @@
 #pragma once
 // One association round: detections against candidate tracks, as sort.py's
 // associate_detections_to_trackers, for any affinity.
+#include <cstddef>
 #include <vector>
 
 #include "tracker/box.hpp"
@@ -64,13 +65,15 @@ class Associator {
   void solve(double threshold, int rows, int cols, std::vector<AssociationMatch>& matches);
   // Each row's and column's pairs above the threshold.
   void count_hits(double threshold, int rows, int cols);
-  // Makes impossible the pairs marked beyond the appearance gate whose row or column has another
-  // pair above the threshold; whether any was.
-  bool refuse_contested_beyond_gate(double threshold, int rows, int cols);
+  // Makes impossible the pairs in beyond_gate_ whose row or column has another pair above the
+  // threshold; whether any was.
+  bool refuse_contested_beyond_gate(double threshold, int cols);
 
   std::vector<double> affinities_;
   std::vector<double> preferences_;
-  std::vector<unsigned char> beyond_gate_;  // pairs beyond the gate, not yet refused (contested)
+  // The pairs (row-major indices) beyond the gate that appearance_gate_contested has not yet
+  // refused: usually none, so a round without them costs nothing more.
+  std::vector<std::size_t> beyond_gate_;
   std::vector<double> costs_;
   std::vector<int> row_hits_;
   std::vector<int> col_hits_;
