@@ -19,7 +19,7 @@ jobs=${JOBS:-2}
 asan_dir=${ASAN_DIR:-$root/build-asan}
 tsan_dir=${TSAN_DIR:-$root/build-tsan}
 tsan_targets=${TSAN_TARGETS:-pipeline_handoff_test pipeline_follow_image_test pipeline_playback_test pipeline_outage_test pipeline_multi_source_test pipeline_detect_lanes_test pipeline_stage_threads_test test_platform_capture test_platform_signals test_platform_thread test_reconnecting_source messages_test study_tests outputs_mqtt_test
-  pipeline_events_mailbox_test pipeline_score_cut_test}
+  pipeline_events_mailbox_test pipeline_score_cut_test pipeline_full_rate_test}
 supp=$root/scripts/sanitizers
 
 # clang, not g++: g++ took over 16 minutes for half of the ASan+UBSan build on CI's 2 cores (its
