@@ -26,11 +26,6 @@ MATCH_IOU = 0.5
 INSIDE = 0.6
 
 
-def read_detections(path):
-    """frame -> [(x, y, w, h)]; the file is one the pipeline wrote, so it is well formed."""
-    return read_boxes(path, skip_ignored=False, by_id=False)
-
-
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("gt")
@@ -39,7 +34,7 @@ def main():
     parser.add_argument("--to", dest="last", type=int, default=10**9)
     args = parser.parse_args()
     gt = read_boxes(args.gt, skip_ignored=True)
-    detections = read_detections(args.detections)
+    detections = read_boxes(args.detections, skip_ignored=False, by_id=False)
     counts = Counter()
     for frame, boxes in sorted(detections.items()):
         if not args.first <= frame <= args.last:

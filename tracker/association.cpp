@@ -64,8 +64,6 @@ void Associator::fill_and_solve(const std::vector<Detection>& detections,
   affinities_.resize(static_cast<std::size_t>(rows) * cols);
   preferences_.resize(affinities_.size());
   beyond_gate_.clear();
-  row_hits_.assign(rows, 0);
-  col_hits_.assign(cols, 0);
   for (int r = 0; r < rows; ++r) {
     for (int c = 0; c < cols; ++c) {
       double value = affinity_of(r, c);
@@ -75,12 +73,9 @@ void Associator::fill_and_solve(const std::vector<Detection>& detections,
       affinities_[at(r, c)] = value;
       preferences_[at(r, c)] = preference;
       if (beyond_gate) beyond_gate_.push_back(at(r, c));
-      if (value > threshold) {
-        ++row_hits_[r];
-        ++col_hits_[c];
-      }
     }
   }
+  count_hits(threshold, rows, cols);
   if (!beyond_gate_.empty() && refuse_contested_beyond_gate(threshold, cols)) {
     count_hits(threshold, rows, cols);
   }
