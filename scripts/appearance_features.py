@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Which appearance tells a sequence's people apart across a gap? (docs/appearance.md, "Features the
-SSD already computed").
+SSD already computed" and "Other colour statistics and a texture").
 
 For every ground-truth person no other person covers (> 10 % of their box, the tracker's rule for
 learning), this measures
@@ -8,7 +8,10 @@ learning), this measures
     here with OpenCV's Python binding; its figure one frame apart matches the C++ test's);
   - the SSD's own feature maps (the model rtmot runs, whole frame to 300x300), averaged over the cells
     whose centres fall in the same core of the box, L2-normalised, compared by cosine distance;
-  - `colour+<layer>`: the mean of the two distances.
+  - other colour statistics of the same core (COLOUR_KINDS: soft bins, 16 hues, three parts, joint
+    BGR and Lab histograms) and a texture (gradient orientations), by the Hellinger distance;
+  - `A+B`: the mean of two distances (default: colour+ssd-10x10x1280).
+`--descriptors` chooses which (default: the signature and the SSD's maps).
 Then, for each gap of L frames: every person seen clear at frame t and again at t + L is a query; the
 gallery is everyone seen clear at t, each by their model at t (the tracker's exponential average,
 0.9 kept per sighting). Printed per descriptor and gap: rank-1 (the nearest model is the person's
@@ -18,7 +21,8 @@ of own-against-other distances (scale-free).
 Research tooling: needs ground truth (../shared) and Debian's python3-opencv; the product never
 runs it. Usage:
   scripts/appearance_features.py --source data/vtest.avi \
-      --gt ../shared/data/mot15-train/PETS09-S2L1/gt/gt.txt --fps 7 [--last-frame N] [--from-frame N]
+      --gt ../shared/data/mot15-train/PETS09-S2L1/gt/gt.txt --fps 7 [--last-frame N] [--from-frame N] \
+      [--descriptors colour,colour-soft,gradient,colour+gradient] [--gaps-s 1,3,5]
 --source is a video file or a folder of numbered .jpg images. Exit 2: bad arguments or input.
 """
 import argparse
@@ -104,24 +108,90 @@ def covered_share(box, others):
     return share
 
 
-def colour(frame, box):
+def core_part(frame, box, top, bottom):
+    """The pixels of one part of the box's core (BGR, n x 3), or None if too few."""
     x, y, w, h = box
-    parts = []
-    for top, bottom in ((CORE_TOP, 0.5), (0.5, CORE_BOTTOM)):
-        x0, x1 = max(0, int(np.floor(x + CORE_LEFT * w))), min(frame.shape[1], int(np.ceil(x + CORE_RIGHT * w)))
-        y0, y1 = max(0, int(np.floor(y + top * h))), min(frame.shape[0], int(np.ceil(y + bottom * h)))
-        if x1 <= x0 or y1 <= y0:
+    x0, x1 = max(0, int(np.floor(x + CORE_LEFT * w))), min(frame.shape[1], int(np.ceil(x + CORE_RIGHT * w)))
+    y0, y1 = max(0, int(np.floor(y + top * h))), min(frame.shape[0], int(np.ceil(y + bottom * h)))
+    if x1 <= x0 or y1 <= y0 or (x1 - x0) * (y1 - y0) < 12:
+        return None
+    return frame[y0:y1, x0:x1]
+
+
+def hue_saturation_bins(patch, hue_bins=8, soft=False):
+    """vision::ColourSignature's per-part histogram: hue_bins x 2 saturations for coloured pixels,
+    8 brightness bins for the rest; soft: each coloured pixel shared between its two nearest hues
+    (circular) and each grey one between its two nearest brightnesses."""
+    hsv = cv2.cvtColor(patch, cv2.COLOR_BGR2HSV).reshape(-1, 3).astype(float)
+    hue, saturation, value = hsv[:, 0], hsv[:, 1], hsv[:, 2]
+    bins = np.zeros(hue_bins * 2 + 8)
+    grey = (saturation < 50) | (value < 40)
+    high = (saturation[~grey] >= 140).astype(int)
+    if soft:
+        position = hue[~grey] * hue_bins / 180 - 0.5
+        low = np.floor(position)
+        weight = position - low
+        np.add.at(bins, (low.astype(int) % hue_bins) * 2 + high, 1 - weight)
+        np.add.at(bins, ((low.astype(int) + 1) % hue_bins) * 2 + high, weight)
+        position = np.clip(value[grey] * 8 / 256 - 0.5, 0, 7)
+        low = np.minimum(np.floor(position).astype(int), 6)
+        weight = position - low
+        np.add.at(bins, hue_bins * 2 + low, 1 - weight)
+        np.add.at(bins, hue_bins * 2 + low + 1, weight)
+    else:
+        np.add.at(bins, hue_bins * 2 + value[grey].astype(int) * 8 // 256, 1)
+        np.add.at(bins, np.minimum(hue[~grey].astype(int) * hue_bins // 180, hue_bins - 1) * 2 + high, 1)
+    return bins / len(hsv)
+
+
+def joint_bins(patch, code=None, low=0, high=256):
+    """A 4 x 4 x 4 joint histogram of the patch's three channels (after cvtColor(code))."""
+    pixels = (cv2.cvtColor(patch, code) if code is not None else patch).reshape(-1, 3).astype(float)
+    cells = np.clip(((pixels - low) * 4 / (high - low)).astype(int), 0, 3)
+    bins = np.zeros(64)
+    np.add.at(bins, cells[:, 0] * 16 + cells[:, 1] * 4 + cells[:, 2], 1)
+    return bins / len(pixels)
+
+
+def gradient_bins(patch):
+    """Texture: 8 gradient orientations (unsigned, 0..180 degrees) weighted by magnitude, and one
+    bin for flat pixels (magnitude below 8 gray levels per pixel)."""
+    gray = cv2.cvtColor(patch, cv2.COLOR_BGR2GRAY).astype(np.float32)
+    dx, dy = cv2.Sobel(gray, cv2.CV_32F, 1, 0, ksize=3), cv2.Sobel(gray, cv2.CV_32F, 0, 1, ksize=3)
+    magnitude, angle = cv2.cartToPolar(dx, dy, angleInDegrees=True)
+    magnitude, angle = magnitude.ravel(), angle.ravel() % 180
+    bins = np.zeros(9)
+    flat = magnitude < 32  # Sobel 3x3 scales a unit gradient by 4 (x2 both sides)
+    bins[8] = flat.sum()
+    np.add.at(bins, np.minimum((angle[~flat] * 8 / 180).astype(int), 7), 1)
+    return bins / len(magnitude)
+
+
+TWO_PARTS = ((CORE_TOP, 0.5), (0.5, CORE_BOTTOM))
+THREE_PARTS = ((CORE_TOP, 0.35), (0.35, 0.6), (0.6, CORE_BOTTOM))
+# Colour candidates: name -> (parts, one part's histogram). Each part weighs the same; the whole
+# sums to 1 and is compared by the Hellinger distance, as the tracker compares.
+COLOUR_KINDS = {
+    "colour": (TWO_PARTS, hue_saturation_bins),
+    "colour-soft": (TWO_PARTS, lambda p: hue_saturation_bins(p, soft=True)),
+    "colour-16hues": (TWO_PARTS, lambda p: hue_saturation_bins(p, hue_bins=16)),
+    "colour-3parts": (THREE_PARTS, hue_saturation_bins),
+    "colour-3parts-soft": (THREE_PARTS, lambda p: hue_saturation_bins(p, soft=True)),
+    "bgr-4x4x4": (TWO_PARTS, joint_bins),
+    "lab-4x4x4": (TWO_PARTS, lambda p: joint_bins(p, cv2.COLOR_BGR2Lab)),
+    "gradient": (TWO_PARTS, gradient_bins),
+}
+
+
+def colour(frame, box, kind="colour"):
+    parts, part_bins = COLOUR_KINDS[kind]
+    histograms = []
+    for top, bottom in parts:
+        patch = core_part(frame, box, top, bottom)
+        if patch is None:
             return None
-        hsv = cv2.cvtColor(frame[y0:y1, x0:x1], cv2.COLOR_BGR2HSV).reshape(-1, 3).astype(int)
-        if len(hsv) < 12:
-            return None
-        hue, saturation, value = hsv[:, 0], hsv[:, 1], hsv[:, 2]
-        bins = np.zeros(24)
-        grey = (saturation < 50) | (value < 40)
-        np.add.at(bins, 16 + value[grey] * 8 // 256, 1)
-        np.add.at(bins, np.minimum(hue[~grey] * 8 // 180, 7) * 2 + (saturation[~grey] >= 140), 1)
-        parts.append(bins * 0.5 / len(hsv))
-    return np.concatenate(parts)
+        histograms.append(part_bins(patch) / len(parts))
+    return np.concatenate(histograms)
 
 
 def pooled(feature_map, box, width, height):
@@ -141,8 +211,8 @@ def pooled(feature_map, box, width, height):
 
 
 def distance(kind, a, b):
-    if kind == "colour":
-        return float(np.sqrt(max(0.0, 1.0 - np.sum(np.sqrt(a["colour"] * b["colour"])))))
+    if kind in COLOUR_KINDS:
+        return float(np.sqrt(max(0.0, 1.0 - np.sum(np.sqrt(a[kind] * b[kind])))))
     if "+" in kind:
         first, second = kind.split("+")
         return 0.5 * (distance(first, a, b) + distance(second, a, b))
@@ -164,6 +234,9 @@ def main():
     parser.add_argument("--gaps-s", default="0,1,3,5,10", help="gaps in seconds (0: the next frame)")
     parser.add_argument("--from-frame", type=int, default=1, help="queries from this frame on")
     parser.add_argument("--last-frame", type=int, default=0, help="stop after this frame (0: all)")
+    parser.add_argument("--descriptors", default="colour," + ",".join(SSD_LAYERS) + ",colour+ssd-10x10x1280",
+                        help="which to compare, comma-separated: " + ", ".join([*COLOUR_KINDS, *SSD_LAYERS])
+                        + ", or A+B (the mean of two distances)")
     args = parser.parse_args()
     if args.fps <= 0:
         fail(f"--fps must be positive, not {args.fps}")
@@ -171,13 +244,19 @@ def main():
         gaps = sorted({max(1, round(float(g) * args.fps)) for g in args.gaps_s.split(",")})
     except ValueError:
         fail(f"--gaps-s: not a list of numbers: {args.gaps_s!r}")
-    if not os.path.isfile(args.model):
-        fail(f"{args.model}: not found (scripts/fetch_model.sh)")
+    kinds = args.descriptors.split(",")
+    used = {part for kind in kinds for part in kind.split("+")}
+    unknown = sorted(used - set(COLOUR_KINDS) - set(SSD_LAYERS))
+    if unknown:
+        fail(f"--descriptors: unknown {', '.join(unknown)}")
+    layers = {kind: SSD_LAYERS[kind] for kind in SSD_LAYERS if kind in used}
     boxes = read_gt(args.gt)
-    net = cv2.dnn.readNetFromONNX(args.model)
-    names = net.getLayerNames()
     nodes = {}
-    for kind, suffix in SSD_LAYERS.items():
+    if layers and not os.path.isfile(args.model):
+        fail(f"{args.model}: not found (scripts/fetch_model.sh)")
+    net = cv2.dnn.readNetFromONNX(args.model) if layers else None
+    names = net.getLayerNames() if layers else []
+    for kind, suffix in layers.items():
         found = [n for n in names if n.endswith(suffix)]
         if len(found) != 1:
             fail(f"{args.model}: layer {suffix} not found once (the model's export changed?)")
@@ -192,12 +271,14 @@ def main():
                  if covered_share(p[1:], [o[1:] for j, o in enumerate(people) if j != k]) <= COVERED]
         if not clear:
             continue
-        rgb = cv2.cvtColor(image, cv2.COLOR_BGR2RGB)  # the detector's input: RGB, x * 2/255 - 1
-        net.setInput(cv2.dnn.blobFromImage(rgb, 2 / 255.0, (300, 300), (127.5, 127.5, 127.5)))
-        maps = dict(zip(nodes, net.forward(list(nodes.values()))))
+        maps = {}
+        if nodes:
+            rgb = cv2.cvtColor(image, cv2.COLOR_BGR2RGB)  # the detector's input: RGB, x * 2/255 - 1
+            net.setInput(cv2.dnn.blobFromImage(rgb, 2 / 255.0, (300, 300), (127.5, 127.5, 127.5)))
+            maps = dict(zip(nodes, net.forward(list(nodes.values()))))
         height, width = image.shape[:2]
         for person, box in clear:
-            descriptors = {"colour": colour(image, box)}
+            descriptors = {kind: colour(image, box, kind) for kind in COLOUR_KINDS if kind in used}
             for kind, output in maps.items():
                 descriptors[kind] = pooled(output[0], box, width, height)
             if all(d is not None for d in descriptors.values()):
@@ -213,11 +294,10 @@ def main():
             else:
                 models[person] = dict(d)
             model = dict(models[person])
-            for kind in SSD_LAYERS:  # the average of unit vectors, compared by cosine: unit again
+            for kind in layers:  # the average of unit vectors, compared by cosine: unit again
                 model[kind] = model[kind] / np.linalg.norm(model[kind])
             model_at[(frame_number, person)] = model
 
-    kinds = ["colour", *SSD_LAYERS, "colour+ssd-10x10x1280"]
     print("| descriptor | gap | queries | rank-1 | rank-1 by the margin 0.1 | AUC |")
     print("|---|---|---|---|---|---|")
     for gap in gaps:

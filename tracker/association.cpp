@@ -11,27 +11,31 @@ namespace {
 // Below every threshold: the pair is impossible (the appearance gate).
 constexpr double kImpossible = -1.0;
 
+// What the appearance said of one pair: nothing (one side has none), alike (within the gate) or
+// unlike (beyond it).
+enum class GateVerdict { unseen, within, beyond };
+
 // The appearance's say in one pair, where both sides have one: beyond the gate the pair is
 // impossible (or, with appearance_gate_contested, marked beyond it: whether it is refused waits
-// for the count of each side's possible pairs); otherwise the assignment's preference is the
-// affinity scaled down by the distance (relative: pairs of large and small affinities are scaled
-// alike, for every affinity kind).
-void weigh_appearance(const TrackerConfig& config, const AssociationCandidate& candidate,
-                      const Detection& detection, double& value, double& preference,
-                      bool& beyond_gate) {
+// for its rivals); otherwise the assignment's preference is the affinity scaled down by the
+// distance (relative: pairs of large and small affinities are scaled alike, for every affinity
+// kind). Returns what the appearance said of the pair.
+GateVerdict weigh_appearance(const TrackerConfig& config, const AssociationCandidate& candidate,
+                             const Detection& detection, double& value, double& preference) {
   if (candidate.appearance == nullptr || !candidate.appearance->valid ||
       !detection.appearance.valid)
-    return;
+    return GateVerdict::unseen;
   const double distance = appearance_distance(*candidate.appearance, detection.appearance);
+  GateVerdict verdict = GateVerdict::within;
   if (distance > config.appearance_gate) {
-    if (config.appearance_gate_contested) {
-      beyond_gate = true;
-    } else {
+    if (!config.appearance_gate_contested) {
       value = preference = kImpossible;
-      return;
+      return GateVerdict::beyond;
     }
+    verdict = GateVerdict::beyond;
   }
   preference = value * (1.0 - config.appearance_weight * distance);
+  return verdict;
 }
 
 }  // namespace
@@ -41,6 +45,7 @@ Associator::Associator(int rows, int cols) {
   affinities_.reserve(cells);
   preferences_.reserve(cells);
   beyond_gate_.reserve(cells);
+  alike_.reserve(cells);
   costs_.reserve(cells);
   row_hits_.reserve(static_cast<std::size_t>(rows));
   col_hits_.reserve(static_cast<std::size_t>(cols));
@@ -51,11 +56,11 @@ Associator::Associator(int rows, int cols) {
 // column's pairs above the threshold (what tells a one-to-one frame from one the solver must
 // settle), refuses the contested pairs beyond the appearance gate (appearance_gate_contested), and
 // solves.
-template <typename AffinityOf, typename PreferenceOf>
-void Associator::fill_and_solve(const std::vector<Detection>& detections,
+template <typename AffinityOf>
+void Associator::fill_and_solve(const TrackerConfig& config,
+                                const std::vector<Detection>& detections,
                                 const std::vector<AssociationCandidate>& candidates,
                                 double threshold, const AffinityOf& affinity_of,
-                                const PreferenceOf& preference_of,
                                 std::vector<AssociationMatch>& matches) {
   const int rows = static_cast<int>(detections.size());
   const int cols = static_cast<int>(candidates.size());
@@ -64,19 +69,23 @@ void Associator::fill_and_solve(const std::vector<Detection>& detections,
   affinities_.resize(static_cast<std::size_t>(rows) * cols);
   preferences_.resize(affinities_.size());
   beyond_gate_.clear();
+  const bool rival_must_look_alike = config.appearance_gate_rival_alike;
+  if (rival_must_look_alike) alike_.assign(affinities_.size(), 0);
   for (int r = 0; r < rows; ++r) {
     for (int c = 0; c < cols; ++c) {
       double value = affinity_of(r, c);
       double preference = value;
-      bool beyond_gate = false;
-      preference_of(r, c, value, preference, beyond_gate);
+      const GateVerdict verdict =
+          weigh_appearance(config, candidates[c], detections[r], value, preference);
       affinities_[at(r, c)] = value;
       preferences_[at(r, c)] = preference;
-      if (beyond_gate) beyond_gate_.push_back(at(r, c));
+      if (verdict == GateVerdict::beyond && value > threshold) beyond_gate_.push_back(at(r, c));
+      if (rival_must_look_alike && verdict == GateVerdict::within) alike_[at(r, c)] = 1;
     }
   }
   count_hits(threshold, rows, cols);
-  if (!beyond_gate_.empty() && refuse_contested_beyond_gate(threshold, cols)) {
+  if (!beyond_gate_.empty() &&
+      refuse_contested_beyond_gate(threshold, rows, cols, rival_must_look_alike)) {
     count_hits(threshold, rows, cols);
   }
   solve(threshold, rows, cols, matches);
@@ -95,12 +104,26 @@ void Associator::count_hits(double threshold, int rows, int cols) {
   }
 }
 
-bool Associator::refuse_contested_beyond_gate(double threshold, int cols) {
+bool Associator::refuse_contested_beyond_gate(double threshold, int rows, int cols,
+                                              bool rival_must_look_alike) {
+  const auto at = [cols](int r, int c) { return static_cast<std::size_t>(r) * cols + c; };
+  // A rival that looks alike: another pair of the row or column the affinity allows and the
+  // appearance put within the gate. Searched only for the few pairs beyond the gate.
+  const auto has_alike_rival = [&](int r, int c) {
+    for (int other = 0; other < cols; ++other) {
+      if (other != c && alike_[at(r, other)] && affinities_[at(r, other)] > threshold) return true;
+    }
+    for (int other = 0; other < rows; ++other) {
+      if (other != r && alike_[at(other, c)] && affinities_[at(other, c)] > threshold) return true;
+    }
+    return false;
+  };
   bool refused = false;
   for (const std::size_t i : beyond_gate_) {
     const auto r = static_cast<int>(i / static_cast<std::size_t>(cols));
     const auto c = static_cast<int>(i % static_cast<std::size_t>(cols));
-    if (affinities_[i] > threshold && (row_hits_[r] > 1 || col_hits_[c] > 1)) {
+    const bool contested = row_hits_[r] > 1 || col_hits_[c] > 1;
+    if (contested && (!rival_must_look_alike || has_alike_rival(r, c))) {
       affinities_[i] = preferences_[i] = kImpossible;
       refused = true;
     }
@@ -113,13 +136,10 @@ void Associator::associate(const TrackerConfig& config, double threshold,
                            const std::vector<AssociationCandidate>& candidates,
                            std::vector<AssociationMatch>& matches) {
   fill_and_solve(
-      detections, candidates, threshold,
+      config, detections, candidates, threshold,
       [&](int r, int c) {
         return affinity(config, candidates[c].predicted, detections[r].box,
                         candidates[c].gate_frames, candidates[c].noise_margin);
-      },
-      [&](int r, int c, double& value, double& preference, bool& beyond_gate) {
-        weigh_appearance(config, candidates[c], detections[r], value, preference, beyond_gate);
       },
       matches);
 }
@@ -136,7 +156,7 @@ void Associator::associate_by_distance(const TrackerConfig& config,
                                        std::vector<AssociationMatch>& matches) {
   // In (0, 1], larger when closer; -1 (below the threshold 0) when out of reach.
   fill_and_solve(
-      detections, candidates, 0.0,
+      config, detections, candidates, 0.0,
       [&](int r, int c) {
         const Box& predicted = candidates[c].predicted;
         const Box& box = detections[r].box;
@@ -147,9 +167,6 @@ void Associator::associate_by_distance(const TrackerConfig& config,
         const bool possible = distance <= reach && heights <= kDistanceRoundHeightRatio &&
                               heights >= 1.0 / kDistanceRoundHeightRatio;
         return possible ? 1.0 / (1.0 + distance) : kImpossible;
-      },
-      [&](int r, int c, double& value, double& preference, bool& beyond_gate) {
-        weigh_appearance(config, candidates[c], detections[r], value, preference, beyond_gate);
       },
       matches);
 }

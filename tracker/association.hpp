@@ -54,11 +54,10 @@ class Associator {
                              std::vector<AssociationMatch>& matches);
 
  private:
-  template <typename AffinityOf, typename PreferenceOf>
-  void fill_and_solve(const std::vector<Detection>& detections,
+  template <typename AffinityOf>
+  void fill_and_solve(const TrackerConfig& config, const std::vector<Detection>& detections,
                       const std::vector<AssociationCandidate>& candidates, double threshold,
-                      const AffinityOf& affinity_of, const PreferenceOf& preference_of,
-                      std::vector<AssociationMatch>& matches);
+                      const AffinityOf& affinity_of, std::vector<AssociationMatch>& matches);
   // Appends the matches for the affinities_ and preferences_ already filled (rows x cols,
   // row-major): the affinities decide which pairs are possible, the preferences which of them
   // the assignment takes.
@@ -66,14 +65,19 @@ class Associator {
   // Each row's and column's pairs above the threshold.
   void count_hits(double threshold, int rows, int cols);
   // Makes impossible the pairs in beyond_gate_ whose row or column has another pair above the
-  // threshold; whether any was.
-  bool refuse_contested_beyond_gate(double threshold, int cols);
+  // threshold (with rival_must_look_alike, another such pair within the gate: alike_); whether
+  // any was.
+  bool refuse_contested_beyond_gate(double threshold, int rows, int cols,
+                                    bool rival_must_look_alike);
 
   std::vector<double> affinities_;
   std::vector<double> preferences_;
   // The pairs (row-major indices) beyond the gate that appearance_gate_contested has not yet
   // refused: usually none, so a round without them costs nothing more.
   std::vector<std::size_t> beyond_gate_;
+  // appearance_gate_rival_alike: per pair (row-major), whether the appearance put it within the
+  // gate.
+  std::vector<char> alike_;
   std::vector<double> costs_;
   std::vector<int> row_hits_;
   std::vector<int> col_hits_;

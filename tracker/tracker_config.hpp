@@ -146,6 +146,10 @@ struct TrackerConfig {
   /// colours changed, seen nowhere else, is still that person); where two tracks or two detections
   /// compete, the appearance decides.
   bool appearance_gate_contested{false};
+  /// With appearance_gate_contested: a contested pair beyond the gate is refused only when a rival
+  /// pair of its detection or track looks alike (within the gate). Where no rival does (rivals
+  /// without a model, or as unlike), the appearance cannot tell the pairs apart and motion decides.
+  bool appearance_gate_rival_alike{false};
   /// Among the pairs the affinity allows, the assignment prefers affinity x (1 - weight x
   /// appearance distance): whether a pair is possible stays the affinity's (and the gate's)
   /// decision, which of the possible pairs is the appearance's too. 0 = off.

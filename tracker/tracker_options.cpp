@@ -294,6 +294,11 @@ std::vector<TrackerOption> make_table() {
            "affinity allows; a pair alone on both sides is matched by its motion "
            "(docs/appearance.md: measured, in no preset)",
            &C::appearance_gate_contested),
+      flag("appearance_gate_rival_alike",
+           "with appearance_gate_contested: a contested pair is refused only when a rival pair of "
+           "its detection or track lies within the gate; where no rival looks alike, motion "
+           "decides (docs/appearance.md: measured, in no preset)",
+           &C::appearance_gate_rival_alike),
       real("appearance_weight",
            "among the pairs the affinity allows, the assignment prefers affinity x (1 - this x "
            "the appearance distance) (0: appearance plays no part in the choice)",

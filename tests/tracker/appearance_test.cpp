@@ -133,5 +133,45 @@ TEST(Appearance, TheContestedGateRefusesOnlyPairsWithARivalByMotion) {
   EXPECT_EQ(rival.matched(config), (std::map<int, int>{{1, 0}}));
 }
 
+TEST(Appearance, WithRivalAlikeTheContestedGateRefusesOnlyWhereARivalLooksLikeTheDetection) {
+  TrackerConfig config;
+  config.appearance_gate = 0.8;
+  config.appearance_gate_contested = true;
+  config.appearance_gate_rival_alike = true;
+  // One detection in colours neither red track wore, both tracks' boxes allow it: no rival looks
+  // alike, so the colours cannot tell the tracks apart and the better box takes it (the plain
+  // contested gate refuses both).
+  SideBySide unlike(true);
+  unlike.candidates[1].appearance = &unlike.red;
+  unlike.detections.resize(1);
+  unlike.detections[0].box = unlike.candidates[0].predicted;
+  unlike.detections[0].appearance = colour(12);
+  EXPECT_EQ(unlike.matched(config), (std::map<int, int>{{0, 0}}));
+  config.appearance_gate_rival_alike = false;
+  EXPECT_TRUE(unlike.matched(config).empty());
+  config.appearance_gate_rival_alike = true;
+
+  // A rival without a model says nothing either: the track whose box fits keeps its person,
+  // however their colours changed.
+  SideBySide modelless(true);
+  modelless.candidates[1].appearance = nullptr;
+  modelless.detections.resize(1);
+  modelless.detections[0].box = modelless.candidates[0].predicted;
+  modelless.detections[0].appearance = colour(12);
+  EXPECT_EQ(modelless.matched(config), (std::map<int, int>{{0, 0}}));
+
+  // The blue track looks like the detection: the red one, beyond the gate, is refused, and the
+  // detection goes to blue though its box fits red better.
+  SideBySide alike(true);
+  alike.detections.resize(1);
+  alike.detections[0].box = alike.candidates[0].predicted;
+  alike.detections[0].appearance = alike.blue;
+  EXPECT_EQ(alike.matched(config), (std::map<int, int>{{1, 0}}));
+
+  // Two people crossing, all four pairs possible: each detection's own track looks alike, so the
+  // gate refuses the crossed pairs as the contested gate does.
+  EXPECT_EQ(SideBySide(true).matched(config), (std::map<int, int>{{0, 0}, {1, 1}}));
+}
+
 }  // namespace
 }  // namespace rtmot::tracker

@@ -61,6 +61,7 @@ TEST(TrackerOptions, EveryKnobOfTheConfigCanBeSet) {
                                      {"distance_gate_max", "3.5"},
                                      {"appearance_gate", "0.7"},
                                      {"appearance_gate_contested", "true"},
+                                     {"appearance_gate_rival_alike", "true"},
                                      {"appearance_weight", "0.3"},
                                      {"appearance_momentum", "0.8"},
                                      {"reid_gate", "0.45"},
@@ -104,6 +105,7 @@ TEST(TrackerOptions, EveryKnobOfTheConfigCanBeSet) {
   EXPECT_DOUBLE_EQ(config.distance_gate_max, 3.5);
   EXPECT_DOUBLE_EQ(config.appearance_gate, 0.7);
   EXPECT_TRUE(config.appearance_gate_contested);
+  EXPECT_TRUE(config.appearance_gate_rival_alike);
   EXPECT_DOUBLE_EQ(config.appearance_weight, 0.3);
   EXPECT_DOUBLE_EQ(config.appearance_momentum, 0.8);
   EXPECT_DOUBLE_EQ(config.reid_gate, 0.45);
@@ -113,7 +115,7 @@ TEST(TrackerOptions, EveryKnobOfTheConfigCanBeSet) {
   EXPECT_EQ(config.seed, 18446744073709551615ULL);
   EXPECT_EQ(config.max_tracks, 20);
   EXPECT_EQ(config.max_detections, 30);
-  EXPECT_EQ(tracker_options().size(), 43U) << "a new TrackerConfig field needs a line here too";
+  EXPECT_EQ(tracker_options().size(), 44U) << "a new TrackerConfig field needs a line here too";
 }
 
 TEST(TrackerOptions, AnAffinityBringsItsUsualThresholdUnlessOneFollows) {
@@ -229,6 +231,16 @@ TEST(TrackerOptions, CrossingResolutionNeedsReidentification) {
   ASSERT_TRUE(config_problem(config).has_value());
   EXPECT_NE(config_problem(config)->find("reid_gate"), std::string::npos);
   config = with_options(*find_preset("rtmot"), {{"resolve_crossings", "true"}});
+  EXPECT_FALSE(config_problem(config).has_value());
+}
+
+// The same for the contested gate's narrowing without the contested gate.
+TEST(TrackerOptions, TheRivalAlikeRuleNeedsTheContestedGate) {
+  TrackerConfig config =
+      with_options(*find_preset("rtmot"), {{"appearance_gate_rival_alike", "true"}});
+  ASSERT_TRUE(config_problem(config).has_value());
+  EXPECT_NE(config_problem(config)->find("appearance_gate_contested"), std::string::npos);
+  config.appearance_gate_contested = true;
   EXPECT_FALSE(config_problem(config).has_value());
 }
 
