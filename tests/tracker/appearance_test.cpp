@@ -62,6 +62,13 @@ struct SideBySide {
     }
   }
 
+  // Leaves one detection, where the first track is predicted, looking like `look`.
+  void one_detection_on_the_first_track(const Appearance& look) {
+    detections.resize(1);
+    detections[0].box = candidates[0].predicted;
+    detections[0].appearance = look;
+  }
+
   // candidate -> detection
   std::map<int, int> matched(const TrackerConfig& config) const {
     Associator associator(2, 2);
@@ -92,9 +99,7 @@ TEST(Appearance, ThePairsBeyondTheGateAreNeverMatched) {
   EXPECT_EQ(scene.matched(config), by_colours);
   // A detection that looks like no track is matched by none, however well its box fits.
   SideBySide stranger(true);
-  stranger.detections.resize(1);
-  stranger.detections[0].box = stranger.candidates[0].predicted;
-  stranger.detections[0].appearance = colour(12);
+  stranger.one_detection_on_the_first_track(colour(12));
   EXPECT_TRUE(stranger.matched(config).empty());
 }
 
@@ -111,9 +116,7 @@ TEST(Appearance, TheContestedGateRefusesOnlyPairsWithARivalByMotion) {
   // both sides, the pair is matched by its motion (the plain gate refuses it).
   SideBySide changed(true);
   changed.candidates.resize(1);
-  changed.detections.resize(1);
-  changed.detections[0].box = changed.candidates[0].predicted;
-  changed.detections[0].appearance = colour(12);
+  changed.one_detection_on_the_first_track(colour(12));
   EXPECT_EQ(changed.matched(config), (std::map<int, int>{{0, 0}}));
   config.appearance_gate_contested = false;
   EXPECT_TRUE(changed.matched(config).empty());
@@ -123,9 +126,7 @@ TEST(Appearance, TheContestedGateRefusesOnlyPairsWithARivalByMotion) {
   // two tracks its box allows, so the gate refuses both pairs.
   SideBySide rival(true);
   rival.candidates[1].appearance = &rival.red;
-  rival.detections.resize(1);
-  rival.detections[0].box = rival.candidates[0].predicted;
-  rival.detections[0].appearance = colour(12);
+  rival.one_detection_on_the_first_track(colour(12));
   EXPECT_TRUE(rival.matched(config).empty());
   // ...and one that looks like the second track goes to it, though its box fits the first better.
   rival.candidates[1].appearance = &rival.blue;
@@ -143,9 +144,7 @@ TEST(Appearance, WithRivalAlikeTheContestedGateRefusesOnlyWhereARivalLooksLikeTh
   // contested gate refuses both).
   SideBySide unlike(true);
   unlike.candidates[1].appearance = &unlike.red;
-  unlike.detections.resize(1);
-  unlike.detections[0].box = unlike.candidates[0].predicted;
-  unlike.detections[0].appearance = colour(12);
+  unlike.one_detection_on_the_first_track(colour(12));
   EXPECT_EQ(unlike.matched(config), (std::map<int, int>{{0, 0}}));
   config.appearance_gate_rival_alike = false;
   EXPECT_TRUE(unlike.matched(config).empty());
@@ -155,17 +154,13 @@ TEST(Appearance, WithRivalAlikeTheContestedGateRefusesOnlyWhereARivalLooksLikeTh
   // however their colours changed.
   SideBySide modelless(true);
   modelless.candidates[1].appearance = nullptr;
-  modelless.detections.resize(1);
-  modelless.detections[0].box = modelless.candidates[0].predicted;
-  modelless.detections[0].appearance = colour(12);
+  modelless.one_detection_on_the_first_track(colour(12));
   EXPECT_EQ(modelless.matched(config), (std::map<int, int>{{0, 0}}));
 
   // The blue track looks like the detection: the red one, beyond the gate, is refused, and the
   // detection goes to blue though its box fits red better.
   SideBySide alike(true);
-  alike.detections.resize(1);
-  alike.detections[0].box = alike.candidates[0].predicted;
-  alike.detections[0].appearance = alike.blue;
+  alike.one_detection_on_the_first_track(alike.blue);
   EXPECT_EQ(alike.matched(config), (std::map<int, int>{{1, 0}}));
 
   // Two people crossing, all four pairs possible: each detection's own track looks alike, so the
