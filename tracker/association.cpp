@@ -17,10 +17,9 @@ enum class GateVerdict { unseen, within, beyond };
 
 // The appearance's say in one pair, where both sides have one: beyond the gate the pair is
 // impossible (or, with appearance_gate_contested, marked beyond it: whether it is refused waits
-// for its rivals, unless appearance_gate_reacquiring and the track is coasting); otherwise the
-// assignment's preference is the affinity scaled down by the distance (relative: pairs of large and
-// small affinities are scaled alike, for every affinity kind). Returns what the appearance said of
-// the pair.
+// for its rivals); otherwise the assignment's preference is the affinity scaled down by the
+// distance (relative: pairs of large and small affinities are scaled alike, for every affinity
+// kind). Returns what the appearance said of the pair.
 GateVerdict weigh_appearance(const TrackerConfig& config, const AssociationCandidate& candidate,
                              const Detection& detection, double& value, double& preference) {
   if (candidate.appearance == nullptr || !candidate.appearance->valid ||
@@ -29,9 +28,7 @@ GateVerdict weigh_appearance(const TrackerConfig& config, const AssociationCandi
   const double distance = appearance_distance(*candidate.appearance, detection.appearance);
   GateVerdict verdict = GateVerdict::within;
   if (distance > config.appearance_gate) {
-    const bool refused_alone = !config.appearance_gate_contested ||
-                               (config.appearance_gate_reacquiring && candidate.missed_last_update);
-    if (refused_alone) {
+    if (!config.appearance_gate_contested) {
       value = preference = kImpossible;
       return GateVerdict::beyond;
     }

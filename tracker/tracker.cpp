@@ -286,8 +286,8 @@ struct Tracker::State {
     candidates.clear();
     for (const int position : positions) {
       const Track& track = slots[order[position]];
-      candidates.push_back(AssociationCandidate{track.predicted, step_frames, 0.F,
-                                                &track.appearance, track.steps_since_update > 1});
+      candidates.push_back(
+          AssociationCandidate{track.predicted, step_frames, 0.F, &track.appearance});
     }
     round_matches.clear();
     associator.associate_by_distance(config, rest, candidates, round_matches);
@@ -332,8 +332,8 @@ struct Tracker::State {
       const Track& track = slots[order[position]];
       const double gate_time =
           config.gate_clock == GateClock::frame_gap ? step_frames : track.frames_since_update;
-      candidates.push_back(AssociationCandidate{track.predicted, gate_time, noise_margin,
-                                                &track.appearance, track.steps_since_update > 1});
+      candidates.push_back(
+          AssociationCandidate{track.predicted, gate_time, noise_margin, &track.appearance});
     }
     round_matches.clear();
     associator.associate(config, threshold, detections, candidates, round_matches);

@@ -35,7 +35,6 @@ TrackerConfig with_every_option(TrackerConfig base) {
   base.appearance_gate = 0.8;
   base.appearance_gate_contested = true;
   base.appearance_gate_rival_alike = true;
-  base.appearance_gate_reacquiring = true;
   base.appearance_weight = 0.5;
   base.reid_gate = 0.3;
   return base;
@@ -111,11 +110,9 @@ std::optional<std::string> config_problem(const TrackerConfig& config) {
     return "appearance_gate and appearance_weight must be in [0, 1]";
   if (!(config.appearance_momentum >= 0.0 && config.appearance_momentum < 1.0))
     return "appearance_momentum must be in [0, 1)";
-  if ((config.appearance_gate_rival_alike || config.appearance_gate_reacquiring) &&
-      !config.appearance_gate_contested)
-    return std::string(config.appearance_gate_rival_alike ? "appearance_gate_rival_alike"
-                                                          : "appearance_gate_reacquiring") +
-           " needs appearance_gate_contested: it changes which pairs the contested gate refuses";
+  if (config.appearance_gate_rival_alike && !config.appearance_gate_contested)
+    return "appearance_gate_rival_alike needs appearance_gate_contested: it narrows which "
+           "contested pairs the gate refuses";
   if (config.resolve_crossings && !(config.reid_gate > 0.0))
     return "resolve_crossings needs re-identification on (reid_gate above 0): its trades are "
            "bounded by reid_gate";

@@ -150,10 +150,6 @@ struct TrackerConfig {
   /// pair of its detection or track looks alike (within the gate). Where no rival does (rivals
   /// without a model, or as unlike), the appearance cannot tell the pairs apart and motion decides.
   bool appearance_gate_rival_alike{false};
-  /// With appearance_gate_contested: a track the previous update left unmatched (coasting) is
-  /// refused a detection beyond the gate, contested or not. A track found again after a miss is
-  /// where one person's track drifts onto another who stepped into its place.
-  bool appearance_gate_reacquiring{false};
   /// Among the pairs the affinity allows, the assignment prefers affinity x (1 - weight x
   /// appearance distance): whether a pair is possible stays the affinity's (and the gate's)
   /// decision, which of the possible pairs is the appearance's too. 0 = off.

@@ -299,11 +299,6 @@ std::vector<TrackerOption> make_table() {
            "its detection or track lies within the gate; where no rival looks alike, motion "
            "decides (docs/appearance.md: measured, in no preset)",
            &C::appearance_gate_rival_alike),
-      flag("appearance_gate_reacquiring",
-           "with appearance_gate_contested: a track the previous update left unmatched is refused "
-           "a detection beyond the gate, contested or not (docs/appearance.md: measured, in no "
-           "preset)",
-           &C::appearance_gate_reacquiring),
       real("appearance_weight",
            "among the pairs the affinity allows, the assignment prefers affinity x (1 - this x "
            "the appearance distance) (0: appearance plays no part in the choice)",

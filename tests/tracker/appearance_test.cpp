@@ -168,28 +168,5 @@ TEST(Appearance, WithRivalAlikeTheContestedGateRefusesOnlyWhereARivalLooksLikeTh
   EXPECT_EQ(SideBySide(true).matched(config), (std::map<int, int>{{0, 0}, {1, 1}}));
 }
 
-TEST(Appearance, WithReacquiringACoastingTrackIsRefusedAnUnlikeDetectionEvenUncontested) {
-  TrackerConfig config;
-  config.appearance_gate = 0.8;
-  config.appearance_gate_contested = true;
-  config.appearance_gate_reacquiring = true;
-  // One track, one detection where it is predicted, in colours the track never wore: matched by
-  // its motion while the track was seen at the last update...
-  SideBySide alone(true);
-  alone.candidates.resize(1);
-  alone.one_detection_on_the_first_track(colour(12));
-  EXPECT_EQ(alone.matched(config), (std::map<int, int>{{0, 0}}));
-  // ...refused once it coasted: someone else stepped where the lost person was predicted.
-  alone.candidates[0].missed_last_update = true;
-  EXPECT_TRUE(alone.matched(config).empty());
-  // The person themselves, found again, is taken back.
-  alone.detections[0].appearance = alone.red;
-  EXPECT_EQ(alone.matched(config), (std::map<int, int>{{0, 0}}));
-  // Without the flag the contested gate leaves a pair alone on both sides to motion.
-  alone.detections[0].appearance = colour(12);
-  config.appearance_gate_reacquiring = false;
-  EXPECT_EQ(alone.matched(config), (std::map<int, int>{{0, 0}}));
-}
-
 }  // namespace
 }  // namespace rtmot::tracker

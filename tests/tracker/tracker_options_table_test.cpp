@@ -62,7 +62,6 @@ TEST(TrackerOptions, EveryKnobOfTheConfigCanBeSet) {
                                      {"appearance_gate", "0.7"},
                                      {"appearance_gate_contested", "true"},
                                      {"appearance_gate_rival_alike", "true"},
-                                     {"appearance_gate_reacquiring", "true"},
                                      {"appearance_weight", "0.3"},
                                      {"appearance_momentum", "0.8"},
                                      {"reid_gate", "0.45"},
@@ -107,7 +106,6 @@ TEST(TrackerOptions, EveryKnobOfTheConfigCanBeSet) {
   EXPECT_DOUBLE_EQ(config.appearance_gate, 0.7);
   EXPECT_TRUE(config.appearance_gate_contested);
   EXPECT_TRUE(config.appearance_gate_rival_alike);
-  EXPECT_TRUE(config.appearance_gate_reacquiring);
   EXPECT_DOUBLE_EQ(config.appearance_weight, 0.3);
   EXPECT_DOUBLE_EQ(config.appearance_momentum, 0.8);
   EXPECT_DOUBLE_EQ(config.reid_gate, 0.45);
@@ -117,7 +115,7 @@ TEST(TrackerOptions, EveryKnobOfTheConfigCanBeSet) {
   EXPECT_EQ(config.seed, 18446744073709551615ULL);
   EXPECT_EQ(config.max_tracks, 20);
   EXPECT_EQ(config.max_detections, 30);
-  EXPECT_EQ(tracker_options().size(), 45U) << "a new TrackerConfig field needs a line here too";
+  EXPECT_EQ(tracker_options().size(), 44U) << "a new TrackerConfig field needs a line here too";
 }
 
 TEST(TrackerOptions, AnAffinityBringsItsUsualThresholdUnlessOneFollows) {
@@ -236,17 +234,12 @@ TEST(TrackerOptions, CrossingResolutionNeedsReidentification) {
   EXPECT_FALSE(config_problem(config).has_value());
 }
 
-// The same for what changes the contested gate's refusals, without the contested gate.
-TEST(TrackerOptions, TheContestedGatesNarrowingsNeedIt) {
+// The same for the contested gate's narrowing without the contested gate.
+TEST(TrackerOptions, TheRivalAlikeRuleNeedsTheContestedGate) {
   TrackerConfig config =
       with_options(*find_preset("rtmot"), {{"appearance_gate_rival_alike", "true"}});
   ASSERT_TRUE(config_problem(config).has_value());
   EXPECT_NE(config_problem(config)->find("appearance_gate_contested"), std::string::npos);
-  config.appearance_gate_contested = true;
-  EXPECT_FALSE(config_problem(config).has_value());
-  config = with_options(*find_preset("rtmot"), {{"appearance_gate_reacquiring", "true"}});
-  ASSERT_TRUE(config_problem(config).has_value());
-  EXPECT_NE(config_problem(config)->find("appearance_gate_reacquiring needs"), std::string::npos);
   config.appearance_gate_contested = true;
   EXPECT_FALSE(config_problem(config).has_value());
 }
