@@ -31,10 +31,6 @@ struct Detection {
   float score{1.F};
   int class_id{0};
   Appearance appearance;  // from the image (vision/), when there is one
-  // The part of the box the image layer measured the appearance on (pixels; empty: not said).
-  // Another detection covering it, not the box's border, is what makes the appearance doubtful
-  // (TrackerConfig::appearance_region_occlusion).
-  Box appearance_region;
 };
 
 /// Where the image showed a track at an update's time (the pipeline follows boxes through the

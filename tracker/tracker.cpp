@@ -388,18 +388,13 @@ struct Tracker::State {
     kalman = replay;
   }
 
-  // Whether another detection of this frame covers part of `detection` (kOccludedShare): of its
-  // box, or with appearance_region_occlusion of the part its appearance was measured on.
+  // Whether another detection of this frame covers part of `detection` (kOccludedShare).
   bool overlapped(const Detection& detection) const {
-    const bool by_region = config.appearance_region_occlusion &&
-                           detection.appearance_region.w > 0.F &&
-                           detection.appearance_region.h > 0.F;
-    const Box& judged = by_region ? detection.appearance_region : detection.box;
     const auto covers = [&](const Detection& other) {
       const Box& a = other.box;
       const Box& b = detection.box;
       const bool itself = a.x == b.x && a.y == b.y && a.w == b.w && a.h == b.h;
-      return !itself && covered_share(judged, a) > kOccludedShare;
+      return !itself && covered_share(b, a) > kOccludedShare;
     };
     return std::any_of(high.begin(), high.end(), covers) ||
            std::any_of(low.begin(), low.end(), covers);

@@ -154,11 +154,6 @@ struct TrackerConfig {
   /// appearance distance): whether a pair is possible stays the affinity's (and the gate's)
   /// decision, which of the possible pairs is the appearance's too. 0 = off.
   double appearance_weight{0.0};
-  /// A detection's appearance is doubted (it neither decides a pair nor teaches a track) when
-  /// another detection covers more than a tenth of the part of its box the appearance was measured
-  /// on (Detection::appearance_region, the image layer's), not of its whole box: a neighbour
-  /// overlapping only the border, which the signature does not read, leaves it the person's own.
-  bool appearance_region_occlusion{false};
   /// A track's appearance keeps this share of itself at each match by a detection that no other
   /// detection overlaps (a partly hidden person shows someone else's colours).
   double appearance_momentum{0.9};

@@ -299,11 +299,6 @@ std::vector<TrackerOption> make_table() {
            "its detection or track lies within the gate; where no rival looks alike, motion "
            "decides (docs/appearance.md: measured, in no preset)",
            &C::appearance_gate_rival_alike),
-      flag("appearance_region_occlusion",
-           "a detection's appearance is doubted when another detection covers more than a tenth "
-           "of the part of its box the appearance was measured on (the core the image layer "
-           "reads), not of the whole box (docs/appearance.md: measured, in no preset)",
-           &C::appearance_region_occlusion),
       real("appearance_weight",
            "among the pairs the affinity allows, the assignment prefers affinity x (1 - this x "
            "the appearance distance) (0: appearance plays no part in the choice)",

@@ -26,10 +26,8 @@ std::string AppearanceDetector::describe() const {
 
 void AppearanceDetector::measure(const cv::Mat& image,
                                  std::vector<tracker::Detection>& detections) {
-  for (tracker::Detection& detection : detections) {
+  for (tracker::Detection& detection : detections)
     signature_.measure(image, detection.box, detection.appearance);
-    detection.appearance_region = ColourSignature::region(detection.box);
-  }
 }
 
 }  // namespace rtmot::vision

@@ -65,11 +65,6 @@ bool histogram(const cv::Mat& hsv, float* bins, float share) {
 
 }  // namespace
 
-tracker::Box ColourSignature::region(const tracker::Box& box) {
-  return tracker::Box{box.x + kCoreLeft * box.w, box.y + kTorsoTop * box.h,
-                      (kCoreRight - kCoreLeft) * box.w, (kLegsBottom - kTorsoTop) * box.h};
-}
-
 void ColourSignature::measure(const cv::Mat& frame, const tracker::Box& box,
                               tracker::Appearance& out) {
   out.valid = false;

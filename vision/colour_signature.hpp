@@ -18,11 +18,6 @@ class ColourSignature {
   /// frame of this size.
   void measure(const cv::Mat& frame, const tracker::Box& box, tracker::Appearance& out);
 
-  /// The part of `box` the signature reads (its core: torso and legs, the middle half of the
-  /// width), unclipped: what another detection must not cover for the signature to be the
-  /// person's own.
-  static tracker::Box region(const tracker::Box& box);
-
  private:
   cv::Mat hsv_;  // the frame's size: each part is converted into its own place, no allocation
 };

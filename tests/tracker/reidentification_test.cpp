@@ -23,12 +23,9 @@ Appearance colour(int bin) {
   return appearance;
 }
 
-// A person's box, 40 x 100, whose appearance was measured on its core (as vision::ColourSignature
-// reads it: the middle half of the width, 12 % to 85 % of the height).
 Detection person(float x, float y, const Appearance& looks) {
   Detection detection(Box{x, y, 40.F, 100.F}, 0.9F, 1);
   detection.appearance = looks;
-  detection.appearance_region = Box{x + 10.F, y + 12.F, 20.F, 73.F};
   return detection;
 }
 
@@ -123,7 +120,7 @@ struct BackFromBehind {
 };
 
 BackFromBehind back_from_behind(int covered_frames, const Appearance& looks_back = colour(3),
-                                double reid_gate = 0.3, bool region_occlusion = false) {
+                                double reid_gate = 0.3) {
   const Appearance looks = colour(3);
   const Appearance other = colour(9);
   std::vector<std::vector<Detection>> frames;
@@ -140,9 +137,7 @@ BackFromBehind back_from_behind(int covered_frames, const Appearance& looks_back
     frames.push_back({person(280.F - 5.F * static_cast<float>(k), 200.F, looks_back),
                       person(330.F, 200.F, other)});
   }
-  TrackerConfig c = config(reid_gate);
-  c.appearance_region_occlusion = region_occlusion;
-  Tracker tracker(c);
+  Tracker tracker(config(reid_gate));
   const auto ids = run(tracker, frames);
   // Reports are in track order: the person's first track, then the other's; later the new one.
   BackFromBehind seen;
@@ -173,18 +168,6 @@ TEST(Reidentification, APersonBackFromBehindSomeoneTakesTheirIdAtTheFirstClearSi
   EXPECT_NE(late.covered, 0);
   EXPECT_EQ(late.last, late.covered);
   EXPECT_EQ(late.other_last, late.other_first);
-}
-
-// The other person's box covers a quarter of the returning one's, but none of the core its
-// appearance was measured on: with appearance_region_occlusion that appearance is the person's
-// own from their return, so the new track is confirmed with a model and takes the old id at once.
-TEST(Reidentification, WithRegionOcclusionANeighbourOverTheBorderHidesNothing) {
-  const BackFromBehind by_box = back_from_behind(15);
-  EXPECT_NE(by_box.covered, by_box.first);  // doubted while beside the other: a new id
-  const BackFromBehind by_region = back_from_behind(15, colour(3), 0.3, true);
-  EXPECT_EQ(by_region.covered, by_region.first);  // the old id from the first report
-  EXPECT_EQ(by_region.last, by_region.first);
-  EXPECT_EQ(by_region.other_last, by_region.other_first);
 }
 
 // Split between two bins: `share` in `bin`, the rest in the next.
