@@ -10,9 +10,6 @@ struct Appearance {
   static constexpr int kBins = 48;
   std::array<float, kBins> bins{};  // non-negative, summing to 1 when valid
   bool valid{false};
-  // The image layer left out every pixel that another detection's box covers: another detection
-  // overlapping this one has not put its colours in (TrackerConfig::appearance_trust_masked).
-  bool others_excluded{false};
 };
 
 /// The Hellinger distance, in [0, 1]: 0 for equal histograms, 1 for disjoint ones. Bounded and

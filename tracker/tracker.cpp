@@ -178,12 +178,8 @@ struct Tracker::State {
   // appearance neither decides a pair nor teaches a track (kOccludedShare).
   void forget_hidden_appearances() {
     std::size_t hidden = 0;
-    const auto doubtful = [&](const Detection& d) {
-      const bool masked = config.appearance_trust_masked && d.appearance.others_excluded;
-      return d.appearance.valid && !masked && overlapped(d);
-    };
-    for (const Detection& d : high) hidden_flags[hidden++] = doubtful(d);
-    for (const Detection& d : low) hidden_flags[hidden++] = doubtful(d);
+    for (const Detection& d : high) hidden_flags[hidden++] = d.appearance.valid && overlapped(d);
+    for (const Detection& d : low) hidden_flags[hidden++] = d.appearance.valid && overlapped(d);
     hidden = 0;
     for (Detection& d : high) d.appearance.valid = d.appearance.valid && !hidden_flags[hidden++];
     for (Detection& d : low) d.appearance.valid = d.appearance.valid && !hidden_flags[hidden++];

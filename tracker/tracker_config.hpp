@@ -154,10 +154,6 @@ struct TrackerConfig {
   /// appearance distance): whether a pair is possible stays the affinity's (and the gate's)
   /// decision, which of the possible pairs is the appearance's too. 0 = off.
   double appearance_weight{0.0};
-  /// A detection that another one overlaps keeps its appearance (it decides pairs and teaches its
-  /// track) when the image layer measured it without the pixels of the other detections' boxes
-  /// (Appearance::others_excluded); otherwise such an appearance is doubted.
-  bool appearance_trust_masked{false};
   /// A track's appearance keeps this share of itself at each match by a detection that no other
   /// detection overlaps (a partly hidden person shows someone else's colours).
   double appearance_momentum{0.9};

@@ -299,11 +299,6 @@ std::vector<TrackerOption> make_table() {
            "its detection or track lies within the gate; where no rival looks alike, motion "
            "decides (docs/appearance.md: measured, in no preset)",
            &C::appearance_gate_rival_alike),
-      flag("appearance_trust_masked",
-           "a detection another one overlaps keeps its appearance when the image layer measured "
-           "it without the pixels of the other detections' boxes (the pipeline's signatures are) "
-           "(docs/appearance.md: measured, in no preset)",
-           &C::appearance_trust_masked),
       real("appearance_weight",
            "among the pairs the affinity allows, the assignment prefers affinity x (1 - this x "
            "the appearance distance) (0: appearance plays no part in the choice)",

@@ -26,15 +26,8 @@ std::string AppearanceDetector::describe() const {
 
 void AppearanceDetector::measure(const cv::Mat& image,
                                  std::vector<tracker::Detection>& detections) {
-  // Each detection's colours without the pixels the others' boxes cover (whichever is in front:
-  // the tracker trusts such a signature beside a neighbour only with appearance_trust_masked).
-  for (std::size_t i = 0; i < detections.size(); ++i) {
-    others_.clear();
-    for (std::size_t j = 0; j < detections.size(); ++j) {
-      if (j != i) others_.push_back(detections[j].box);
-    }
-    signature_.measure(image, detections[i].box, others_, detections[i].appearance);
-  }
+  for (tracker::Detection& detection : detections)
+    signature_.measure(image, detection.box, detection.appearance);
 }
 
 }  // namespace rtmot::vision

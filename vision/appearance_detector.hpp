@@ -27,7 +27,6 @@ class AppearanceDetector : public detector::Detector {
 
   std::unique_ptr<detector::Detector> inner_;
   ColourSignature signature_;
-  std::vector<tracker::Box> others_;  // the frame's other boxes, kept between frames
 };
 
 }  // namespace rtmot::vision

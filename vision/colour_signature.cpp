@@ -38,26 +38,12 @@ cv::Rect part_rect(const tracker::Box& box, float top, float bottom, const cv::S
   return cv::Rect(x0, y0, x1 - x0, y1 - y0) & cv::Rect(0, 0, frame.width, frame.height);
 }
 
-// A part keeps at least this share of its pixels when others' boxes are left out, or says nothing.
-constexpr float kMinVisibleShare = 0.5F;
-
-bool inside_any(const std::vector<cv::Rect>& rects, int x, int y) {
-  for (const cv::Rect& r : rects) {
-    if (r.contains(cv::Point(x, y))) return true;
-  }
-  return false;
-}
-
-// Fills bins[0..kPartBins) with the histogram of the part's pixels outside `hidden` (coordinates
-// within the part), summing to `share`; false if too few pixels are left.
-bool histogram(const cv::Mat& hsv, const std::vector<cv::Rect>& hidden, float* bins, float share) {
+// Fills bins[0..kPartBins) with the part's histogram, summing to `share`; false if too small.
+bool histogram(const cv::Mat& hsv, float* bins, float share) {
   std::fill(bins, bins + kPartBins, 0.F);
-  int counted = 0;
   for (int row = 0; row < hsv.rows; ++row) {
     const auto* pixel = hsv.ptr<cv::Vec3b>(row);
     for (int col = 0; col < hsv.cols; ++col) {
-      if (!hidden.empty() && inside_any(hidden, col, row)) continue;
-      ++counted;
       const int hue = pixel[col][0];
       const int saturation = pixel[col][1];
       const int value = pixel[col][2];
@@ -71,10 +57,8 @@ bool histogram(const cv::Mat& hsv, const std::vector<cv::Rect>& hidden, float* b
     }
   }
   const int pixels = hsv.rows * hsv.cols;
-  if (pixels < kMinPartPixels || counted < kMinPartPixels ||
-      static_cast<float>(counted) < kMinVisibleShare * static_cast<float>(pixels))
-    return false;
-  const float scale = share / static_cast<float>(counted);
+  if (pixels < kMinPartPixels) return false;
+  const float scale = share / static_cast<float>(pixels);
   for (int i = 0; i < kPartBins; ++i) bins[i] *= scale;
   return true;
 }
@@ -83,15 +67,7 @@ bool histogram(const cv::Mat& hsv, const std::vector<cv::Rect>& hidden, float* b
 
 void ColourSignature::measure(const cv::Mat& frame, const tracker::Box& box,
                               tracker::Appearance& out) {
-  static const std::vector<tracker::Box> kNoOthers;
-  measure(frame, box, kNoOthers, out);
-  out.others_excluded = false;
-}
-
-void ColourSignature::measure(const cv::Mat& frame, const tracker::Box& box,
-                              const std::vector<tracker::Box>& others, tracker::Appearance& out) {
   out.valid = false;
-  out.others_excluded = true;
   if (frame.empty() || frame.type() != CV_8UC3) return;
   if (hsv_.size() != frame.size()) hsv_.create(frame.size(), CV_8UC3);
   const cv::Rect parts[] = {part_rect(box, kTorsoTop, kWaist, frame.size()),
@@ -99,17 +75,9 @@ void ColourSignature::measure(const cv::Mat& frame, const tracker::Box& box,
   for (int part = 0; part < 2; ++part) {
     const cv::Rect& r = parts[part];
     if (r.width <= 0 || r.height <= 0) return;
-    hidden_.clear();
-    for (const tracker::Box& other : others) {
-      const cv::Rect covered =
-          cv::Rect(static_cast<int>(std::floor(other.x)), static_cast<int>(std::floor(other.y)),
-                   static_cast<int>(std::ceil(other.w)), static_cast<int>(std::ceil(other.h))) &
-          r;
-      if (covered.area() > 0) hidden_.push_back(covered - r.tl());
-    }
     cv::Mat hsv = hsv_(r);  // a header: cvtColor writes in place, hsv_ keeps its buffer
     cv::cvtColor(frame(r), hsv, cv::COLOR_BGR2HSV);
-    if (!histogram(hsv, hidden_, out.bins.data() + part * kPartBins, 0.5F)) return;
+    if (!histogram(hsv, out.bins.data() + part * kPartBins, 0.5F)) return;
   }
   out.valid = true;
 }

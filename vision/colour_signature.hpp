@@ -6,7 +6,6 @@
 // brightness, so that shade and lighting move a person less than a change of clothes does; dark,
 // pale and grey pixels, whose hue is noise, are binned by brightness instead.
 #include <opencv2/core/mat.hpp>
-#include <vector>
 
 #include "tracker/box.hpp"
 
@@ -19,15 +18,8 @@ class ColourSignature {
   /// frame of this size.
   void measure(const cv::Mat& frame, const tracker::Box& box, tracker::Appearance& out);
 
-  /// The same, from the pixels of the core that none of `others` (the frame's other detections)
-  /// covers, whichever of the two is in front: then only this person's own colours count, and
-  /// out.others_excluded says so. Invalid when either part keeps less than half its pixels.
-  void measure(const cv::Mat& frame, const tracker::Box& box,
-               const std::vector<tracker::Box>& others, tracker::Appearance& out);
-
  private:
   cv::Mat hsv_;  // the frame's size: each part is converted into its own place, no allocation
-  std::vector<cv::Rect> hidden_;  // the others' boxes within the part being measured
 };
 
 }  // namespace rtmot::vision
