@@ -25,10 +25,6 @@ constexpr double kOneFrameSlack = 0.5;
 // A detection whose box another detection covers this much of shows someone else's pixels too:
 // its appearance does not teach its track (a tenth of a person is an arm or a bag).
 constexpr float kOccludedShare = 0.1F;
-// appearance_front_trusted: of two overlapping people on the ground, the one whose feet are lower
-// in the image stands nearer the camera and hides the other. Nearer by this share of its height
-// at least: boxes' bottoms are a few pixels off, and two at one depth hide each other.
-constexpr float kFrontMargin = 0.05F;
 // Re-identification: two candidates that look alike to within this are not told apart, and
 // neither gives its id (a wrong old id costs more than a new one).
 constexpr float kReidMargin = 0.1F;
@@ -392,16 +388,13 @@ struct Tracker::State {
     kalman = replay;
   }
 
-  // Whether another detection of this frame covers part of `detection` (kOccludedShare); with
-  // appearance_front_trusted, only one that stands nearer the camera or as near (kFrontMargin).
+  // Whether another detection of this frame covers part of `detection` (kOccludedShare).
   bool overlapped(const Detection& detection) const {
     const auto covers = [&](const Detection& other) {
       const Box& a = other.box;
       const Box& b = detection.box;
       const bool itself = a.x == b.x && a.y == b.y && a.w == b.w && a.h == b.h;
-      if (itself || !(covered_share(b, a) > kOccludedShare)) return false;
-      if (!config.appearance_front_trusted) return true;
-      return a.y + a.h > b.y + b.h - kFrontMargin * b.h;  // `other` is not clearly behind
+      return !itself && covered_share(b, a) > kOccludedShare;
     };
     return std::any_of(high.begin(), high.end(), covers) ||
            std::any_of(low.begin(), low.end(), covers);

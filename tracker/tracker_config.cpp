@@ -35,7 +35,6 @@ TrackerConfig with_every_option(TrackerConfig base) {
   base.appearance_gate = 0.8;
   base.appearance_gate_contested = true;
   base.appearance_gate_rival_alike = true;
-  base.appearance_front_trusted = true;
   base.appearance_weight = 0.5;
   base.reid_gate = 0.3;
   return base;

@@ -154,11 +154,6 @@ struct TrackerConfig {
   /// appearance distance): whether a pair is possible stays the affinity's (and the gate's)
   /// decision, which of the possible pairs is the appearance's too. 0 = off.
   double appearance_weight{0.0};
-  /// A detection overlapped by others keeps its appearance when it stands in front of all of
-  /// them: its box's bottom (the feet, on a ground seen from above or level) lower in the image by
-  /// 5 % of its height than each overlapping box's. The person behind is hidden by it, so its
-  /// colours are its own; the one behind stays doubtful.
-  bool appearance_front_trusted{false};
   /// A track's appearance keeps this share of itself at each match by a detection that no other
   /// detection overlaps (a partly hidden person shows someone else's colours).
   double appearance_momentum{0.9};

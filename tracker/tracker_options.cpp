@@ -299,11 +299,6 @@ std::vector<TrackerOption> make_table() {
            "its detection or track lies within the gate; where no rival looks alike, motion "
            "decides (docs/appearance.md: measured, in no preset)",
            &C::appearance_gate_rival_alike),
-      flag("appearance_front_trusted",
-           "a detection overlapped by others keeps its appearance when its box's bottom is lower "
-           "in the image than each of theirs by 5 % of its height (it stands in front: the "
-           "person behind is hidden by it) (docs/appearance.md: measured, in no preset)",
-           &C::appearance_front_trusted),
       real("appearance_weight",
            "among the pairs the affinity allows, the assignment prefers affinity x (1 - this x "
            "the appearance distance) (0: appearance plays no part in the choice)",

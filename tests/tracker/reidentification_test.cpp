@@ -119,10 +119,8 @@ struct BackFromBehind {
   std::int32_t other_last{0};
 };
 
-// `back_y`: where the person comes back (200: level with the other; lower: in front of them).
 BackFromBehind back_from_behind(int covered_frames, const Appearance& looks_back = colour(3),
-                                double reid_gate = 0.3, float back_y = 200.F,
-                                bool front_trusted = false) {
+                                double reid_gate = 0.3) {
   const Appearance looks = colour(3);
   const Appearance other = colour(9);
   std::vector<std::vector<Detection>> frames;
@@ -133,15 +131,13 @@ BackFromBehind back_from_behind(int covered_frames, const Appearance& looks_back
   for (int k = 0; k < 20; ++k) frames.push_back({person(330.F, 200.F, other)});
   // Back at x 300: the other person's box (x 330) covers a quarter of theirs.
   for (int k = 0; k < covered_frames; ++k) {
-    frames.push_back({person(300.F, back_y, looks), person(330.F, 200.F, other)});
+    frames.push_back({person(300.F, 200.F, looks), person(330.F, 200.F, other)});
   }
   for (int k = 0; k < 10; ++k) {
-    frames.push_back({person(280.F - 5.F * static_cast<float>(k), back_y, looks_back),
+    frames.push_back({person(280.F - 5.F * static_cast<float>(k), 200.F, looks_back),
                       person(330.F, 200.F, other)});
   }
-  TrackerConfig c = config(reid_gate);
-  c.appearance_front_trusted = front_trusted;
-  Tracker tracker(c);
+  Tracker tracker(config(reid_gate));
   const auto ids = run(tracker, frames);
   // Reports are in track order: the person's first track, then the other's; later the new one.
   BackFromBehind seen;
@@ -172,21 +168,6 @@ TEST(Reidentification, APersonBackFromBehindSomeoneTakesTheirIdAtTheFirstClearSi
   EXPECT_NE(late.covered, 0);
   EXPECT_EQ(late.last, late.covered);
   EXPECT_EQ(late.other_last, late.other_first);
-}
-
-// Back 15 px lower than the person beside them (their feet nearer the camera): in front, so the
-// colours of their box are their own. With appearance_front_trusted they are confirmed with a
-// model and take their old id at once; level with the other, or without the option, they are
-// doubted as before.
-TEST(Reidentification, WithFrontTrustedAPersonInFrontOfTheirNeighbourIsKnownAtOnce) {
-  const BackFromBehind level = back_from_behind(15, colour(3), 0.3, 200.F, true);
-  EXPECT_NE(level.covered, level.first);
-  const BackFromBehind in_front_doubted = back_from_behind(15, colour(3), 0.3, 215.F, false);
-  EXPECT_NE(in_front_doubted.covered, in_front_doubted.first);
-  const BackFromBehind in_front = back_from_behind(15, colour(3), 0.3, 215.F, true);
-  EXPECT_EQ(in_front.covered, in_front.first);
-  EXPECT_EQ(in_front.last, in_front.first);
-  EXPECT_EQ(in_front.other_last, in_front.other_first);
 }
 
 // Split between two bins: `share` in `bin`, the rest in the next.

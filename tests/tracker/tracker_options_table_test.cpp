@@ -62,7 +62,6 @@ TEST(TrackerOptions, EveryKnobOfTheConfigCanBeSet) {
                                      {"appearance_gate", "0.7"},
                                      {"appearance_gate_contested", "true"},
                                      {"appearance_gate_rival_alike", "true"},
-                                     {"appearance_front_trusted", "true"},
                                      {"appearance_weight", "0.3"},
                                      {"appearance_momentum", "0.8"},
                                      {"reid_gate", "0.45"},
@@ -107,7 +106,6 @@ TEST(TrackerOptions, EveryKnobOfTheConfigCanBeSet) {
   EXPECT_DOUBLE_EQ(config.appearance_gate, 0.7);
   EXPECT_TRUE(config.appearance_gate_contested);
   EXPECT_TRUE(config.appearance_gate_rival_alike);
-  EXPECT_TRUE(config.appearance_front_trusted);
   EXPECT_DOUBLE_EQ(config.appearance_weight, 0.3);
   EXPECT_DOUBLE_EQ(config.appearance_momentum, 0.8);
   EXPECT_DOUBLE_EQ(config.reid_gate, 0.45);
@@ -117,7 +115,7 @@ TEST(TrackerOptions, EveryKnobOfTheConfigCanBeSet) {
   EXPECT_EQ(config.seed, 18446744073709551615ULL);
   EXPECT_EQ(config.max_tracks, 20);
   EXPECT_EQ(config.max_detections, 30);
-  EXPECT_EQ(tracker_options().size(), 45U) << "a new TrackerConfig field needs a line here too";
+  EXPECT_EQ(tracker_options().size(), 44U) << "a new TrackerConfig field needs a line here too";
 }
 
 TEST(TrackerOptions, AnAffinityBringsItsUsualThresholdUnlessOneFollows) {
