@@ -72,8 +72,9 @@ class Associator {
 
   std::vector<double> affinities_;
   std::vector<double> preferences_;
-  // The pairs (row-major indices) beyond the gate that appearance_gate_contested has not yet
-  // refused: usually none, so a round without them costs nothing more.
+  // The pairs (row-major indices) the affinity allows but the appearance puts beyond the gate,
+  // which appearance_gate_contested has not yet refused: usually none, so a round without them
+  // costs nothing more.
   std::vector<std::size_t> beyond_gate_;
   // appearance_gate_rival_alike: per pair (row-major), whether the appearance put it within the
   // gate.
