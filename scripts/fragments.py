@@ -46,11 +46,10 @@ def read_rows(path):
     return rows
 
 
-def write(path, rows, new_id):
+def write(path, rows, new_id, spare):
     """The results with each row's id replaced by new_id(frame, id); a second row of one frame on
-    an id already taken there keeps an id of its own (an id is one box per frame)."""
+    an id already taken there gets spare + its own id (an id is one box per frame)."""
     os.makedirs(os.path.dirname(path), exist_ok=True)
-    spare = 1 + max((i for frame_rows in rows.values() for i, _ in frame_rows), default=0)
     with open(path, "w") as f:
         for frame in sorted(rows):
             taken = set()
@@ -83,13 +82,21 @@ def main():
     for (frame, track), person in person_of.items():
         tally[track][person] += 1
     majority = {track: count.most_common(1)[0][0] for track, count in tally.items()}
-    # Ids of people shifted past every track id, so that no relabelled track meets an unmatched one.
+    # People's ids shifted past every track id, so that no relabelled track meets an unmatched one;
+    # a clash within a frame goes past those too.
     offset = 1 + max((i for frame_rows in rows.values() for i, _ in frame_rows), default=0)
+    spare = offset + 1 + max(majority.values(), default=0)
+
+    def merged(frame, track):
+        return offset + majority[track] if track in majority else track
+
+    def perfect(frame, track):
+        person = person_of.get((frame, track))
+        return offset + person if person is not None else merged(frame, track)
+
     name = os.path.basename(args.results)
-    write(os.path.join(args.out, "merged", name), rows,
-          lambda frame, track: offset + majority[track] if track in majority else track)
-    write(os.path.join(args.out, "perfect", name), rows,
-          lambda frame, track: offset + person_of.get((frame, track), majority.get(track, track - offset)))
+    write(os.path.join(args.out, "merged", name), rows, merged, spare)
+    write(os.path.join(args.out, "perfect", name), rows, perfect, spare)
 
     spans = defaultdict(list)  # person -> (first, last frame on them, track) of their tracks
     for track, person in majority.items():
