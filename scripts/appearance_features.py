@@ -154,14 +154,15 @@ def joint_bins(patch, code=None, low=0, high=256):
 
 
 def gradient_bins(patch):
-    """Texture: 8 gradient orientations (unsigned, 0..180 degrees) weighted by magnitude, and one
-    bin for flat pixels (magnitude below 8 gray levels per pixel)."""
+    """Texture: the share of the part's pixels at each of 8 gradient orientations (unsigned, 0..180
+    degrees), each pixel counting once, and one bin for flat pixels (a gradient below 4 gray levels
+    per pixel)."""
     gray = cv2.cvtColor(patch, cv2.COLOR_BGR2GRAY).astype(np.float32)
     dx, dy = cv2.Sobel(gray, cv2.CV_32F, 1, 0, ksize=3), cv2.Sobel(gray, cv2.CV_32F, 0, 1, ksize=3)
     magnitude, angle = cv2.cartToPolar(dx, dy, angleInDegrees=True)
     magnitude, angle = magnitude.ravel(), angle.ravel() % 180
     bins = np.zeros(9)
-    flat = magnitude < 32  # Sobel 3x3 scales a unit gradient by 4 (x2 both sides)
+    flat = magnitude < 32  # Sobel 3x3 gives 8 for a ramp of one gray level per pixel
     bins[8] = flat.sum()
     np.add.at(bins, np.minimum((angle[~flat] * 8 / 180).astype(int), 7), 1)
     return bins / len(magnitude)

@@ -42,19 +42,20 @@ def read_scores(path, low, high):
     if missing:
         fail(f"{path}:1: no column {', '.join(missing)} (not a score_video.sh table?)")
     for number, line in enumerate(lines[1:], 2):
-        fields = dict(zip(header, line.split("\t")))
-        if len(fields) != len(header):
-            fail(f"{path}:{number}: {len(line.split(chr(9)))} fields, expected {len(header)}")
+        values = line.split("\t")
+        if len(values) != len(header):
+            fail(f"{path}:{number}: {len(values)} fields, expected {len(header)}")
+        fields = dict(zip(header, values))
         if fields["latency_ms"] == "every":
             continue
         try:
             latency = float(fields["latency_ms"])
-            values = {c: float(fields[c]) for c in COLUMNS}
+            scores = {c: float(fields[c]) for c in COLUMNS}
         except ValueError:
             fail(f"{path}:{number}: latency_ms or a score is not a number")
         if low <= latency <= high:
             # A label run twice at one latency: the later line is the one that counts.
-            runs[fields["label"]][fields["sequence"]][latency] = values
+            runs[fields["label"]][fields["sequence"]][latency] = scores
     if not runs:
         fail(f"{path}: no run between {low:g} and {high:g} ms", 1)
     return runs
