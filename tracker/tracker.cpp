@@ -12,7 +12,6 @@
 #include "tracker/box_noise.hpp"
 #include "tracker/predictor.hpp"
 #include "tracker/score_cut.hpp"
-#include "tracker/sighting_rings.hpp"
 #include "tracker/track.hpp"
 #include "tracker/tracker_extension.hpp"
 
@@ -103,9 +102,6 @@ struct Tracker::State {
     reports.reserve(tracks);
     table.reserve(tracks);
     departed.resize(config.reid_gate > 0.0 ? tracks : 0);
-    const int kept_sightings = departed.empty() ? 0 : config.reid_sightings;
-    sightings = SightingRings(tracks, kept_sightings);
-    departed_sightings = SightingRings(departed.size(), kept_sightings);
     restart();
   }
 
@@ -368,7 +364,6 @@ struct Tracker::State {
     } else if (detection.appearance.valid) {       // valid: no other detection covers it
       blend_appearance(track.appearance, detection.appearance,
                        static_cast<float>(config.appearance_momentum));
-      sightings.add(slot_of(track), detection.appearance);
     }
     track.steps_since_update = 0;
     track.frames_since_update = 0.0;
@@ -456,8 +451,6 @@ struct Tracker::State {
     track.matches = 1;
     track.class_id = detection.class_id;
     track.appearance = detection.appearance;
-    sightings.clear(static_cast<std::size_t>(slot));
-    sightings.add(static_cast<std::size_t>(slot), detection.appearance);
     track.last_seen_seconds = last_update_time;
     track.born_seconds = last_update_time;
     track.model_started_now = false;
@@ -516,12 +509,10 @@ struct Tracker::State {
   }
 
   // The crossing is over for `track`: its held sighting joins its model.
-  void end_crossing(Track& track) {
-    if (track.held_sighting.valid) {
+  void end_crossing(Track& track) const {
+    if (track.held_sighting.valid)
       blend_appearance(track.appearance, track.held_sighting,
                        static_cast<float>(config.appearance_momentum));
-      sightings.add(slot_of(track), track.held_sighting);
-    }
     track.held_sighting.valid = false;
     track.crossing_partner = 0;
   }
@@ -551,7 +542,6 @@ struct Tracker::State {
           std::max(a_is_b, b_is_a) <= static_cast<float>(config.reid_gate)) {
         std::swap(a.id, b->id);
         std::swap(a.appearance, b->appearance);
-        sightings.swap_rows(slot_of(a), slot_of(*b));
       }
       end_crossing(a);
       end_crossing(*b);
@@ -619,22 +609,14 @@ struct Tracker::State {
             !lost.appearance.valid || lost.class_id != track.class_id ||
             !within_reach(lost.last_observation, lost.last_seen_seconds, track))
           continue;
-        consider(sightings.enabled()
-                     ? sightings.nearest(static_cast<std::size_t>(other), sightings,
-                                         static_cast<std::size_t>(slot))
-                     : appearance_distance(lost.appearance, track.appearance),
-                 other, -1);
+        consider(appearance_distance(lost.appearance, track.appearance), other, -1);
       }
       for (int i = 0; i < static_cast<int>(departed.size()); ++i) {
         const Departed& gone = departed[static_cast<std::size_t>(i)];
         if (gone.id == 0 || gone.class_id != track.class_id ||
             !within_reach(gone.last_box, gone.last_seen_seconds, track))
           continue;
-        consider(sightings.enabled()
-                     ? departed_sightings.nearest(static_cast<std::size_t>(i), sightings,
-                                                  static_cast<std::size_t>(slot))
-                     : appearance_distance(gone.appearance, track.appearance),
-                 -1, i);
+        consider(appearance_distance(gone.appearance, track.appearance), -1, i);
       }
       if (best > gate || second < best + kReidMargin) continue;
       if (best_lost >= 0) {
@@ -667,13 +649,7 @@ struct Tracker::State {
     if (departed.empty() || !track.life.ever_confirmed() || !track.appearance.valid) return;
     departed[next_departed] = Departed{track.id, track.class_id, track.last_observation,
                                        track.last_seen_seconds, track.appearance};
-    departed_sightings.copy_row(next_departed, sightings, slot_of(track));
     next_departed = (next_departed + 1) % departed.size();
-  }
-
-  // Slots never move (track.hpp), so a track's slot is its place in the table.
-  std::size_t slot_of(const Track& track) const {
-    return static_cast<std::size_t>(&track - slots.data());
   }
 
   static TrackReport report(const Track& track) {
@@ -756,9 +732,6 @@ struct Tracker::State {
     Appearance appearance;
   };
   std::vector<Departed> departed;  // sized max_tracks when re-identification is on, else empty
-  // reid_sightings: each slot's and each departed entry's recent clear sightings (empty when 0).
-  SightingRings sightings{0, 0};
-  SightingRings departed_sightings{0, 0};
   std::size_t next_departed{0};
   Associator associator;
   BoxNoise box_noise;

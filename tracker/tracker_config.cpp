@@ -113,8 +113,6 @@ std::optional<std::string> config_problem(const TrackerConfig& config) {
   if (config.appearance_gate_rival_alike && !config.appearance_gate_contested)
     return "appearance_gate_rival_alike needs appearance_gate_contested: it narrows which "
            "contested pairs the gate refuses";
-  if (config.reid_sightings < 0 || config.reid_sightings > limits::kMaxReidSightings)
-    return "reid_sightings must be in [0, " + std::to_string(limits::kMaxReidSightings) + "]";
   if (config.resolve_crossings && !(config.reid_gate > 0.0))
     return "resolve_crossings needs re-identification on (reid_gate above 0): its trades are "
            "bounded by reid_gate";

@@ -163,9 +163,6 @@ struct TrackerConfig {
   /// appearance, when no other one is nearly as near. A lost one it takes over ends. 0 = off.
   double reid_gate{0.0};
   double reid_max_gap_s{5.0};
-  /// Re-identification compares the nearest pair of the two tracks' last this many clear
-  /// sightings instead of their averaged models (tracker/sighting_rings.hpp). 0 = the models.
-  int reid_sightings{0};
   /// With re-identification on: two confirmed tracks whose boxes overlapped trade ids and models
   /// when their first clear sightings after it each look like the other's model (the motion model
   /// gave each the other person). Measured, not in a preset (docs/appearance.md, round 19).

@@ -18,8 +18,5 @@ inline constexpr double kMaxGateMargin = 5.0;
 inline constexpr double kMaxDistanceGate = 10.0;
 // Past it any jitter asks for the whole max_gate_margin.
 inline constexpr double kMaxNoiseGateFactor = 100.0;
-// reid_sightings: comparing every pair of two tracks' sightings costs their product; 16 x 16
-// pairs of 48 bins, for each candidate of each newly confirmed track, stays far under a frame.
-inline constexpr int kMaxReidSightings = 16;
 
 }  // namespace rtmot::tracker::limits

@@ -316,11 +316,6 @@ std::vector<TrackerOption> make_table() {
            &C::reid_gate, 0.0, 1.0),
       real("reid_max_gap_s", "the longest gap re-identification bridges, in seconds",
            &C::reid_max_gap_s, 0.0, 3600.0),
-      integer("reid_sightings",
-              "re-identification compares the nearest pair of the two tracks' last this many "
-              "clear sightings instead of their averaged appearances (docs/appearance.md; 0: the "
-              "averages)",
-              &C::reid_sightings, 0, limits::kMaxReidSightings),
       flag("resolve_crossings",
            "with re-identification on (reid_gate): two confirmed tracks whose boxes overlapped "
            "trade ids when their first clear sightings after it each look like the other's model "
