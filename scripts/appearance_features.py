@@ -13,8 +13,9 @@ learning), this measures
   - `A+B`: the mean of two distances (default: colour+ssd-10x10x1280).
 `--descriptors` chooses which (default: the signature and the SSD's maps).
 Then, for each gap of L frames: every person seen clear at frame t and again at t + L is a query; the
-gallery is everyone seen clear at t, each by their model at t (the tracker's exponential average,
-0.9 kept per sighting). Printed per descriptor and gap: rank-1 (the nearest model is the person's
+gallery is everyone seen clear at t, each by their model at t (`--models`: `ema`, the tracker's
+exponential average, 0.9 kept per sighting; `galleryK`, their last K clear sightings, the nearest
+counting, as DeepSORT keeps its gallery). Printed per descriptor and gap: rank-1 (the nearest model is the person's
 own), rank-1 with the re-identification margin (and the next is at least 0.1 further), and the AUC
 of own-against-other distances (scale-free).
 
@@ -22,7 +23,7 @@ Research tooling: needs ground truth (../shared) and Debian's python3-opencv; th
 runs it. Usage:
   scripts/appearance_features.py --source data/vtest.avi \
       --gt ../shared/data/mot15-train/PETS09-S2L1/gt/gt.txt --fps 7 [--last-frame N] [--from-frame N] \
-      [--descriptors colour,colour-soft,gradient,colour+gradient] [--gaps-s 1,3,5]
+      [--descriptors colour,colour-soft,gradient,colour+gradient] [--gaps-s 1,3,5] [--models ema,gallery4]
 --source is a video file or a folder of numbered .jpg images. Exit 2: bad arguments or input.
 """
 import argparse
@@ -235,6 +236,9 @@ def main():
     parser.add_argument("--gaps-s", default="0,1,3,5,10", help="gaps in seconds (0: the next frame)")
     parser.add_argument("--from-frame", type=int, default=1, help="queries from this frame on")
     parser.add_argument("--last-frame", type=int, default=0, help="stop after this frame (0: all)")
+    parser.add_argument("--models", default="ema",
+                        help="each person's model, comma-separated: ema (the tracker's average) or "
+                        "galleryK (their last K clear sightings, the nearest counting: DeepSORT's)")
     parser.add_argument("--descriptors", default="colour," + ",".join(SSD_LAYERS) + ",colour+ssd-10x10x1280",
                         help="which to compare, comma-separated: " + ", ".join([*COLOUR_KINDS, *SSD_LAYERS])
                         + ", or A+B (the mean of two distances)")
@@ -246,6 +250,11 @@ def main():
     except ValueError:
         fail(f"--gaps-s: not a list of numbers: {args.gaps_s!r}")
     kinds = args.descriptors.split(",")
+    model_kinds = args.models.split(",")
+    for model_kind in model_kinds:
+        if model_kind != "ema" and not (model_kind.startswith("gallery") and model_kind[7:].isdigit()
+                                        and int(model_kind[7:]) > 0):
+            fail(f"--models: unknown {model_kind!r} (ema or galleryK, K > 0)")
     used = {part for kind in kinds for part in kind.split("+")}
     unknown = sorted(used - set(COLOUR_KINDS) - set(SSD_LAYERS))
     if unknown:
@@ -287,7 +296,9 @@ def main():
     if not sightings:
         fail(f"{args.source}: no frame matched the ground truth's people")
 
-    models, model_at = {}, {}  # each person's running model, and its value after each frame
+    # Each person's models after each frame: the running average, and their last sightings.
+    models, recent, model_at, recent_at = {}, collections.defaultdict(list), {}, {}
+    longest = max([int(m[7:]) for m in model_kinds if m != "ema"], default=1)
     for frame_number in sorted(sightings):
         for person, d in sightings[frame_number].items():
             if person in models:
@@ -298,11 +309,19 @@ def main():
             for kind in layers:  # the average of unit vectors, compared by cosine: unit again
                 model[kind] = model[kind] / np.linalg.norm(model[kind])
             model_at[(frame_number, person)] = model
+            recent[person] = (recent[person] + [d])[-longest:]
+            recent_at[(frame_number, person)] = recent[person]
 
-    print("| descriptor | gap | queries | rank-1 | rank-1 by the margin 0.1 | AUC |")
-    print("|---|---|---|---|---|---|")
+    def model_distance(model_kind, kind, frame_number, person, query):
+        if model_kind == "ema":
+            return distance(kind, model_at[(frame_number, person)], query)
+        size = int(model_kind[7:])
+        return min(distance(kind, seen, query) for seen in recent_at[(frame_number, person)][-size:])
+
+    print("| descriptor | model | gap | queries | rank-1 | rank-1 by the margin 0.1 | AUC |")
+    print("|---|---|---|---|---|---|---|")
     for gap in gaps:
-        for kind in kinds:
+        for kind, model_kind in ((k, m) for k in kinds for m in model_kinds):
             queries = right = by_margin = 0
             own, other = [], []
             for frame_number, gallery_people in sightings.items():
@@ -312,7 +331,7 @@ def main():
                 for person, query in later.items():
                     if person not in gallery_people:
                         continue
-                    ranked = sorted((distance(kind, model_at[(frame_number, p)], query), p)
+                    ranked = sorted((model_distance(model_kind, kind, frame_number, p, query), p)
                                     for p in gallery_people)
                     queries += 1
                     right += ranked[0][1] == person
@@ -320,9 +339,9 @@ def main():
                     own += [d for d, p in ranked if p == person]
                     other += [d for d, p in ranked if p != person]
             if queries == 0:
-                print(f"| {kind} | {gap} frames | 0 | | | |")
+                print(f"| {kind} | {model_kind} | {gap} frames | 0 | | | |")
                 continue
-            print(f"| {kind} | {gap} frames ({gap / args.fps:.1f} s) | {queries} | {right / queries:.3f} | "
+            print(f"| {kind} | {model_kind} | {gap} frames ({gap / args.fps:.1f} s) | {queries} | {right / queries:.3f} | "
                   f"{by_margin / queries:.3f} | {auc(np.array(own), np.array(other)):.3f} |")
     return 0
 
