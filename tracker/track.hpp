@@ -60,6 +60,7 @@ struct Track {
   double born_seconds{0.0};         // the update time of its birth
   bool first_confirmed_now{false};  // confirmed for the first time by the update in progress
   bool model_started_now{false};    // its appearance model began in the update in progress
+  bool observed_now{false};         // its prior was moved to what the image showed (ObservedBox)
   bool taken_over{false};           // a re-identified track took its id: it ends in this update
   // Born at or above strong_birth_range_cut: confirmed sooner.
   bool strong_birth{false};

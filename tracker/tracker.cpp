@@ -199,6 +199,7 @@ struct Tracker::State {
       }
       track.streak_frames += dt;
       track.model_started_now = false;
+      track.observed_now = false;
       ++track.steps_since_update;
       track.frames_since_update += dt;
       if (is_finite(track.predicted)) {
@@ -221,6 +222,7 @@ struct Tracker::State {
         correct(track.predictor, seen.box);
         const Box corrected = current_box(track.predictor);
         if (is_finite(corrected)) track.predicted = corrected;
+        track.observed_now = true;
         break;
       }
     }
@@ -330,8 +332,12 @@ struct Tracker::State {
         static_cast<float>(config.noise_gate_factor * box_noise.median_offset());
     for (const int position : positions) {
       const Track& track = slots[order[position]];
-      const double gate_time =
+      double gate_time =
           config.gate_clock == GateClock::frame_gap ? step_frames : track.frames_since_update;
+      // The widening answers for the motion model's guess over the gap; where the image showed
+      // where the track is, that guess was replaced (docs/appearance.md, round 24).
+      if (track.observed_now && config.observed_gate_frames > 0.0)
+        gate_time = std::min(gate_time, config.observed_gate_frames);
       candidates.push_back(
           AssociationCandidate{track.predicted, gate_time, noise_margin, &track.appearance});
     }

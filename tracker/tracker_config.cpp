@@ -113,6 +113,8 @@ std::optional<std::string> config_problem(const TrackerConfig& config) {
   if (config.appearance_gate_rival_alike && !config.appearance_gate_contested)
     return "appearance_gate_rival_alike needs appearance_gate_contested: it narrows which "
            "contested pairs the gate refuses";
+  if (!(config.observed_gate_frames >= 0.0 && config.observed_gate_frames <= limits::kMaxFrames))
+    return "observed_gate_frames must be in [0, " + std::to_string(limits::kMaxFrames) + "]";
   if (config.resolve_crossings && !(config.reid_gate > 0.0))
     return "resolve_crossings needs re-identification on (reid_gate above 0): its trades are "
            "bounded by reid_gate";

@@ -167,6 +167,10 @@ struct TrackerConfig {
   /// when their first clear sightings after it each look like the other's model (the motion model
   /// gave each the other person). Measured, not in a preset (docs/appearance.md, round 19).
   bool resolve_crossings{false};
+  /// A track whose prior the image corrected in this update (an ObservedBox) has its gate widened
+  /// as for at most this many nominal frames, not the whole gap between processed frames: the
+  /// widening answers for the motion model's guess, which the image replaced. 0 = off.
+  double observed_gate_frames{0.0};
 
   // --- particle filter ---
   int particle_count{100};

@@ -316,6 +316,12 @@ std::vector<TrackerOption> make_table() {
            &C::reid_gate, 0.0, 1.0),
       real("reid_max_gap_s", "the longest gap re-identification bridges, in seconds",
            &C::reid_max_gap_s, 0.0, 3600.0),
+      real("observed_gate_frames",
+           "where the pipeline followed a track in the image across the frames a slow detector "
+           "skipped (detector.follow_image), its gate is widened as for at most this many "
+           "nominal frames instead of the whole gap: the image replaced the motion model's guess "
+           "(docs/full-rate.md; 0: off)",
+           &C::observed_gate_frames, 0.0, static_cast<double>(limits::kMaxFrames)),
       flag("resolve_crossings",
            "with re-identification on (reid_gate): two confirmed tracks whose boxes overlapped "
            "trade ids when their first clear sightings after it each look like the other's model "

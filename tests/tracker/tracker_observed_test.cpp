@@ -55,6 +55,37 @@ TEST(ObservedBoxes, KeepTheIdOfAPersonWhoTurnedWhileTheDetectorWasLate) {
   EXPECT_GT(with, 0) << "the observed box did not bring the track to the detection";
 }
 
+// A person stands still, detected every frame; then the detector is 6 frames late and finds only
+// the neighbour who stepped up beside them (38 px to the right, the person missed). The image saw
+// the person stay. Across a 6-frame gap the IoU gate is widened for the motion model's guess
+// (max_gate_margin), which reaches the neighbour; with observed_gate_frames the followed track's
+// gate is that of 2 frames, and the neighbour's detection is not the person's. What the track
+// with the person's id was matched to, if anything: its box's x, or -1.
+float where_the_person_id_went(double observed_gate_frames) {
+  TrackerConfig config = at_seven_fps();
+  config.observed_gate_frames = observed_gate_frames;
+  Tracker tracker(config);
+  std::int32_t id = 0;
+  for (int frame = 0; frame < 8; ++frame) {
+    const auto& reports = tracker.update({Detection(walker_at(100.F), 0.9F, 1)}, frame / 7.0);
+    if (!reports.empty()) id = reports.front().id;
+  }
+  EXPECT_NE(id, 0) << "the person was never confirmed";
+  const std::vector<ObservedBox> observed{{id, walker_at(100.F)}};
+  const std::vector<Detection> neighbour{Detection(walker_at(138.F), 0.9F, 1)};
+  for (const TrackReport& track : tracker.update(neighbour, (7 + 6) / 7.0, observed)) {
+    if (track.id == id) return track.box.x;
+  }
+  return -1.F;
+}
+
+TEST(ObservedBoxes, AFollowedTracksGateIsNotWidenedForTheWholeGap) {
+  EXPECT_GT(where_the_person_id_went(0.0), 110.F)
+      << "the widened gate did not reach the neighbour: the scene proves nothing";
+  EXPECT_EQ(where_the_person_id_went(2.0), -1.F)
+      << "the followed track took the neighbour's detection";
+}
+
 // An observation is not a detection: a track seen only in the image is not kept alive by it.
 TEST(ObservedBoxes, DoNotKeepATrackWithoutDetectionsAlive) {
   TrackerConfig config = at_seven_fps();

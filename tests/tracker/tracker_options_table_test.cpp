@@ -67,6 +67,7 @@ TEST(TrackerOptions, EveryKnobOfTheConfigCanBeSet) {
                                      {"reid_gate", "0.45"},
                                      {"reid_max_gap_s", "7.5"},
                                      {"resolve_crossings", "true"},
+                                     {"observed_gate_frames", "3.5"},
                                      {"particle_count", "33"},
                                      {"seed", "18446744073709551615"},
                                      {"max_tracks", "20"},
@@ -111,11 +112,12 @@ TEST(TrackerOptions, EveryKnobOfTheConfigCanBeSet) {
   EXPECT_DOUBLE_EQ(config.reid_gate, 0.45);
   EXPECT_DOUBLE_EQ(config.reid_max_gap_s, 7.5);
   EXPECT_TRUE(config.resolve_crossings);
+  EXPECT_DOUBLE_EQ(config.observed_gate_frames, 3.5);
   EXPECT_EQ(config.particle_count, 33);
   EXPECT_EQ(config.seed, 18446744073709551615ULL);
   EXPECT_EQ(config.max_tracks, 20);
   EXPECT_EQ(config.max_detections, 30);
-  EXPECT_EQ(tracker_options().size(), 44U) << "a new TrackerConfig field needs a line here too";
+  EXPECT_EQ(tracker_options().size(), 45U) << "a new TrackerConfig field needs a line here too";
 }
 
 TEST(TrackerOptions, AnAffinityBringsItsUsualThresholdUnlessOneFollows) {
