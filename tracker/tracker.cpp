@@ -335,7 +335,8 @@ struct Tracker::State {
       double gate_time =
           config.gate_clock == GateClock::frame_gap ? step_frames : track.frames_since_update;
       // The widening answers for the motion model's guess over the gap; where the image showed
-      // where the track is, that guess was replaced (docs/appearance.md, round 24).
+      // where the track is, that guess was replaced (docs/full-rate.md, "The gate of a followed
+      // track").
       if (track.observed_now && config.observed_gate_frames > 0.0)
         gate_time = std::min(gate_time, config.observed_gate_frames);
       candidates.push_back(
