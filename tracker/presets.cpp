@@ -55,11 +55,6 @@ tracker::TrackerConfig rtmot_preset() {
   // both second halves too (docs/appearance.md, "Re-identification").
   config.reid_gate = 0.6;
   config.reid_max_gap_s = 5.0;
-  // Behind a slow detector, a track the image followed across the skipped frames meets the next
-  // detections with the gate of 2 frames, not of the whole gap: chosen on the first halves of the
-  // two in-sample videos behind 200-300 ms and kept since both second halves gained too
-  // (docs/full-rate.md, "The gate of a followed track"). Without images nothing is followed.
-  config.observed_gate_frames = 2.0;
   return config;
 }
 

@@ -320,7 +320,7 @@ std::vector<TrackerOption> make_table() {
            "where the pipeline followed a track in the image across the frames a slow detector "
            "skipped (detector.follow_image), its gate is widened as for at most this many "
            "nominal frames instead of the whole gap: the image replaced the motion model's guess "
-           "(docs/full-rate.md; 0: off)",
+           "(docs/full-rate.md: measured, in no preset; 0: off)",
            &C::observed_gate_frames, 0.0, static_cast<double>(limits::kMaxFrames)),
       flag("resolve_crossings",
            "with re-identification on (reid_gate): two confirmed tracks whose boxes overlapped "
