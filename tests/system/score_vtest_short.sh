@@ -27,7 +27,7 @@ score boxes every,250 --follow-image false
 score image 250
 cat "$work/scores.tsv"
 # label latency processed MOTA IDF1 DetA AssA
-expected=$'boxes/every 150 39.6 55.9 43.8 37.2\nboxes/250 43 16.6 40.4 29.6 31.4\nimage/250 43 30.6 49.7 36.6 35.3'
+expected=$'boxes/every 150 39.6 55.9 43.8 37.2\nboxes/250 87 28.5 55.7 38.2 42.3\nimage/250 87 39.0 61.1 42.0 45.6'
 awk -F'\t' -v tolerance="$tolerance" -v expected="$expected" '
   BEGIN {
     n = split(expected, lines, "\n")
