@@ -15,9 +15,9 @@ learning), this measures
 Then, for each gap of L frames: every person seen clear at frame t and again at t + L is a query; the
 gallery is everyone seen clear at t, each by their model at t (`--models`: `ema`, the tracker's
 exponential average, 0.9 kept per sighting; `galleryK`, their last K clear sightings, the nearest
-counting, as DeepSORT keeps its gallery). Printed per descriptor and gap: rank-1 (the nearest model is the person's
-own), rank-1 with the re-identification margin (and the next is at least 0.1 further), and the AUC
-of own-against-other distances (scale-free).
+counting, as DeepSORT keeps its gallery). Printed per descriptor, model and gap: rank-1 (the
+nearest model is the person's own), rank-1 with the re-identification margin (and the next is at
+least 0.1 further), and the AUC of own-against-other distances (scale-free).
 
 Research tooling: needs ground truth (../shared) and Debian's python3-opencv; the product never
 runs it. Usage:
