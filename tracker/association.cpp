@@ -15,6 +15,11 @@ constexpr double kImpossible = -1.0;
 // unlike (beyond it).
 enum class GateVerdict { unseen, within, beyond };
 
+// The matrices are rows (detections) x cols (candidates), row-major.
+std::size_t cell(int r, int c, int cols) {
+  return static_cast<std::size_t>(r) * cols + c;
+}
+
 // The appearance's say in one pair, where both sides have one: beyond the gate the pair is
 // impossible (or, with appearance_gate_contested, marked beyond it: whether it is refused waits
 // for its rivals); otherwise the assignment's preference is the affinity scaled down by the
@@ -65,7 +70,6 @@ void Associator::fill_and_solve(const TrackerConfig& config,
   const int rows = static_cast<int>(detections.size());
   const int cols = static_cast<int>(candidates.size());
   if (rows == 0 || cols == 0) return;
-  const auto at = [cols](int r, int c) { return static_cast<std::size_t>(r) * cols + c; };
   affinities_.resize(static_cast<std::size_t>(rows) * cols);
   preferences_.resize(affinities_.size());
   beyond_gate_.clear();
@@ -77,10 +81,11 @@ void Associator::fill_and_solve(const TrackerConfig& config,
       double preference = value;
       const GateVerdict verdict =
           weigh_appearance(config, candidates[c], detections[r], value, preference);
-      affinities_[at(r, c)] = value;
-      preferences_[at(r, c)] = preference;
-      if (verdict == GateVerdict::beyond && value > threshold) beyond_gate_.push_back(at(r, c));
-      if (rival_must_look_alike && verdict == GateVerdict::within) alike_[at(r, c)] = 1;
+      const std::size_t i = cell(r, c, cols);
+      affinities_[i] = value;
+      preferences_[i] = preference;
+      if (verdict == GateVerdict::beyond && value > threshold) beyond_gate_.push_back(i);
+      if (rival_must_look_alike && verdict == GateVerdict::within) alike_[i] = 1;
     }
   }
   count_hits(threshold, rows, cols);
@@ -96,7 +101,7 @@ void Associator::count_hits(double threshold, int rows, int cols) {
   col_hits_.assign(cols, 0);
   for (int r = 0; r < rows; ++r) {
     for (int c = 0; c < cols; ++c) {
-      if (affinities_[static_cast<std::size_t>(r) * cols + c] > threshold) {
+      if (affinities_[cell(r, c, cols)] > threshold) {
         ++row_hits_[r];
         ++col_hits_[c];
       }
@@ -106,15 +111,18 @@ void Associator::count_hits(double threshold, int rows, int cols) {
 
 bool Associator::refuse_contested_beyond_gate(double threshold, int rows, int cols,
                                               bool rival_must_look_alike) {
-  const auto at = [cols](int r, int c) { return static_cast<std::size_t>(r) * cols + c; };
   // A rival that looks alike: another pair of the row or column the affinity allows and the
   // appearance put within the gate. Searched only for the few pairs beyond the gate.
   const auto has_alike_rival = [&](int r, int c) {
     for (int other = 0; other < cols; ++other) {
-      if (other != c && alike_[at(r, other)] && affinities_[at(r, other)] > threshold) return true;
+      if (other != c && alike_[cell(r, other, cols)] &&
+          affinities_[cell(r, other, cols)] > threshold)
+        return true;
     }
     for (int other = 0; other < rows; ++other) {
-      if (other != r && alike_[at(other, c)] && affinities_[at(other, c)] > threshold) return true;
+      if (other != r && alike_[cell(other, c, cols)] &&
+          affinities_[cell(other, c, cols)] > threshold)
+        return true;
     }
     return false;
   };
@@ -173,14 +181,13 @@ void Associator::associate_by_distance(const TrackerConfig& config,
 
 void Associator::solve(double threshold, int rows, int cols,
                        std::vector<AssociationMatch>& matches) {
-  const auto at = [cols](int r, int c) { return static_cast<std::size_t>(r) * cols + c; };
   const bool any_hit = std::any_of(row_hits_.begin(), row_hits_.end(), [](int n) { return n > 0; });
   const bool one_to_one = any_hit && *std::max_element(row_hits_.begin(), row_hits_.end()) == 1 &&
                           *std::max_element(col_hits_.begin(), col_hits_.end()) == 1;
   if (one_to_one) {
     for (int r = 0; r < rows; ++r) {
       for (int c = 0; c < cols; ++c) {
-        if (affinities_[at(r, c)] > threshold) matches.push_back(AssociationMatch{r, c});
+        if (affinities_[cell(r, c, cols)] > threshold) matches.push_back(AssociationMatch{r, c});
       }
     }
     return;
@@ -193,7 +200,8 @@ void Associator::solve(double threshold, int rows, int cols,
   const std::vector<int>& assigned = assignment_.solve(costs_.data(), rows, cols);
   for (int r = 0; r < rows; ++r) {
     const int c = assigned[r];
-    if (c >= 0 && affinities_[at(r, c)] >= threshold) matches.push_back(AssociationMatch{r, c});
+    if (c >= 0 && affinities_[cell(r, c, cols)] >= threshold)
+      matches.push_back(AssociationMatch{r, c});
   }
 }
 
