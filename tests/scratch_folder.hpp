@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <iostream>
 #include <string>
@@ -35,9 +36,13 @@ class ScratchFolder {
   const std::filesystem::path& path() const { return path_; }
 
  private:
+  // A parameterized test's name holds a '/' ("Case/param"): in the path it made a subfolder,
+  // and removing the path left its parent behind on every run.
   static std::string current_test_name() {
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    return info == nullptr ? "outside-a-test" : info->name();
+    std::string name = info == nullptr ? "outside-a-test" : info->name();
+    std::replace(name.begin(), name.end(), '/', '_');
+    return name;
   }
 
   std::filesystem::path path_;

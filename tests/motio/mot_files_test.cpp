@@ -3,7 +3,6 @@
 
 #include <gtest/gtest.h>
 
-#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -11,6 +10,7 @@
 #include "common/input_error.hpp"
 #include "motio/frame_detections.hpp"
 #include "motio/results_writer.hpp"
+#include "scratch_folder.hpp"
 #include "shared_data.hpp"
 
 namespace rtmot::motio {
@@ -20,23 +20,15 @@ namespace fs = std::filesystem;
 
 class TempDir {
  public:
-  TempDir() {
-    path_ =
-        fs::temp_directory_path() /
-        ("rtmot_mot_files_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
-         "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::create_directories(path_);
-  }
-  ~TempDir() { fs::remove_all(path_); }
   fs::path write(const std::string& name, const std::string& text) const {
-    const fs::path file = path_ / name;
+    const fs::path file = folder_.path() / name;
     std::ofstream(file, std::ios::binary) << text;
     return file;
   }
-  const fs::path& path() const { return path_; }
+  const fs::path& path() const { return folder_.path(); }
 
  private:
-  fs::path path_;
+  test::ScratchFolder folder_{"mot-files"};
 };
 
 struct Failure {
