@@ -134,12 +134,14 @@ void GstVideoSource::open() {
     fail_open("unusable video caps from the decoder");
   }
   gint64 duration_ns = 0;
-  if (!info_.live && info_.fps > 0.0 &&
+  // The duration is on the file's own clock, so its frames are counted at the file's own rate.
+  if (!info_.live && stream_fps_ > 0.0 &&
       gst_element_query_duration(pipeline_.get(), GST_FORMAT_TIME, &duration_ns) &&
       duration_ns > 0) {
-    info_.frame_count = std::llround(static_cast<double>(duration_ns) * info_.fps / 1e9);
+    info_.frame_count = std::llround(static_cast<double>(duration_ns) * stream_fps_ / 1e9);
   }
-  spdlog::info("{}: {}x{} at {} fps{}{}", uri_.text, info_.width, info_.height, info_.fps,
+  spdlog::info("{}: {}x{} at {} fps{}{}{}", uri_.text, info_.width, info_.height, info_.fps,
+               retimed() ? fmt::format(" (re-timed; the file says {:.4g})", stream_fps_) : "",
                info_.live ? " (live)" : "",
                info_.frame_count > 0 ? ", " + std::to_string(info_.frame_count) + " frames" : "");
 }
@@ -244,7 +246,9 @@ ReadStatus GstVideoSource::read(cv::Mat& bgr, FrameInfo& info) {
   const GstClockTime pts = GST_BUFFER_PTS(buffer);
   if (!GST_CLOCK_TIME_IS_VALID(first_pts_)) first_pts_ = pts;
   info.frame_number = frame_number_of(buffer);
-  if (GST_CLOCK_TIME_IS_VALID(pts) && pts >= first_pts_) {
+  if (retimed()) {
+    info.pts_ns = frame_time_ns(info.frame_number - 1, uri_.recording.fps);
+  } else if (GST_CLOCK_TIME_IS_VALID(pts) && pts >= first_pts_) {
     info.pts_ns = static_cast<std::int64_t>(pts - first_pts_);
   } else {
     // No timestamp (e.g. a multipart MJPEG file): the frame's place in time is its number at the
@@ -305,7 +309,8 @@ bool GstVideoSource::adopt_caps(GstCaps* caps) {
       numerator > 0 && denominator > 0 ? static_cast<double>(numerator) / denominator : 0.0;
   // A stream that claims an absurd rate (1/1000000) is taken as one without a rate: its
   // timestamps are its own, and the frame-number fallback assumes one (frame_time_ns).
-  info_.fps = is_frame_rate(fps) ? fps : 0.0;
+  stream_fps_ = is_frame_rate(fps) ? fps : 0.0;
+  info_.fps = retimed() ? uri_.recording.fps : stream_fps_;
   return true;
 }
 

@@ -37,6 +37,8 @@ class GstVideoSource final : public VideoSource {
   gst::SamplePtr pull_sample(std::int64_t timeout_ms);
   bool adopt_caps(GstCaps* caps);
   std::int64_t frame_number_of(const GstBuffer* buffer);
+  /// file://PATH?fps=N: frames are timed by their number at N, not by the file's timestamps.
+  bool retimed() const { return uri_.kind == SourceKind::file && uri_.recording.fps > 0.0; }
 
   // Frames that carry no timestamp in a stream that states no rate are timed at this rate.
   static constexpr double kAssumedFps = 30.0;
@@ -58,6 +60,7 @@ class GstVideoSource final : public VideoSource {
 
   gst::CapsPtr caps_;  // of the frames being delivered, and what they mean:
   GstVideoInfo video_info_{};
+  double stream_fps_{0.0};  // what the stream's caps say, before file://?fps= re-times it
 
   std::int64_t frames_delivered_{0};
   std::int64_t last_frame_number_{0};

@@ -150,6 +150,15 @@ ImageFolderParams parse_images_query(const std::string& uri, const std::string& 
   return params;
 }
 
+RecordingParams parse_recording_query(const std::string& uri, const std::string& query) {
+  RecordingParams params;
+  for_each_query_pair(uri, query, [&](const std::string& key, const std::string& value) {
+    if (key != "fps") fail(uri, key, "unknown file:// parameter (known: fps)");
+    params.fps = parse_fps(uri, key, value);
+  });
+  return params;
+}
+
 int hex_value(char c) {
   if (c >= '0' && c <= '9') return c - '0';
   const int lower = std::tolower(static_cast<unsigned char>(c));
@@ -201,10 +210,16 @@ VideoUri parse_video_uri(const std::string& text) {
   uri.kind = *kind;
   switch (*kind) {
     case SourceKind::file: {
-      // file://localhost/abs is the same file as file:///abs.
+      // file://localhost/abs is the same file as file:///abs. A '?' starts the query, as in
+      // every URI (RFC 8089); a file name holding one writes it %3F.
       const bool localhost = rest.rfind("localhost/", 0) == 0;
-      uri.location = percent_decode(text, localhost ? rest.substr(9) : rest);
+      const std::string path_and_query = localhost ? rest.substr(9) : rest;
+      const auto question = path_and_query.find('?');
+      uri.location = percent_decode(text, path_and_query.substr(0, question));
       if (uri.location.empty()) fail(text, "path", "no file path after file://");
+      if (question != std::string::npos) {
+        uri.recording = parse_recording_query(text, path_and_query.substr(question + 1));
+      }
       break;
     }
     case SourceKind::v4l2: {

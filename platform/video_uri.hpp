@@ -40,6 +40,13 @@ struct ImageFolderParams {
   int loop{1};       // plays the folder this many times (benchmarks on a few files)
 };
 
+/// file://PATH?fps=N: a recording whose header's rate is wrong (PETS09-S2L1's vtest.avi says 10
+/// fps, its scene was filmed at 7) plays at N: frame i is timed at i / N, whatever the file's own
+/// timestamps say, so simulated playback, latency and the tracker's clock all follow the true rate.
+struct RecordingParams {
+  double fps{0.0};  // 0: the file's own timestamps and rate
+};
+
 struct VideoUri {
   std::string text;  // as the user wrote it
   SourceKind kind{SourceKind::file};
@@ -47,6 +54,7 @@ struct VideoUri {
   int sensor_id{0};      // csi://N
   TestSourceParams test;
   ImageFolderParams images;
+  RecordingParams recording;  // file:// only
 };
 
 /// Throws rtmot::InputError (ExitCode::source_failed) naming the URI and the offending part.

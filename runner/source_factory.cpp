@@ -68,7 +68,8 @@ std::string ignored_capture_request(const std::string& uri,
   }
   return uri +
          ": source.width/height/fps (--input-width/-height/-rate) choose a camera's capture "
-         "mode (v4l2://, csi://); a recording plays at its own size and rate";
+         "mode (v4l2://, csi://); a recording plays at its own size and rate (file://PATH?fps=N "
+         "re-times one whose header is wrong)";
 }
 
 }  // namespace rtmot::runner

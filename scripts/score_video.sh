@@ -15,10 +15,10 @@
 #      detections an earlier run of the same sequence and latency recorded there, on the same
 #      video: byte for byte that run's detections, at replay speed; docs/scoring.md).
 # Every run records its detections (OUT/LABEL/SEQUENCE-LATENCY/mot/NAME.det.txt) for such replays.
-# vtest.avi is PETS09-S2L1, whose true rate is 7 fps while the file's header says 10: a latency L
-# at 7 fps spans L / 142.9 ms frames, which on the file's 100 ms clock is L x 7 / 10 (the same
-# frames are skipped), and the tracker is told 7 fps. (Until round 24 this said L x 10 / 7, a
-# detector 2.04 times slower than the label: docs/scoring.md.)
+# vtest.avi is PETS09-S2L1, whose true rate is 7 fps while the file's header says 10: it plays as
+# file://...?fps=7, so the latency, the timestamps and the tracker all run on the true clock.
+# (Until round 24 the latency was converted to the file's clock here, and until round 25 the
+# tracker was told 7 fps while the timestamps stayed on the file's 10: docs/scoring.md.)
 set -euo pipefail
 trap 'echo "score_video.sh: failed at line $LINENO: $BASH_COMMAND" >&2' ERR
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -32,7 +32,7 @@ shared="$root/../shared/data"
 
 source_of() {
   case "$1" in
-    PETS09-S2L1) echo "$root/data/vtest.avi" ;;
+    PETS09-S2L1) echo "file://$root/data/vtest.avi?fps=7" ;;
     ADL-Rundle-6) echo "images://$shared/video-gt/ADL-Rundle-6/img1?fps=30" ;;
     *) echo "score_video.sh: unknown sequence $1" >&2; return 1 ;;
   esac
@@ -74,11 +74,8 @@ for sequence in ${SEQUENCES:-PETS09-S2L1 ADL-Rundle-6}; do
     if [[ $latency == every ]]; then
       args+=(--playback every-frame)
     else
-      sim="$latency"
-      [[ $sequence == PETS09-S2L1 ]] && sim=$(awk -v l="$latency" 'BEGIN { printf "%.3f", l * 7 / 10 }')
-      args+=(--playback simulated --latency-ms "$sim")
+      args+=(--playback simulated --latency-ms "$latency")
     fi
-    [[ $sequence == PETS09-S2L1 ]] && args+=(--frame-rate 7)
     if [[ $rerun == 1 ]] && ! "$rtmot" "${args[@]}" "$@" >"$run/run.log" 2>&1; then
       echo "score_video.sh: rtmot run failed for $sequence at $latency (log: $run/run.log):" >&2
       tail -n 5 "$run/run.log" >&2

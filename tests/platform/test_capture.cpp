@@ -128,6 +128,25 @@ TEST(FileSource, FramesWithoutTimestampsAreTimedAtARate) {
   std::filesystem::remove(path);
 }
 
+// vtest.avi is PETS09-S2L1, filmed at 7 fps while its header says 10. Re-timed, frame i plays at
+// i / 7 s, and the source says 7 fps (so the tracker's clock and a simulated latency follow it);
+// the file's length in frames is still read on the file's own clock.
+TEST(FileSource, ARecordingWithAWrongRateIsReTimedByItsUri) {
+  const auto path = shared_path("data/video/vtest.avi");
+  RTMOT_REQUIRE_FILE(path);
+  const auto source = open_video_source("file://" + path.string() + "?fps=7");
+  EXPECT_DOUBLE_EQ(source->info().fps, 7.0);
+  EXPECT_EQ(source->info().frame_count, 795);
+  cv::Mat frame;
+  FrameInfo info;
+  for (std::int64_t frame_number = 1; frame_number <= 15; ++frame_number) {
+    ASSERT_EQ(source->read(frame, info), ReadStatus::frame) << source->last_error();
+    ASSERT_EQ(info.frame_number, frame_number);
+    ASSERT_EQ(info.pts_ns, std::llround((frame_number - 1) * 1e9 / 7.0))
+        << "frame " << frame_number;
+  }
+}
+
 TEST(FileSource, PlainPathOpensTheSameVideo) {
   const auto path = shared_path("data/video/vtest.avi");
   RTMOT_REQUIRE_FILE(path);

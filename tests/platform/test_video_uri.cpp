@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <utility>
+
 #include "common/input_error.hpp"
 #include "platform/video_uri.hpp"
 
@@ -17,6 +19,33 @@ TEST(VideoUri, FileUriWithAbsolutePath) {
 TEST(VideoUri, FileUriWithRelativePathAndEscapes) {
   EXPECT_EQ(parse_video_uri("file://videos/a%20b.avi").location, "videos/a b.avi");
   EXPECT_EQ(parse_video_uri("file://localhost/tmp/x.mp4").location, "/tmp/x.mp4");
+}
+
+TEST(VideoUri, FileUriQueryReTimesTheRecording) {
+  const VideoUri retimed = parse_video_uri("file:///data/vtest.avi?fps=7");
+  EXPECT_EQ(retimed.location, "/data/vtest.avi");
+  EXPECT_DOUBLE_EQ(retimed.recording.fps, 7.0);
+  EXPECT_DOUBLE_EQ(parse_video_uri("file:///data/vtest.avi").recording.fps, 0.0);
+  // A '?' of the file's name is written %3F; a plain path keeps one literally.
+  EXPECT_EQ(parse_video_uri("file:///data/what%3F.avi").location, "/data/what?.avi");
+  EXPECT_DOUBLE_EQ(parse_video_uri("file:///data/what%3F.avi").recording.fps, 0.0);
+  EXPECT_EQ(parse_video_uri("/data/what?.avi").location, "/data/what?.avi");
+}
+
+TEST(VideoUri, FileUriBadQueryNamesTheParameter) {
+  const std::pair<const char*, const char*> bad[] = {
+      {"file:///v.avi?fps=0", "fps"},       {"file:///v.avi?fps=fast", "fps"},
+      {"file:///v.avi?fps=7&fps=8", "fps"}, {"file:///v.avi?speed=2", "speed"},
+      {"file:///v.avi?fps", "fps"},         {"file://?fps=7", "path"}};
+  for (const auto& [uri, field] : bad) {
+    try {
+      parse_video_uri(uri);
+      ADD_FAILURE() << uri << ": no error";
+    } catch (const InputError& error) {
+      EXPECT_EQ(error.field(), field) << uri << ": " << error.what();
+      EXPECT_EQ(error.file(), uri);
+    }
+  }
 }
 
 TEST(VideoUri, PlainPathIsAFileTakenLiterally) {

@@ -286,7 +286,8 @@ TEST(CaptureRequest, OnlyCamerasTakeASizeAndRateOthersSaySo) {
   asked.width = 640;
   EXPECT_EQ(ignored_capture_request("data/vtest.avi", asked),
             "data/vtest.avi: source.width/height/fps (--input-width/-height/-rate) choose a "
-            "camera's capture mode (v4l2://, csi://); a recording plays at its own size and rate");
+            "camera's capture mode (v4l2://, csi://); a recording plays at its own size and rate "
+            "(file://PATH?fps=N re-times one whose header is wrong)");
   // A stream's cold start uses them until it appears.
   EXPECT_EQ(ignored_capture_request("rtsp://cam/stream", asked), "");
   EXPECT_EQ(ignored_capture_request("v4l2:///dev/video0", asked), "");
