@@ -28,7 +28,7 @@ score boxes every,250 --follow-image false
 score image 250
 cat "$work/scores.tsv"
 # label latency processed MOTA IDF1 DetA AssA
-expected=$'boxes/every 150 38.2 52.6 43.7 36.1\nboxes/250 87 31.0 56.0 39.9 42.3\nimage/250 87 42.0 57.8 43.8 41.8'
+expected=$'boxes/every 150 38.2 55.0 43.7 37.7\nboxes/250 87 31.0 57.1 39.8 43.2\nimage/250 87 42.0 60.8 43.8 43.8'
 awk -F'\t' -v tolerance="$tolerance" -v expected="$expected" '
   BEGIN {
     n = split(expected, lines, "\n")
