@@ -596,43 +596,36 @@ struct Tracker::State {
       if (!(track.first_confirmed_now || seen_late) || !track.appearance.valid) continue;
       const float gate = seen_late ? std::min(kLateReidGate, static_cast<float>(config.reid_gate))
                                    : static_cast<float>(config.reid_gate);
-      // Ranked by `cost` (the appearance, plus the place with reid_position_weight); the gate is
-      // on the best one's appearance alone.
       float best = std::numeric_limits<float>::infinity();
       float second = best;
-      float best_appearance = best;
       int best_lost = -1;      // a slot
       int best_departed = -1;  // an index into departed
-      const auto consider = [&](float appearance, double reach_share, int lost, int gone) {
-        const float cost =
-            appearance + static_cast<float>(config.reid_position_weight * reach_share);
-        if (cost < best) {
+      const auto consider = [&](float distance, int lost, int gone) {
+        if (distance < best) {
           second = best;
-          best = cost;
-          best_appearance = appearance;
+          best = distance;
           best_lost = lost;
           best_departed = gone;
-        } else if (cost < second) {
-          second = cost;
+        } else if (distance < second) {
+          second = distance;
         }
       };
       for (const int other : order) {
         const Track& lost = slots[other];
         if (other == slot || lost.taken_over || lost.life.stage() != TrackStage::lost ||
-            !lost.appearance.valid || lost.class_id != track.class_id)
+            !lost.appearance.valid || lost.class_id != track.class_id ||
+            !within_reach(lost.last_observation, lost.last_seen_seconds, track))
           continue;
-        const double share = reach_share(lost.last_observation, lost.last_seen_seconds, track);
-        if (share > 1.0) continue;
-        consider(appearance_distance(lost.appearance, track.appearance), share, other, -1);
+        consider(appearance_distance(lost.appearance, track.appearance), other, -1);
       }
       for (int i = 0; i < static_cast<int>(departed.size()); ++i) {
         const Departed& gone = departed[static_cast<std::size_t>(i)];
-        if (gone.id == 0 || gone.class_id != track.class_id) continue;
-        const double share = reach_share(gone.last_box, gone.last_seen_seconds, track);
-        if (share > 1.0) continue;
-        consider(appearance_distance(gone.appearance, track.appearance), share, -1, i);
+        if (gone.id == 0 || gone.class_id != track.class_id ||
+            !within_reach(gone.last_box, gone.last_seen_seconds, track))
+          continue;
+        consider(appearance_distance(gone.appearance, track.appearance), -1, i);
       }
-      if (best_appearance > gate || second < best + kReidMargin) continue;
+      if (best > gate || second < best + kReidMargin) continue;
       if (best_lost >= 0) {
         Track& lost = slots[best_lost];
         track.id = lost.id;
@@ -645,19 +638,16 @@ struct Tracker::State {
     }
   }
 
-  // How far a person last seen in `box` at `seen_seconds` is from where `track` is now, as a share
-  // of how far a walker gets in that time: at most 1 within reach, above 1 (infinity when too
-  // long ago) beyond.
-  double reach_share(const Box& box, double seen_seconds, const Track& track) const {
+  // Whether a person last seen in `box` at `seen_seconds` can be where `track` was born.
+  bool within_reach(const Box& box, double seen_seconds, const Track& track) const {
     const double gap = last_update_time - seen_seconds;
-    if (!(gap >= 0.0) || gap > config.reid_max_gap_s)
-      return std::numeric_limits<double>::infinity();
+    if (!(gap >= 0.0) || gap > config.reid_max_gap_s) return false;
     const Box& now = track.last_observation;
     const double height = std::max(box.h, now.h);
     const double dx = (box.x + box.w / 2.0) - (now.x + now.w / 2.0);
     const double dy = (box.y + box.h / 2.0) - (now.y + now.h / 2.0);
     const double reach = height * (1.0 + kReidHeightsPerSecond * gap);
-    return std::sqrt(dx * dx + dy * dy) / reach;
+    return dx * dx + dy * dy <= reach * reach;
   }
 
   // A confirmed track with a model, removed: kept for re-identification (the oldest entry goes

@@ -163,11 +163,6 @@ struct TrackerConfig {
   /// appearance, when no other one is nearly as near. A lost one it takes over ends. 0 = off.
   double reid_gate{0.0};
   double reid_max_gap_s{5.0};
-  /// Re-identification ranks its candidates by appearance distance plus this weight times how far
-  /// the candidate was last seen from the new track, as a share of the walker's reach (0 to 1):
-  /// of two who look alike, the one last seen where the new track is. The margin then applies to
-  /// that sum; the gate stays on the appearance alone. 0 = the appearance alone.
-  double reid_position_weight{0.0};
   /// With re-identification on: two confirmed tracks whose boxes overlapped trade ids and models
   /// when their first clear sightings after it each look like the other's model (the motion model
   /// gave each the other person). Measured, not in a preset (docs/appearance.md, round 19).

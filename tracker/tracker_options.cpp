@@ -316,12 +316,6 @@ std::vector<TrackerOption> make_table() {
            &C::reid_gate, 0.0, 1.0),
       real("reid_max_gap_s", "the longest gap re-identification bridges, in seconds",
            &C::reid_max_gap_s, 0.0, 3600.0),
-      real("reid_position_weight",
-           "re-identification ranks candidates by appearance distance plus this weight times "
-           "where each was last seen, as a share of the walker's reach from the new track (0 to "
-           "1); the margin applies to the sum, the gate to the appearance alone "
-           "(docs/appearance.md: measured, in no preset; 0: appearance alone)",
-           &C::reid_position_weight, 0.0, 10.0),
       real("observed_gate_frames",
            "where the pipeline followed a track in the image across the frames a slow detector "
            "skipped (detector.follow_image), its gate is widened as for at most this many "

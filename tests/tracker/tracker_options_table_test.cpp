@@ -66,7 +66,6 @@ TEST(TrackerOptions, EveryKnobOfTheConfigCanBeSet) {
                                      {"appearance_momentum", "0.8"},
                                      {"reid_gate", "0.45"},
                                      {"reid_max_gap_s", "7.5"},
-                                     {"reid_position_weight", "0.35"},
                                      {"resolve_crossings", "true"},
                                      {"observed_gate_frames", "3.5"},
                                      {"particle_count", "33"},
@@ -112,14 +111,13 @@ TEST(TrackerOptions, EveryKnobOfTheConfigCanBeSet) {
   EXPECT_DOUBLE_EQ(config.appearance_momentum, 0.8);
   EXPECT_DOUBLE_EQ(config.reid_gate, 0.45);
   EXPECT_DOUBLE_EQ(config.reid_max_gap_s, 7.5);
-  EXPECT_DOUBLE_EQ(config.reid_position_weight, 0.35);
   EXPECT_TRUE(config.resolve_crossings);
   EXPECT_DOUBLE_EQ(config.observed_gate_frames, 3.5);
   EXPECT_EQ(config.particle_count, 33);
   EXPECT_EQ(config.seed, 18446744073709551615ULL);
   EXPECT_EQ(config.max_tracks, 20);
   EXPECT_EQ(config.max_detections, 30);
-  EXPECT_EQ(tracker_options().size(), 46U) << "a new TrackerConfig field needs a line here too";
+  EXPECT_EQ(tracker_options().size(), 45U) << "a new TrackerConfig field needs a line here too";
 }
 
 TEST(TrackerOptions, AnAffinityBringsItsUsualThresholdUnlessOneFollows) {
