@@ -83,7 +83,11 @@ void GstVideoSource::open() {
     // GStreamer opens the file itself: the one input reader's rules first (a FIFO would block
     // filesrc, a device never ends).
     if (const std::string problem = input_file_problem(uri_.location); !problem.empty()) {
-      fail_open(uri_.location + ": " + problem);
+      // A plain path is taken literally, so "video.avi?fps=7" names a file that is not there.
+      const bool plain_path_with_query = uri_.text.find("://") == std::string::npos &&
+                                         uri_.location.find('?') != std::string::npos;
+      fail_open(uri_.location + ": " + problem +
+                (plain_path_with_query ? " (parameters such as ?fps=N need a file:// URI)" : ""));
     }
   }
 

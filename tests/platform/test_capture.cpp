@@ -147,6 +147,20 @@ TEST(FileSource, ARecordingWithAWrongRateIsReTimedByItsUri) {
   }
 }
 
+// A plain path is taken literally: "?fps=7" after one is part of the name, and the error says
+// which form takes parameters.
+TEST(FileSource, APlainPathWithAQuerySaysParametersNeedAFileUri) {
+  const auto path = shared_path("data/video/vtest.avi");
+  RTMOT_REQUIRE_FILE(path);
+  try {
+    open_video_source(path.string() + "?fps=7");
+    ADD_FAILURE() << "opened " << path << "?fps=7";
+  } catch (const InputError& error) {
+    EXPECT_NE(std::string(error.what()).find("need a file:// URI"), std::string::npos)
+        << error.what();
+  }
+}
+
 TEST(FileSource, PlainPathOpensTheSameVideo) {
   const auto path = shared_path("data/video/vtest.avi");
   RTMOT_REQUIRE_FILE(path);
