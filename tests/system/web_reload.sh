@@ -37,17 +37,8 @@ YAML
 }
 write_config 'lines: [{name: door, from: [380, 0], to: [380, 576]}]' "$model"
 cp "$work/run.yaml" "$work/started.yaml"
-port=$(python3 -c 'import socket; s = socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')
-"$rtmot" run --config "$work/run.yaml" --web-port "$port" --web-token-file "$work/token" \
-  --web-save-to "$work/saved.yaml" 2>"$work/run.err" &
-pid=$!
-for _ in $(seq 1200); do  # up to 120 s for the model to load (it measures its engines first)
-  grep -q "web: the operator's page at http://127.0.0.1:$port/" "$work/run.err" && break
-  kill -0 "$pid" 2>/dev/null || fail "rtmot run ended before its page was up"
-  sleep 0.1
-done
-grep -q "web: the operator's page at" "$work/run.err" || fail "no page after 120 s"
-base=http://127.0.0.1:$port/
+start_run_with_page "$rtmot" --config "$work/run.yaml" --web-token-file "$work/token" \
+  --web-save-to "$work/saved.yaml"
 client() { python3 "$here/web_client.py" "$base" "$@"; }
 client wait-processed 5
 
