@@ -32,6 +32,7 @@ start_run_with_page() {
     local _
     for _ in $(seq 1200); do
       if grep -q "web: the operator's page at http://127.0.0.1:$port/" "$work/run.err"; then
+        # shellcheck disable=SC2034 # for the sourcing test
         base=http://127.0.0.1:$port/
         return 0
       fi
