@@ -36,7 +36,8 @@ run="$out/run"
 rm -rf "$run"
 mkdir -p "$run"
 # vtest.avi plays at its true rate, 7 fps (its header says 10), as in scripts/score_video.sh.
-if ! "$rtmot" run --config "$root/configs/desktop.yaml" --source "file://$video?fps=7" --playback every-frame \
+uri_path="${video//%/%25}"  # a URI: % and ? escaped
+if ! "$rtmot" run --config "$root/configs/desktop.yaml" --source "file://${uri_path//\?/%3F}?fps=7" --playback every-frame \
   --tiles off --backend xnnpack --detector-threads 1 --stats-interval 0 \
   --mot-results "$run/mot" --jsonl "$run/tracks.jsonl" \
   --video-out "$run/video.mp4" --overlay box,track,trail --bitrate 8000 "$@" >"$run/run.log" 2>&1; then

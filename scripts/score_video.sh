@@ -32,7 +32,7 @@ shared="$root/../shared/data"
 
 source_of() {
   case "$1" in
-    PETS09-S2L1) echo "file://$root/data/vtest.avi?fps=7" ;;
+    PETS09-S2L1) local path="${root//%/%25}"; echo "file://${path//\?/%3F}/data/vtest.avi?fps=7" ;;  # a URI: % and ? escaped
     ADL-Rundle-6) echo "images://$shared/video-gt/ADL-Rundle-6/img1?fps=30" ;;
     *) echo "score_video.sh: unknown sequence $1" >&2; return 1 ;;
   esac
