@@ -70,13 +70,6 @@ struct Track {
   std::int32_t crossing_partner{0};  // 0: none
   double crossing_seconds{0.0};
   Appearance held_sighting;
-  // Identity re-decided on drift (drift_gate): the clean sightings in a row held back from the
-  // model as too unlike it (their mean, and how many), and where and when the track was last
-  // sighted like its model.
-  Appearance drift_look;
-  std::int32_t drift_sightings{0};
-  Box steady_box;
-  double steady_seconds{0.0};
 
   /// Matched (or born) in the update in progress.
   bool matched_now() const { return steps_since_update == 0; }

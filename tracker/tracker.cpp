@@ -28,10 +28,6 @@ constexpr float kOccludedShare = 0.1F;
 // Re-identification: two candidates that look alike to within this are not told apart, and
 // neither gives its id (a wrong old id costs more than a new one).
 constexpr float kReidMargin = 0.1F;
-// Identity re-decided on drift (drift_gate): this many clean sightings in a row beyond the gate.
-// One could be a sighting the overlap test missed (a person behind a pole); two are a pattern,
-// and at 7 fps two are still within a third of a second of the change.
-constexpr int kDriftSightings = 2;
 // How far a person may have gone while unseen: a walker covers about one body height a second;
 // twice that, plus one height for the boxes' own error.
 constexpr float kReidHeightsPerSecond = 2.F;
@@ -372,12 +368,9 @@ struct Tracker::State {
     track.model_started_now = !track.appearance.valid && detection.appearance.valid;
     if (detection.appearance.valid && track.appearance.valid && track.crossing_partner != 0) {
       track.held_sighting = detection.appearance;  // resolve_crossings() decides whose it is
-    } else if (detection.appearance.valid && !hold_if_drifting(track, detection.appearance)) {
-      // valid: no other detection covers it
+    } else if (detection.appearance.valid) {       // valid: no other detection covers it
       blend_appearance(track.appearance, detection.appearance,
                        static_cast<float>(config.appearance_momentum));
-      track.steady_box = detection.box;
-      track.steady_seconds = last_update_time;
     }
     track.steps_since_update = 0;
     track.frames_since_update = 0.0;
@@ -472,9 +465,6 @@ struct Tracker::State {
     track.taken_over = false;
     track.crossing_partner = 0;
     track.held_sighting.valid = false;
-    track.drift_sightings = 0;
-    track.steady_box = detection.box;
-    track.steady_seconds = last_update_time;
     track.life.born();
     track.strong_birth = config.strong_birth_range_cut > 0.0 &&
                          detection.score >= score_cut.range_point(config.strong_birth_range_cut);
@@ -496,7 +486,6 @@ struct Tracker::State {
       track.first_confirmed_now = !was_confirmed && track.life.stage() == TrackStage::confirmed;
     }
     if (config.resolve_crossings) resolve_crossings();  // config_problem: reid_gate is on
-    if (!departed.empty() && config.drift_gate > 0.0) redecide_drifted();
     if (!departed.empty()) reidentify_newly_confirmed();
     std::size_t kept = 0;
     for (const int slot : order) {
@@ -593,16 +582,6 @@ struct Tracker::State {
     }
   }
 
-  // A confirmed track with a model, removed (or re-identified as another), kept for
-  // re-identification.
-  struct Departed {
-    std::int32_t id{0};
-    std::int32_t class_id{0};
-    Box last_box;
-    double last_seen_seconds{0.0};
-    Appearance appearance;
-  };
-
   // Re-identification (config.reid_gate): each track confirmed for the first time in this update
   // may take the id of a lost track (still coasting) or of a removed one (`departed`). It happens
   // before the track is first reported, so its id does not change in the output; except for a
@@ -617,118 +596,45 @@ struct Tracker::State {
       if (!(track.first_confirmed_now || seen_late) || !track.appearance.valid) continue;
       const float gate = seen_late ? std::min(kLateReidGate, static_cast<float>(config.reid_gate))
                                    : static_cast<float>(config.reid_gate);
-      const LostLookalike found = closest_lost(track.appearance, slot);
-      if (found.best > gate || found.second < found.best + kReidMargin) continue;
-      take_lost_id(track, found);
-    }
-  }
-
-  // The lost tracks and departed records `track` (in `slot`) could be, nearest in looks first.
-  struct LostLookalike {
-    float best{std::numeric_limits<float>::infinity()};
-    float second{std::numeric_limits<float>::infinity()};
-    int lost_slot{-1};      // a slot
-    int departed_at{-1};    // an index into departed
-  };
-  LostLookalike closest_lost(const Appearance& look, int slot) const {
-    const Track& track = slots[slot];
-    LostLookalike found;
-    const auto consider = [&](float distance, int lost, int gone) {
-      if (distance < found.best) {
-        found.second = found.best;
-        found.best = distance;
-        found.lost_slot = lost;
-        found.departed_at = gone;
-      } else if (distance < found.second) {
-        found.second = distance;
+      float best = std::numeric_limits<float>::infinity();
+      float second = best;
+      int best_lost = -1;      // a slot
+      int best_departed = -1;  // an index into departed
+      const auto consider = [&](float distance, int lost, int gone) {
+        if (distance < best) {
+          second = best;
+          best = distance;
+          best_lost = lost;
+          best_departed = gone;
+        } else if (distance < second) {
+          second = distance;
+        }
+      };
+      for (const int other : order) {
+        const Track& lost = slots[other];
+        if (other == slot || lost.taken_over || lost.life.stage() != TrackStage::lost ||
+            !lost.appearance.valid || lost.class_id != track.class_id ||
+            !within_reach(lost.last_observation, lost.last_seen_seconds, track))
+          continue;
+        consider(appearance_distance(lost.appearance, track.appearance), other, -1);
       }
-    };
-    for (const int other : order) {
-      const Track& lost = slots[other];
-      if (other == slot || lost.taken_over || lost.life.stage() != TrackStage::lost ||
-          !lost.appearance.valid || lost.class_id != track.class_id ||
-          !within_reach(lost.last_observation, lost.last_seen_seconds, track))
-        continue;
-      consider(appearance_distance(lost.appearance, look), other, -1);
-    }
-    for (int i = 0; i < static_cast<int>(departed.size()); ++i) {
-      const Departed& gone = departed[static_cast<std::size_t>(i)];
-      if (gone.id == 0 || gone.class_id != track.class_id ||
-          !within_reach(gone.last_box, gone.last_seen_seconds, track))
-        continue;
-      consider(appearance_distance(gone.appearance, look), -1, i);
-    }
-    return found;
-  }
-
-  // `track` takes the id of what `found` found (a lost track ends in this update; a departed
-  // record is used up); returns that one's appearance model.
-  Appearance take_lost_id(Track& track, const LostLookalike& found) {
-    if (found.lost_slot >= 0) {
-      Track& lost = slots[found.lost_slot];
-      track.id = lost.id;
-      lost.taken_over = true;
-      return lost.appearance;
-    }
-    Departed& gone = departed[static_cast<std::size_t>(found.departed_at)];
-    track.id = gone.id;
-    gone.id = 0;
-    return gone.appearance;
-  }
-
-  // A clean sighting of a confirmed track beyond drift_gate from its model is held back from it;
-  // at the kDriftSightings-th in a row the track's identity is decided again (redecide_drifted).
-  // Returns whether `seen` was held.
-  bool hold_if_drifting(Track& track, const Appearance& seen) const {
-    if (!(config.drift_gate > 0.0) || !track.appearance.valid || !track.life.ever_confirmed() ||
-        !(appearance_distance(track.appearance, seen) > config.drift_gate)) {
-      join_held_sightings(track);
-      return false;
-    }
-    // The held look is the plain mean of the run's sightings.
-    const int held = track.drift_sightings;
-    if (held == 0) {
-      track.drift_look = seen;
-    } else {
-      blend_appearance(track.drift_look, seen,
-                       static_cast<float>(held) / static_cast<float>(held + 1));
-    }
-    ++track.drift_sightings;
-    return true;
-  }
-
-  void join_held_sightings(Track& track) const {
-    if (track.drift_sightings > 0)
-      blend_appearance(track.appearance, track.drift_look,
-                       static_cast<float>(config.appearance_momentum));
-    track.drift_sightings = 0;
-  }
-
-  // A confirmed track whose last kDriftSightings clean sightings all lay beyond drift_gate from
-  // its model has likely been handed someone else (a box around two people, a crossing): the
-  // motion model cannot tell, the looks can. If the held look is some lost track's or departed
-  // record's, within reid_gate and nearer than its own model and every other by kReidMargin, the
-  // track takes that id, and its own id goes to the departed records as it was at its last
-  // steady sighting, for its first person to take back; otherwise the held sightings join the
-  // model, as any sighting would.
-  void redecide_drifted() {
-    for (const int slot : order) {
-      Track& track = slots[slot];
-      if (track.drift_sightings < kDriftSightings || track.taken_over) continue;
-      const LostLookalike found = closest_lost(track.drift_look, slot);
-      const float own = appearance_distance(track.appearance, track.drift_look);
-      const bool someone_else = found.best <= static_cast<float>(config.reid_gate) &&
-                                found.best + kReidMargin <= found.second &&
-                                found.best + kReidMargin <= own;
-      if (!someone_else) {
-        join_held_sightings(track);
-        continue;
+      for (int i = 0; i < static_cast<int>(departed.size()); ++i) {
+        const Departed& gone = departed[static_cast<std::size_t>(i)];
+        if (gone.id == 0 || gone.class_id != track.class_id ||
+            !within_reach(gone.last_box, gone.last_seen_seconds, track))
+          continue;
+        consider(appearance_distance(gone.appearance, track.appearance), -1, i);
       }
-      const Departed was{track.id, track.class_id, track.steady_box, track.steady_seconds,
-                         track.appearance};
-      track.appearance = take_lost_id(track, found);
-      join_held_sightings(track);
-      record_departed(was);
+      if (best > gate || second < best + kReidMargin) continue;
+      if (best_lost >= 0) {
+        Track& lost = slots[best_lost];
+        track.id = lost.id;
+        lost.taken_over = true;
+      } else {
+        Departed& gone = departed[static_cast<std::size_t>(best_departed)];
+        track.id = gone.id;
+        gone.id = 0;
+      }
     }
   }
 
@@ -748,12 +654,8 @@ struct Tracker::State {
   // when the table is full; entries older than reid_max_gap_s are never taken).
   void remember_departure(const Track& track) {
     if (departed.empty() || !track.life.ever_confirmed() || !track.appearance.valid) return;
-    record_departed(Departed{track.id, track.class_id, track.last_observation,
-                             track.last_seen_seconds, track.appearance});
-  }
-
-  void record_departed(const Departed& gone) {
-    departed[next_departed] = gone;
+    departed[next_departed] = Departed{track.id, track.class_id, track.last_observation,
+                                       track.last_seen_seconds, track.appearance};
     next_departed = (next_departed + 1) % departed.size();
   }
 
@@ -829,6 +731,13 @@ struct Tracker::State {
   std::vector<TrackReport> reports;
   std::vector<TrackReport> table;  // track_table()'s
   // Removed tracks re-identification may give their id back to (id 0: an empty entry), a ring.
+  struct Departed {
+    std::int32_t id{0};
+    std::int32_t class_id{0};
+    Box last_box;
+    double last_seen_seconds{0.0};
+    Appearance appearance;
+  };
   std::vector<Departed> departed;  // sized max_tracks when re-identification is on, else empty
   std::size_t next_departed{0};
   Associator associator;

@@ -37,7 +37,6 @@ TrackerConfig with_every_option(TrackerConfig base) {
   base.appearance_gate_rival_alike = true;
   base.appearance_weight = 0.5;
   base.reid_gate = 0.3;
-  base.drift_gate = 0.5;
   return base;
 }
 
@@ -116,11 +115,6 @@ std::optional<std::string> config_problem(const TrackerConfig& config) {
            "contested pairs the gate refuses";
   if (!(config.observed_gate_frames >= 0.0 && config.observed_gate_frames <= limits::kMaxFrames))
     return "observed_gate_frames must be in [0, " + std::to_string(limits::kMaxFrames) + "]";
-  if (!(config.drift_gate >= 0.0 && config.drift_gate <= 1.0))
-    return "drift_gate must be in [0, 1]";
-  if (config.drift_gate > 0.0 && !(config.reid_gate > 0.0))
-    return "drift_gate needs re-identification on (reid_gate above 0): a drifted track is "
-           "re-identified as a new one is";
   if (config.resolve_crossings && !(config.reid_gate > 0.0))
     return "resolve_crossings needs re-identification on (reid_gate above 0): its trades are "
            "bounded by reid_gate";

@@ -163,12 +163,6 @@ struct TrackerConfig {
   /// appearance, when no other one is nearly as near. A lost one it takes over ends. 0 = off.
   double reid_gate{0.0};
   double reid_max_gap_s{5.0};
-  /// With re-identification on: a confirmed track whose last two clean sightings both lie further
-  /// than this from its model (Hellinger distance) is held to have been handed someone else, and
-  /// takes the id of the lost track or departed record those sightings look like, as
-  /// re-identification would judge it; its own id is left for its first person to take back.
-  /// Measured, not in a preset (docs/appearance.md, round 26). 0 = off.
-  double drift_gate{0.0};
   /// With re-identification on: two confirmed tracks whose boxes overlapped trade ids and models
   /// when their first clear sightings after it each look like the other's model (the motion model
   /// gave each the other person). Measured, not in a preset (docs/appearance.md, round 19).

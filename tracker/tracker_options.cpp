@@ -316,12 +316,6 @@ std::vector<TrackerOption> make_table() {
            &C::reid_gate, 0.0, 1.0),
       real("reid_max_gap_s", "the longest gap re-identification bridges, in seconds",
            &C::reid_max_gap_s, 0.0, 3600.0),
-      real("drift_gate",
-           "with re-identification on (reid_gate): a confirmed track whose last two clean "
-           "sightings both lie further than this from its model takes the id of a lost or "
-           "removed track they look like, as re-identification judges it, and leaves its own id "
-           "to its first person (docs/appearance.md: measured, in no preset; 0: off)",
-           &C::drift_gate, 0.0, 1.0),
       real("observed_gate_frames",
            "where the pipeline followed a track in the image across the frames a slow detector "
            "skipped (detector.follow_image), its gate is widened as for at most this many "
