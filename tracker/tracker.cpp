@@ -42,6 +42,12 @@ constexpr double kLateReidSeconds = 1.0;
 // none, one late id behind the slow detector went to the wrong person).
 constexpr float kLateReidGate = 0.4F;
 
+// A box goes back (handback_gate) only to a track that had its person this recently: most
+// takeovers hand over someone whose own track had them a moment before (docs/appearance.md,
+// round 21); a track lost longer may have drifted onto anyone. Chosen on both first halves
+// (round 26: without it, switches rose on PETS09-S2L1).
+constexpr double kHandbackSeconds = 1.0;
+
 // Crossing resolution (resolve_crossings, with re-identification; docs/appearance.md, round 19):
 // two tracks whose boxes overlap this much (one covers this share of the other) may trade people,
 // and...
@@ -99,6 +105,7 @@ struct Tracker::State {
     positions.reserve(tracks);
     candidates.reserve(tracks);
     round_matches.reserve(std::min(tracks, detections));
+    handovers.reserve(std::min(tracks, detections));
     reports.reserve(tracks);
     table.reserve(tracks);
     departed.resize(config.reid_gate > 0.0 ? tracks : 0);
@@ -344,10 +351,60 @@ struct Tracker::State {
     }
     round_matches.clear();
     associator.associate(config, threshold, detections, candidates, round_matches);
+    handovers.clear();
     for (const AssociationMatch& m : round_matches) {
       take(m.detection);
-      correct_track(slots[order[positions[m.candidate]]], detections[m.detection]);
+      const int slot = order[positions[m.candidate]];
+      if (looks_like_someone_else(slots[slot], detections[m.detection])) {
+        handovers.push_back(Handover{m.detection, slot});
+        continue;
+      }
+      correct_track(slots[slot], detections[m.detection]);
     }
+    // After the round's other matches, so that a track they matched is not offered a second box.
+    for (const Handover& h : handovers) {
+      const Detection& detection = detections[h.detection];
+      Track* owner = unmatched_lookalike(detection, slots[h.slot]);
+      correct_track(owner != nullptr ? *owner : slots[h.slot], detection);
+    }
+  }
+
+  // handback_gate: a confirmed track handed a clean detection that looks unlike it (a box around
+  // two people, a crossing: motion cannot tell who is who there, the looks can).
+  bool looks_like_someone_else(const Track& track, const Detection& detection) const {
+    return config.handback_gate > 0.0 && track.life.ever_confirmed() && track.appearance.valid &&
+           detection.appearance.valid &&
+           appearance_distance(track.appearance, detection.appearance) > config.handback_gate;
+  }
+
+  // The confirmed track, matched within kHandbackSeconds but not yet in this update, within a
+  // walker's reach of `detection`, that looks like it within reid_gate and nearer than `matched`
+  // and every other such track by kReidMargin (a wrong hand-back costs as much as a wrong id);
+  // null if none.
+  Track* unmatched_lookalike(const Detection& detection, const Track& matched) {
+    const float own = appearance_distance(matched.appearance, detection.appearance);
+    float best = std::numeric_limits<float>::infinity();
+    float second = best;
+    Track* found = nullptr;
+    for (const int slot : order) {
+      Track& track = slots[slot];
+      if (&track == &matched || track.matched_now() || !track.life.ever_confirmed() ||
+          track.taken_over || !track.appearance.valid || track.class_id != detection.class_id ||
+          last_update_time - track.last_seen_seconds > kHandbackSeconds ||
+          !within_reach(track.last_observation, track.last_seen_seconds, detection.box))
+        continue;
+      const float distance = appearance_distance(track.appearance, detection.appearance);
+      if (distance < best) {
+        second = best;
+        best = distance;
+        found = &track;
+      } else if (distance < second) {
+        second = distance;
+      }
+    }
+    const bool clearly = best <= static_cast<float>(config.reid_gate) &&
+                         best + kReidMargin <= second && best + kReidMargin <= own;
+    return clearly ? found : nullptr;
   }
 
   void correct_track(Track& track, const Detection& detection) {
@@ -614,14 +671,14 @@ struct Tracker::State {
         const Track& lost = slots[other];
         if (other == slot || lost.taken_over || lost.life.stage() != TrackStage::lost ||
             !lost.appearance.valid || lost.class_id != track.class_id ||
-            !within_reach(lost.last_observation, lost.last_seen_seconds, track))
+            !within_reach(lost.last_observation, lost.last_seen_seconds, track.last_observation))
           continue;
         consider(appearance_distance(lost.appearance, track.appearance), other, -1);
       }
       for (int i = 0; i < static_cast<int>(departed.size()); ++i) {
         const Departed& gone = departed[static_cast<std::size_t>(i)];
         if (gone.id == 0 || gone.class_id != track.class_id ||
-            !within_reach(gone.last_box, gone.last_seen_seconds, track))
+            !within_reach(gone.last_box, gone.last_seen_seconds, track.last_observation))
           continue;
         consider(appearance_distance(gone.appearance, track.appearance), -1, i);
       }
@@ -638,11 +695,10 @@ struct Tracker::State {
     }
   }
 
-  // Whether a person last seen in `box` at `seen_seconds` can be where `track` was born.
-  bool within_reach(const Box& box, double seen_seconds, const Track& track) const {
+  // Whether a person last seen in `box` at `seen_seconds` can be at `now`.
+  bool within_reach(const Box& box, double seen_seconds, const Box& now) const {
     const double gap = last_update_time - seen_seconds;
     if (!(gap >= 0.0) || gap > config.reid_max_gap_s) return false;
-    const Box& now = track.last_observation;
     const double height = std::max(box.h, now.h);
     const double dx = (box.x + box.w / 2.0) - (now.x + now.w / 2.0);
     const double dy = (box.y + box.h / 2.0) - (now.y + now.h / 2.0);
@@ -738,6 +794,12 @@ struct Tracker::State {
     double last_seen_seconds{0.0};
     Appearance appearance;
   };
+  // A match held back by handback_gate until the round's other matches are made.
+  struct Handover {
+    int detection;
+    int slot;
+  };
+  std::vector<Handover> handovers;
   std::vector<Departed> departed;  // sized max_tracks when re-identification is on, else empty
   std::size_t next_departed{0};
   Associator associator;

@@ -37,6 +37,7 @@ TrackerConfig with_every_option(TrackerConfig base) {
   base.appearance_gate_rival_alike = true;
   base.appearance_weight = 0.5;
   base.reid_gate = 0.3;
+  base.handback_gate = 0.5;
   return base;
 }
 
@@ -115,6 +116,9 @@ std::optional<std::string> config_problem(const TrackerConfig& config) {
            "contested pairs the gate refuses";
   if (!(config.observed_gate_frames >= 0.0 && config.observed_gate_frames <= limits::kMaxFrames))
     return "observed_gate_frames must be in [0, " + std::to_string(limits::kMaxFrames) + "]";
+  if (config.handback_gate > 0.0 && !(config.reid_gate > 0.0))
+    return "handback_gate needs re-identification on (reid_gate above 0): a box goes back to "
+           "a track that re-identification would judge its person's";
   if (config.resolve_crossings && !(config.reid_gate > 0.0))
     return "resolve_crossings needs re-identification on (reid_gate above 0): its trades are "
            "bounded by reid_gate";

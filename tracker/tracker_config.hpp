@@ -163,6 +163,12 @@ struct TrackerConfig {
   /// appearance, when no other one is nearly as near. A lost one it takes over ends. 0 = off.
   double reid_gate{0.0};
   double reid_max_gap_s{5.0};
+  /// With re-identification on: a confirmed track matched to a clean detection further than this
+  /// from its model (Hellinger distance) gives it up to a confirmed track matched within the
+  /// last second but not yet in this update that looks like it, as re-identification would judge
+  /// them (its gate, reach and margin, nearer than the matched track too); the matched track
+  /// coasts. Measured, not in a preset (docs/appearance.md, round 26). 0 = off.
+  double handback_gate{0.0};
   /// With re-identification on: two confirmed tracks whose boxes overlapped trade ids and models
   /// when their first clear sightings after it each look like the other's model (the motion model
   /// gave each the other person). Measured, not in a preset (docs/appearance.md, round 19).

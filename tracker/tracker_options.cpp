@@ -316,6 +316,13 @@ std::vector<TrackerOption> make_table() {
            &C::reid_gate, 0.0, 1.0),
       real("reid_max_gap_s", "the longest gap re-identification bridges, in seconds",
            &C::reid_max_gap_s, 0.0, 3600.0),
+      real("handback_gate",
+           "with re-identification on (reid_gate): a confirmed track matched to a clean "
+           "detection further than this from its model gives it up to a confirmed track "
+           "matched within the last second but not yet in this update that re-identification "
+           "would judge its person's; the matched track coasts (docs/appearance.md: measured, "
+           "in no preset; 0: off)",
+           &C::handback_gate, 0.0, 1.0),
       real("observed_gate_frames",
            "where the pipeline followed a track in the image across the frames a slow detector "
            "skipped (detector.follow_image), its gate is widened as for at most this many "

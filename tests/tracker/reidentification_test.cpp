@@ -282,5 +282,59 @@ TEST(Reidentification, TwoWhoMeetAndTurnBackKeepTheirIdsByTheirLooks) {
   EXPECT_NE(alike_after, alike_before);
 }
 
+// A takeover: two walk right one behind the other, clear of each other; the one in front (blue)
+// goes unseen two frames, then is found standing where the one behind (red, now unseen for good)
+// was heading, looking as `found_looks`. By their boxes the red track takes the blue person: its
+// prediction lies on them, the blue track's has walked on. Returns the ids reported at the blue
+// person's box before and at the end.
+std::pair<std::int32_t, std::int32_t> ids_through_a_takeover(double handback_gate,
+                                                             const Appearance& found_looks) {
+  const Appearance red = colour(3);
+  const Appearance blue = colour(20);
+  std::vector<std::vector<Detection>> frames;
+  std::vector<float> blue_x;
+  for (int k = 0; k < 10; ++k) {
+    frames.push_back({person(100.F + 5.F * k, 200.F, red), person(150.F + 5.F * k, 200.F, blue)});
+    blue_x.push_back(150.F + 5.F * k);
+  }
+  frames.push_back({person(150.F, 200.F, red)});
+  frames.push_back({person(155.F, 200.F, red)});
+  blue_x.insert(blue_x.end(), 2, -1.F);
+  for (int k = 0; k < 8; ++k) {
+    frames.push_back({person(165.F, 200.F, found_looks)});
+    blue_x.push_back(165.F);
+  }
+  TrackerConfig with = config(0.6);
+  with.handback_gate = handback_gate;
+  Tracker tracker(with);
+  std::int32_t before = 0;
+  std::int32_t after = 0;
+  for (std::size_t k = 0; k < frames.size(); ++k) {
+    const auto& reports = tracker.update(frames[k], static_cast<double>(k) / kFps);
+    for (const TrackReport& r : reports) {
+      if (blue_x[k] < 0.F || std::abs(r.box.x - blue_x[k]) > 15.F) continue;
+      if (k == 5) before = r.id;
+      if (k + 1 == frames.size()) after = r.id;
+    }
+  }
+  return {before, after};
+}
+
+TEST(Reidentification, ABoxThatLooksLikeAnotherTrackGoesBackToItsOwnTrack) {
+  const auto [motion_before, motion_after] = ids_through_a_takeover(0.0, colour(20));
+  ASSERT_NE(motion_before, 0);
+  ASSERT_NE(motion_after, 0);
+  EXPECT_NE(motion_after, motion_before) << "without it: the red track takes the blue person";
+
+  const auto [before, after] = ids_through_a_takeover(0.4, colour(20));
+  EXPECT_EQ(after, before);
+
+  // Someone who looks like neither track: the looks cannot say whose box it is, and the motion
+  // model's choice stands.
+  const auto [stranger_before, stranger_after] = ids_through_a_takeover(0.4, colour(40));
+  EXPECT_NE(stranger_after, stranger_before);
+  EXPECT_EQ(stranger_after, motion_after);
+}
+
 }  // namespace
 }  // namespace rtmot::tracker

@@ -66,6 +66,7 @@ TEST(TrackerOptions, EveryKnobOfTheConfigCanBeSet) {
                                      {"appearance_momentum", "0.8"},
                                      {"reid_gate", "0.45"},
                                      {"reid_max_gap_s", "7.5"},
+                                     {"handback_gate", "0.35"},
                                      {"resolve_crossings", "true"},
                                      {"observed_gate_frames", "3.5"},
                                      {"particle_count", "33"},
@@ -111,13 +112,14 @@ TEST(TrackerOptions, EveryKnobOfTheConfigCanBeSet) {
   EXPECT_DOUBLE_EQ(config.appearance_momentum, 0.8);
   EXPECT_DOUBLE_EQ(config.reid_gate, 0.45);
   EXPECT_DOUBLE_EQ(config.reid_max_gap_s, 7.5);
+  EXPECT_DOUBLE_EQ(config.handback_gate, 0.35);
   EXPECT_TRUE(config.resolve_crossings);
   EXPECT_DOUBLE_EQ(config.observed_gate_frames, 3.5);
   EXPECT_EQ(config.particle_count, 33);
   EXPECT_EQ(config.seed, 18446744073709551615ULL);
   EXPECT_EQ(config.max_tracks, 20);
   EXPECT_EQ(config.max_detections, 30);
-  EXPECT_EQ(tracker_options().size(), 45U) << "a new TrackerConfig field needs a line here too";
+  EXPECT_EQ(tracker_options().size(), 46U) << "a new TrackerConfig field needs a line here too";
 }
 
 TEST(TrackerOptions, AnAffinityBringsItsUsualThresholdUnlessOneFollows) {
@@ -233,6 +235,15 @@ TEST(TrackerOptions, CrossingResolutionNeedsReidentification) {
   ASSERT_TRUE(config_problem(config).has_value());
   EXPECT_NE(config_problem(config)->find("reid_gate"), std::string::npos);
   config = with_options(*find_preset("rtmot"), {{"resolve_crossings", "true"}});
+  EXPECT_FALSE(config_problem(config).has_value());
+}
+
+// And a hand-back without re-identification, whose gate, reach and margin it uses.
+TEST(TrackerOptions, TheHandBackNeedsReidentification) {
+  TrackerConfig config = with_options(*find_preset("sort"), {{"handback_gate", "0.4"}});
+  ASSERT_TRUE(config_problem(config).has_value());
+  EXPECT_NE(config_problem(config)->find("reid_gate"), std::string::npos);
+  config = with_options(*find_preset("rtmot"), {{"handback_gate", "0.4"}});
   EXPECT_FALSE(config_problem(config).has_value());
 }
 
