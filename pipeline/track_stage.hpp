@@ -95,10 +95,9 @@ class TrackStage {
 
   void finish_streams(const std::atomic<bool>& abort);
   bool send_predicted(const DetectedFrame& in, Stream& stream, const std::atomic<bool>& abort);
-  /// Takes the stream's thumbnails up to `frame_number` (`processed`: the detector's frame, else
-  /// one it skipped), following its boxes frame by frame; whether the follower's latest frame is
-  /// then `frame_number` with boxes still followed.
-  static bool follow_until(Stream& stream, std::int64_t frame_number, bool processed);
+  /// Takes the stream's thumbnails up to `frame_number`, following its boxes frame by frame;
+  /// whether the follower's latest frame is then `frame_number` with boxes still followed.
+  static bool follow_until(Stream& stream, std::int64_t frame_number);
   /// After a processed frame: follow the tracks it matched from there.
   static void start_following(Stream& stream);
   /// An observed message's tracks: the predicted ones, where followed at the boxes the image
