@@ -57,10 +57,10 @@ struct PipelineOptions {
   /// Hand each processed frame's detections, as the tracker got them, to the consumers
   /// (SinkFrame::detections: output.mot_detections). A copy into storage reserved per queue slot.
   bool keep_detections{false};
-  /// Follow the tracks' boxes in the image through the frames the detector skips (a gray
-  /// thumbnail of every camera frame, sparse optical flow): the skipped frames' messages carry
-  /// observed boxes, and each track starts the next association where the image showed it
-  /// (docs/full-rate.md, "Observed boxes").
+  /// Follow the tracks' boxes in the image from each processed frame to the next (a gray
+  /// thumbnail of every camera frame, sparse optical flow): the frames the detector skips carry
+  /// observed boxes, and each track starts the next association, consecutive frame or not, where
+  /// the image showed it (docs/full-rate.md, "Observed boxes").
   bool follow_image{false};
   std::size_t queue_capacity{4};  // items in each of the two queues (at least one per source)
   /// Several sources: once one has a new frame, how long the detector waits for the others'
