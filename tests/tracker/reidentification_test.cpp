@@ -232,6 +232,25 @@ TEST(Reidentification, TheOneWhoLooksLikeThemIsChosenNotTheNearest) {
   EXPECT_EQ(ids.back()[0], ids[5][1]);
 }
 
+// Runs `frames` with `with` and returns the ids reported at one person's box, at x = `xs[k]` in
+// frame k (within 15 px; none where xs[k] is negative): at frame 5 and at the last frame.
+std::pair<std::int32_t, std::int32_t> ids_at(const TrackerConfig& with,
+                                             const std::vector<std::vector<Detection>>& frames,
+                                             const std::vector<float>& xs) {
+  Tracker tracker(with);
+  std::int32_t before = 0;
+  std::int32_t after = 0;
+  for (std::size_t k = 0; k < frames.size(); ++k) {
+    const auto& reports = tracker.update(frames[k], static_cast<double>(k) / kFps);
+    for (const TrackReport& r : reports) {
+      if (xs[k] < 0.F || std::abs(r.box.x - xs[k]) > 15.F) continue;  // someone else's box
+      if (k == 5) before = r.id;
+      if (k + 1 == frames.size()) after = r.id;
+    }
+  }
+  return {before, after};
+}
+
 // Two people walk towards each other, meet, and each turns back the way they came. The motion
 // model carries each track on through the meeting, so each takes the other person; their first
 // clear sightings after it look like the other track's model, and the tracks trade ids back.
@@ -254,18 +273,7 @@ std::pair<std::int32_t, std::int32_t> ids_after_a_meeting(bool resolve_crossings
   }
   TrackerConfig with = config(0.6);
   with.resolve_crossings = resolve_crossings;
-  Tracker tracker(with);
-  std::int32_t before = 0;
-  std::int32_t after = 0;
-  for (std::size_t k = 0; k < frames.size(); ++k) {
-    const auto& reports = tracker.update(frames[k], static_cast<double>(k) / kFps);
-    for (const TrackReport& r : reports) {
-      if (std::abs(r.box.x - left_x[k]) > 15.F) continue;  // the other person's box
-      if (k == 5) before = r.id;
-      if (k + 1 == frames.size()) after = r.id;
-    }
-  }
-  return {before, after};
+  return ids_at(with, frames, left_x);
 }
 
 TEST(Reidentification, TwoWhoMeetAndTurnBackKeepTheirIdsByTheirLooks) {
@@ -306,18 +314,7 @@ std::pair<std::int32_t, std::int32_t> ids_through_a_takeover(double handback_gat
   }
   TrackerConfig with = config(0.6);
   with.handback_gate = handback_gate;
-  Tracker tracker(with);
-  std::int32_t before = 0;
-  std::int32_t after = 0;
-  for (std::size_t k = 0; k < frames.size(); ++k) {
-    const auto& reports = tracker.update(frames[k], static_cast<double>(k) / kFps);
-    for (const TrackReport& r : reports) {
-      if (blue_x[k] < 0.F || std::abs(r.box.x - blue_x[k]) > 15.F) continue;
-      if (k == 5) before = r.id;
-      if (k + 1 == frames.size()) after = r.id;
-    }
-  }
-  return {before, after};
+  return ids_at(with, frames, blue_x);
 }
 
 TEST(Reidentification, ABoxThatLooksLikeAnotherTrackGoesBackToItsOwnTrack) {

@@ -228,23 +228,18 @@ TEST(TrackerOptions, ParticleStorageIsCheckedAsAWhole) {
   EXPECT_FALSE(config_problem(config).has_value()) << "no particles are allocated for kalman";
 }
 
-// A setting that would do nothing is refused, naming what it needs: crossing resolution without
-// re-identification (the sort preset has none).
-TEST(TrackerOptions, CrossingResolutionNeedsReidentification) {
-  TrackerConfig config = with_options(*find_preset("sort"), {{"resolve_crossings", "true"}});
-  ASSERT_TRUE(config_problem(config).has_value());
-  EXPECT_NE(config_problem(config)->find("reid_gate"), std::string::npos);
-  config = with_options(*find_preset("rtmot"), {{"resolve_crossings", "true"}});
-  EXPECT_FALSE(config_problem(config).has_value());
-}
-
-// And a hand-back without re-identification, whose gate, reach and margin it uses.
-TEST(TrackerOptions, TheHandBackNeedsReidentification) {
-  TrackerConfig config = with_options(*find_preset("sort"), {{"handback_gate", "0.4"}});
-  ASSERT_TRUE(config_problem(config).has_value());
-  EXPECT_NE(config_problem(config)->find("reid_gate"), std::string::npos);
-  config = with_options(*find_preset("rtmot"), {{"handback_gate", "0.4"}});
-  EXPECT_FALSE(config_problem(config).has_value());
+// A setting that would do nothing is refused, naming what it needs: crossing resolution and the
+// hand-back (whose gate, reach and margin are re-identification's) without re-identification (the
+// sort preset has none).
+TEST(TrackerOptions, CrossingResolutionAndTheHandBackNeedReidentification) {
+  for (const auto& [name, value] :
+       {std::pair{"resolve_crossings", "true"}, std::pair{"handback_gate", "0.4"}}) {
+    TrackerConfig config = with_options(*find_preset("sort"), {{name, value}});
+    ASSERT_TRUE(config_problem(config).has_value()) << name;
+    EXPECT_NE(config_problem(config)->find("reid_gate"), std::string::npos) << name;
+    config = with_options(*find_preset("rtmot"), {{name, value}});
+    EXPECT_FALSE(config_problem(config).has_value()) << name;
+  }
 }
 
 // The same for the contested gate's narrowing without the contested gate.
