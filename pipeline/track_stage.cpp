@@ -96,9 +96,9 @@ void TrackStage::run(const std::atomic<bool>& abort) {
     const double seconds = static_cast<double>(in->info.pts_ns) * 1e-9;
     // With the image followed up to this frame (from the last processed one, across any frames
     // the detector skipped), the tracks it followed start the association where the image showed
-    // them, not where their motion model guessed; where two people cross, each track's points
-    // stay on its own person. Consecutive processed frames too, since round 26 (docs/full-rate.md:
-    // chosen on the first halves of both videos and checked on the second, IDF1 higher).
+    // them, not where their motion model guessed. Consecutive processed frames too, since round
+    // 26 (docs/full-rate.md: chosen on the first halves of both videos and checked on the second,
+    // MOTA and IDF1 higher).
     const bool followed =
         stream.follower && !in->outage && follow_until(stream, in->info.frame_number);
     const auto& reports = followed
