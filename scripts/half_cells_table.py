@@ -22,6 +22,8 @@ import argparse
 import collections
 import sys
 
+from score_table import fail, read_rows
+
 CELLS = (("PETS09-S2L1", "off", "every"), ("PETS09-S2L1", "tiles", "every"),
          ("PETS09-S2L1", "off", "band"), ("ADL-Rundle-6", "off", "every"),
          ("ADL-Rundle-6", "tiles", "every"), ("ADL-Rundle-6", "off", "band"))
@@ -32,35 +34,15 @@ MOTA_TOLERANCE = 0.2
 FIRST_HALF_GAIN = 1.0
 
 
-def fail(message, status=2):
-    print(f"half_cells_table.py: {message}", file=sys.stderr)
-    sys.exit(status)
-
-
 def read_scores(path, kind, runs):
     """runs[label][(sequence, kind, latency)] = (MOTA, IDF1, AssA)."""
-    try:
-        lines = open(path, encoding="utf-8").read().splitlines()
-    except OSError as error:
-        fail(f"{path}: {error.strerror}")
-    if not lines:
-        fail(f"{path}: empty")
-    header = lines[0].split("\t")
-    wanted = ("label", "sequence", "latency_ms", "MOTA", "IDF1", "AssA")
-    missing = [name for name in wanted if name not in header]
-    if missing:
-        fail(f"{path}:1: no column {', '.join(missing)}")
-    at = {name: header.index(name) for name in wanted}
-    for number, line in enumerate(lines[1:], start=2):
-        fields = line.split("\t")
-        if len(fields) != len(header):
-            fail(f"{path}:{number}: {len(fields)} fields, the header has {len(header)}")
+    for number, fields in read_rows(path, ("label", "sequence", "latency_ms", "MOTA", "IDF1",
+                                           "AssA")):
         try:
-            figures = tuple(float(fields[at[name]]) for name in ("MOTA", "IDF1", "AssA"))
+            figures = tuple(float(fields[name]) for name in ("MOTA", "IDF1", "AssA"))
         except ValueError:
             fail(f"{path}:{number}: MOTA, IDF1 or AssA is not a number")
-        latency = fields[at["latency_ms"]]
-        runs[fields[at["label"]]][(fields[at["sequence"]], kind, latency)] = figures
+        runs[fields["label"]][(fields["sequence"], kind, fields["latency_ms"])] = figures
 
 
 def cells_of(label_runs):

@@ -20,32 +20,15 @@ import argparse
 import collections
 import sys
 
+from score_table import fail, read_rows
+
 COLUMNS = ("MOTA", "IDF1", "AssA", "IDs")
-
-
-def fail(message, status=2):
-    print(f"latency_band.py: {message}", file=sys.stderr)
-    sys.exit(status)
 
 
 def read_scores(path, low, high):
     """label -> sequence -> latency -> {column: value}, for the latencies in [low, high]."""
     runs = collections.defaultdict(lambda: collections.defaultdict(dict))
-    try:
-        lines = open(path, encoding="utf-8").read().splitlines()
-    except OSError as error:
-        fail(f"{path}: {error.strerror}")
-    if not lines:
-        fail(f"{path}: empty")
-    header = lines[0].split("\t")
-    missing = [c for c in ("label", "sequence", "latency_ms", *COLUMNS) if c not in header]
-    if missing:
-        fail(f"{path}:1: no column {', '.join(missing)} (not a score_video.sh table?)")
-    for number, line in enumerate(lines[1:], 2):
-        values = line.split("\t")
-        if len(values) != len(header):
-            fail(f"{path}:{number}: {len(values)} fields, expected {len(header)}")
-        fields = dict(zip(header, values))
+    for number, fields in read_rows(path, ("label", "sequence", "latency_ms", *COLUMNS)):
         if fields["latency_ms"] == "every":
             continue
         try:
