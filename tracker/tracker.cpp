@@ -28,6 +28,27 @@ constexpr float kOccludedShare = 0.1F;
 // Re-identification: two candidates that look alike to within this are not told apart, and
 // neither gives its id (a wrong old id costs more than a new one).
 constexpr float kReidMargin = 0.1F;
+// The nearest in looks of some candidates (`Who` names one), and how near the runner-up came:
+// re-identification and the hand-back decide alike, so that a wrong id or box costs them alike.
+template <typename Who>
+struct NearestLook {
+  float best{std::numeric_limits<float>::infinity()};
+  float second{std::numeric_limits<float>::infinity()};
+  Who who{};
+
+  void consider(float distance, Who candidate) {
+    if (distance < best) {
+      second = best;
+      best = distance;
+      who = candidate;
+    } else if (distance < second) {
+      second = distance;
+    }
+  }
+  /// Within `gate`, and no other candidate within kReidMargin of it.
+  bool clearly_within(float gate) const { return best <= gate && best + kReidMargin <= second; }
+};
+
 // How far a person may have gone while unseen: a walker covers about one body height a second;
 // twice that, plus one height for the boxes' own error.
 constexpr float kReidHeightsPerSecond = 2.F;
@@ -382,10 +403,7 @@ struct Tracker::State {
   // and every other such track by kReidMargin (a wrong hand-back costs as much as a wrong id);
   // null if none.
   Track* unmatched_lookalike(const Detection& detection, const Track& matched) {
-    const float own = appearance_distance(matched.appearance, detection.appearance);
-    float best = std::numeric_limits<float>::infinity();
-    float second = best;
-    Track* found = nullptr;
+    NearestLook<Track*> nearest;
     for (const int slot : order) {
       Track& track = slots[slot];
       if (&track == &matched || track.matched_now() || !track.life.ever_confirmed() ||
@@ -393,18 +411,12 @@ struct Tracker::State {
           last_update_time - track.last_seen_seconds > kHandbackSeconds ||
           !within_reach(track.last_observation, track.last_seen_seconds, detection.box))
         continue;
-      const float distance = appearance_distance(track.appearance, detection.appearance);
-      if (distance < best) {
-        second = best;
-        best = distance;
-        found = &track;
-      } else if (distance < second) {
-        second = distance;
-      }
+      nearest.consider(appearance_distance(track.appearance, detection.appearance), &track);
     }
-    const bool clearly = best <= static_cast<float>(config.reid_gate) &&
-                         best + kReidMargin <= second && best + kReidMargin <= own;
-    return clearly ? found : nullptr;
+    const float own = appearance_distance(matched.appearance, detection.appearance);
+    const bool clearly = nearest.clearly_within(static_cast<float>(config.reid_gate)) &&
+                         nearest.best + kReidMargin <= own;
+    return clearly ? nearest.who : nullptr;
   }
 
   void correct_track(Track& track, const Detection& detection) {
@@ -653,36 +665,25 @@ struct Tracker::State {
       if (!(track.first_confirmed_now || seen_late) || !track.appearance.valid) continue;
       const float gate = seen_late ? std::min(kLateReidGate, static_cast<float>(config.reid_gate))
                                    : static_cast<float>(config.reid_gate);
-      float best = std::numeric_limits<float>::infinity();
-      float second = best;
-      int best_lost = -1;      // a slot
-      int best_departed = -1;  // an index into departed
-      const auto consider = [&](float distance, int lost, int gone) {
-        if (distance < best) {
-          second = best;
-          best = distance;
-          best_lost = lost;
-          best_departed = gone;
-        } else if (distance < second) {
-          second = distance;
-        }
-      };
+      // The lost track's slot, or -1 and the departed record's index.
+      NearestLook<std::pair<int, int>> nearest;
       for (const int other : order) {
         const Track& lost = slots[other];
         if (other == slot || lost.taken_over || lost.life.stage() != TrackStage::lost ||
             !lost.appearance.valid || lost.class_id != track.class_id ||
             !within_reach(lost.last_observation, lost.last_seen_seconds, track.last_observation))
           continue;
-        consider(appearance_distance(lost.appearance, track.appearance), other, -1);
+        nearest.consider(appearance_distance(lost.appearance, track.appearance), {other, -1});
       }
       for (int i = 0; i < static_cast<int>(departed.size()); ++i) {
         const Departed& gone = departed[static_cast<std::size_t>(i)];
         if (gone.id == 0 || gone.class_id != track.class_id ||
             !within_reach(gone.last_box, gone.last_seen_seconds, track.last_observation))
           continue;
-        consider(appearance_distance(gone.appearance, track.appearance), -1, i);
+        nearest.consider(appearance_distance(gone.appearance, track.appearance), {-1, i});
       }
-      if (best > gate || second < best + kReidMargin) continue;
+      if (!nearest.clearly_within(gate)) continue;
+      const auto [best_lost, best_departed] = nearest.who;
       if (best_lost >= 0) {
         Track& lost = slots[best_lost];
         track.id = lost.id;
