@@ -4,6 +4,8 @@
 # Why: gst_init under qemu scans every plugin in the system path (measured: > 10 minutes). We point
 # GStreamer at a small plugin folder and a registry pre-built from it by scripts/cross_build.sh, and tell
 # it not to rescan or fork a scanner (the forked scanner would be an x86 program on this host).
+# No errexit: this file is sourced, where `set -e` would stay on in the caller's shell; it only
+# assigns and exports, so no step can fail.
 RTMOT_SYSROOT="${RTMOT_SYSROOT:-/opt/rtmot-sysroot-arm64}"
 export RTMOT_SYSROOT
 export GST_REGISTRY="$RTMOT_SYSROOT/opt/rtmot/gst-registry-aarch64.bin"
