@@ -1,3 +1,4 @@
+# shellcheck shell=bash
 # Source this (bash) to run cross-built arm64 programs under qemu with a bounded GStreamer start-up:
 #   RTMOT_SYSROOT=/opt/rtmot-sysroot-arm64 source scripts/cross_env.sh
 #   ctest --test-dir build-aarch64            # or: qemu-aarch64 -L "$RTMOT_SYSROOT" build-aarch64/apps/rtmot ...
