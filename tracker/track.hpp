@@ -61,7 +61,6 @@ struct Track {
   bool first_confirmed_now{false};  // confirmed for the first time by the update in progress
   bool model_started_now{false};    // its appearance model began in the update in progress
   bool observed_now{false};         // its prior was moved to what the image showed (ObservedBox)
-  Box observed_box;                 // what the image showed, when observed_now
   bool taken_over{false};           // a re-identified track took its id: it ends in this update
   // Born at or above strong_birth_range_cut: confirmed sooner.
   bool strong_birth{false};

@@ -69,12 +69,6 @@ constexpr float kLateReidGate = 0.4F;
 // (round 26: without it, switches rose on PETS09-S2L1).
 constexpr double kHandbackSeconds = 1.0;
 
-// merged_box_share: a detector's box around two people side by side is wider than either (set
-// before its runs, not tuned)...
-constexpr float kMergedWidth = 1.2F;
-// ...and the two image boxes it covers are two people, not one track's duplicate.
-constexpr float kTwoPeopleIou = 0.5F;
-
 // Crossing resolution (resolve_crossings, with re-identification; docs/appearance.md, round 19):
 // two tracks whose boxes overlap this much (one covers this share of the other) may trade people,
 // and...
@@ -257,7 +251,6 @@ struct Tracker::State {
         const Box corrected = current_box(track.predictor);
         if (is_finite(corrected)) track.predicted = corrected;
         track.observed_now = true;
-        track.observed_box = seen.box;
         break;
       }
     }
@@ -383,11 +376,6 @@ struct Tracker::State {
     for (const AssociationMatch& m : round_matches) {
       take(m.detection);
       const int slot = order[positions[m.candidate]];
-      if (covers_two_followed_people(slots[slot], detections[m.detection])) {
-        slots[slot].last_observation = slots[slot].observed_box;
-        count_hit(slots[slot], detections[m.detection]);
-        continue;
-      }
       if (looks_like_someone_else(slots[slot], detections[m.detection])) {
         handovers.push_back(Handover{m.detection, slot});
         continue;
@@ -431,24 +419,6 @@ struct Tracker::State {
     return clearly ? nearest.who : nullptr;
   }
 
-  // merged_box_share: `detection` is a box around the person the image showed for `track` and
-  // around another followed track's person. Motion and looks would learn both people from it;
-  // the image already put the track where its own person is.
-  bool covers_two_followed_people(const Track& track, const Detection& detection) const {
-    if (!(config.merged_box_share > 0.0) || !track.observed_now) return false;
-    const auto share = static_cast<float>(config.merged_box_share);
-    const auto around = [&](const Box& person) {
-      return covered_share(person, detection.box) >= share &&
-             detection.box.w >= kMergedWidth * person.w;
-    };
-    if (!around(track.observed_box)) return false;
-    return std::any_of(order.begin(), order.end(), [&](int slot) {
-      const Track& other = slots[slot];
-      return &other != &track && other.observed_now && around(other.observed_box) &&
-             iou(track.observed_box, other.observed_box) < kTwoPeopleIou;
-    });
-  }
-
   void correct_track(Track& track, const Detection& detection) {
     // The box noise is measured on matches one nominal frame ahead only: further ahead the
     // offset is mostly the motion the time-widened gate answers for.
@@ -471,11 +441,6 @@ struct Tracker::State {
       blend_appearance(track.appearance, detection.appearance,
                        static_cast<float>(config.appearance_momentum));
     }
-    count_hit(track, detection);
-  }
-
-  // `track` was matched to `detection` in this update: its streak and confidence go on.
-  void count_hit(Track& track, const Detection& detection) const {
     track.steps_since_update = 0;
     track.frames_since_update = 0.0;
     track.last_seen_seconds = last_update_time;

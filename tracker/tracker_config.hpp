@@ -173,11 +173,6 @@ struct TrackerConfig {
   /// when their first clear sightings after it each look like the other's model (the motion model
   /// gave each the other person). Measured, not in a preset (docs/appearance.md, round 19).
   bool resolve_crossings{false};
-  /// A track the image followed into this update, matched to a detection that covers at least
-  /// this share of its image box and of another followed track's (two people, the detection
-  /// wider than each), counts the match but learns neither box nor looks from it: a box around
-  /// two people. Measured, not in a preset (docs/appearance.md, round 27). 0 = off.
-  double merged_box_share{0.0};
   /// A track whose prior the image corrected in this update (an ObservedBox) has its gate widened
   /// as for at most this many nominal frames, not the whole gap between processed frames: the
   /// widening answers for the motion model's guess, which the image replaced. 0 = off.

@@ -323,13 +323,6 @@ std::vector<TrackerOption> make_table() {
            "would judge its person's; the matched track coasts (docs/appearance.md: measured, "
            "in no preset; 0: off)",
            &C::handback_gate, 0.0, 1.0),
-      real("merged_box_share",
-           "where the pipeline followed tracks in the image (detector.follow_image): a followed "
-           "track matched to a detection covering at least this share of its image box and of "
-           "another followed track's, and wider than each, counts the match but learns nothing "
-           "from it, a box around two people (docs/appearance.md: measured, in no preset; 0: "
-           "off)",
-           &C::merged_box_share, 0.0, 1.0),
       real("observed_gate_frames",
            "where the pipeline followed a track in the image across the frames a slow detector "
            "skipped (detector.follow_image), its gate is widened as for at most this many "
