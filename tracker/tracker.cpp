@@ -551,7 +551,7 @@ struct Tracker::State {
     for (const int slot : order) {
       Track& track = slots[slot];
       const bool was_confirmed = track.life.ever_confirmed();
-      track.life.settle((track.matched_now() && confirmed(track)) || held_by_image(track));
+      track.life.settle(track.matched_now() && confirmed(track));
       track.first_confirmed_now = !was_confirmed && track.life.stage() == TrackStage::confirmed;
     }
     if (config.resolve_crossings) resolve_crossings();  // config_problem: reid_gate is on
@@ -714,14 +714,6 @@ struct Tracker::State {
     departed[next_departed] = Departed{track.id, track.class_id, track.last_observation,
                                        track.last_seen_seconds, track.appearance};
     next_departed = (next_departed + 1) % departed.size();
-  }
-
-  // observed_hold_s: a confirmed track no detection matched goes on where the image showed its
-  // person (NvDCF's shadow tracking), for a while: a person one box hides is still there.
-  bool held_by_image(const Track& track) const {
-    return config.observed_hold_s > 0.0 && track.observed_now && !track.matched_now() &&
-           track.life.stage() == TrackStage::confirmed &&
-           last_update_time - track.last_seen_seconds <= config.observed_hold_s;
   }
 
   static TrackReport report(const Track& track) {

@@ -173,11 +173,6 @@ struct TrackerConfig {
   /// when their first clear sightings after it each look like the other's model (the motion model
   /// gave each the other person). Measured, not in a preset (docs/appearance.md, round 19).
   bool resolve_crossings{false};
-  /// A confirmed track no detection matched but whose prior the image moved in this update
-  /// (an ObservedBox) stays confirmed and reported, at that box, until it has gone unmatched
-  /// longer than this many seconds. Measured, not in a preset (docs/appearance.md, round 27).
-  /// 0 = off.
-  double observed_hold_s{0.0};
   /// A track whose prior the image corrected in this update (an ObservedBox) has its gate widened
   /// as for at most this many nominal frames, not the whole gap between processed frames: the
   /// widening answers for the motion model's guess, which the image replaced. 0 = off.

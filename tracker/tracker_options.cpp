@@ -323,11 +323,6 @@ std::vector<TrackerOption> make_table() {
            "would judge its person's; the matched track coasts (docs/appearance.md: measured, "
            "in no preset; 0: off)",
            &C::handback_gate, 0.0, 1.0),
-      real("observed_hold_s",
-           "where the pipeline follows tracks in the image (detector.follow_image): a confirmed "
-           "track no detection matched stays reported where the image showed it until unmatched "
-           "longer than this, in seconds (docs/appearance.md: measured, in no preset; 0: off)",
-           &C::observed_hold_s, 0.0, 3600.0),
       real("observed_gate_frames",
            "where the pipeline followed a track in the image across the frames a slow detector "
            "skipped (detector.follow_image), its gate is widened as for at most this many "
