@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <stdexcept>
 #include <utility>
 
@@ -10,9 +9,13 @@
 #include "tracker/association.hpp"
 #include "tracker/box_geometry.hpp"
 #include "tracker/box_noise.hpp"
+#include "tracker/crossings.hpp"
+#include "tracker/handback.hpp"
 #include "tracker/predictor.hpp"
+#include "tracker/reidentification.hpp"
 #include "tracker/score_cut.hpp"
 #include "tracker/track.hpp"
+#include "tracker/track_table.hpp"
 #include "tracker/tracker_extension.hpp"
 
 namespace rtmot::tracker {
@@ -25,61 +28,6 @@ constexpr double kOneFrameSlack = 0.5;
 // A detection whose box another detection covers this much of shows someone else's pixels too:
 // its appearance does not teach its track (a tenth of a person is an arm or a bag).
 constexpr float kOccludedShare = 0.1F;
-// Re-identification: two candidates that look alike to within this are not told apart, and
-// neither gives its id (a wrong old id costs more than a new one).
-constexpr float kReidMargin = 0.1F;
-// The nearest in looks of some candidates (`Who` names one), and how near the runner-up came:
-// re-identification and the hand-back decide alike, so that a wrong id or box costs them alike.
-template <typename Who>
-struct NearestLook {
-  float best{std::numeric_limits<float>::infinity()};
-  float second{std::numeric_limits<float>::infinity()};
-  Who who{};
-
-  void consider(float distance, Who candidate) {
-    if (distance < best) {
-      second = best;
-      best = distance;
-      who = candidate;
-    } else if (distance < second) {
-      second = distance;
-    }
-  }
-  /// Within `gate`, and no other candidate within kReidMargin of it.
-  bool clearly_within(float gate) const { return best <= gate && best + kReidMargin <= second; }
-};
-
-// How far a person may have gone while unseen: a walker covers about one body height a second;
-// twice that, plus one height for the boxes' own error.
-constexpr float kReidHeightsPerSecond = 2.F;
-// A track born where another detection covered it (out of a crossing) has no appearance when it
-// is first confirmed; it may still take a lost one's id at its first unoccluded sighting, if that
-// comes this soon after its birth (docs/appearance.md: 1 s and 3 s chose the same on both first
-// halves; a later change of id would undo more of what the track has reported).
-constexpr double kLateReidSeconds = 1.0;
-// There, the new track's model is one sighting, so it must look closer than reid_gate asks at
-// first confirmation. Chosen with the detector's latency in view (docs/appearance.md, round 18:
-// both first halves every frame and behind a 250 ms detector; 0.3 and 0.5 summed less IDF1; with
-// none, one late id behind the slow detector went to the wrong person).
-constexpr float kLateReidGate = 0.4F;
-
-// A box goes back (handback_gate) only to a track that had its person this recently: most
-// takeovers hand over someone whose own track had them a moment before (docs/appearance.md,
-// round 21); a track lost longer may have drifted onto anyone. Chosen on both first halves
-// (round 26: without it, switches rose on PETS09-S2L1).
-constexpr double kHandbackSeconds = 1.0;
-
-// Crossing resolution (resolve_crossings, with re-identification; docs/appearance.md, round 19):
-// two tracks whose boxes overlap this much (one covers this share of the other) may trade people,
-// and...
-constexpr float kCrossingShare = 0.3F;
-// ...are told apart by their first clear sightings within this long after they last overlapped
-// (a crossing of walkers is over in a second or two; later, a sighting is the track's own).
-constexpr double kCrossingSeconds = 2.0;
-// The crossed pairing must be closer than the kept one by this much, summed over both: a trade
-// undone wrongly costs two ids. Chosen on both first halves (docs/appearance.md: 0.05 and 0.15
-// and a share of 0.1 chose the same; a tie goes to the larger margin).
-constexpr float kCrossingMargin = 0.15F;
 
 const TrackerConfig& validated(const TrackerConfig& config) {
   if (const auto problem = config_problem(config))
@@ -95,7 +43,9 @@ bool usable(const Detection& detection) {
 }  // namespace
 
 // The update is a sequence of named passes over a table of track slots (see update()). Every
-// buffer below is sized at construction; a pass only clears and refills them.
+// buffer below is sized at construction; a pass only clears and refills them. The identity passes
+// that decide on the looks alone (the hand-back's choice of owner, crossing resolution,
+// re-identification) live in their own files and see the table through a TrackTableView.
 struct Tracker::State {
   State(const TrackerConfig& c, std::unique_ptr<TrackerExtension> e)
       : config(validated(c)),
@@ -108,7 +58,8 @@ struct Tracker::State {
         score_cut(0.0, c.score_range_cut, kScoreWindow,
                   c.strong_birth_range_cut > 0.0 || (extension && extension->needs_score_range()),
                   c.score_range_cap, c.score_range_cap_below),
-        cascades(c.confirmed_tracks_first || (extension && extension->cascades())) {
+        cascades(c.confirmed_tracks_first || (extension && extension->cascades())),
+        reidentifier(config.reid_gate > 0.0 ? static_cast<std::size_t>(config.max_tracks) : 0) {
     const auto tracks = static_cast<std::size_t>(config.max_tracks);
     const auto detections = static_cast<std::size_t>(config.max_detections);
     slots.resize(tracks);
@@ -129,7 +80,6 @@ struct Tracker::State {
     handovers.reserve(std::min(tracks, detections));
     reports.reserve(tracks);
     table.reserve(tracks);
-    departed.resize(config.reid_gate > 0.0 ? tracks : 0);
     restart();
   }
 
@@ -148,8 +98,7 @@ struct Tracker::State {
     box_noise.reset();
     if (extension) extension->reset();
     reports.clear();
-    for (Departed& gone : departed) gone.id = 0;
-    next_departed = 0;
+    reidentifier.reset();
   }
 
   // One frame: predict, associate in up to three rounds, start tracks, settle states and report.
@@ -376,7 +325,7 @@ struct Tracker::State {
     for (const AssociationMatch& m : round_matches) {
       take(m.detection);
       const int slot = order[positions[m.candidate]];
-      if (looks_like_someone_else(slots[slot], detections[m.detection])) {
+      if (looks_like_someone_else(config, slots[slot], detections[m.detection])) {
         handovers.push_back(Handover{m.detection, slot});
         continue;
       }
@@ -385,38 +334,9 @@ struct Tracker::State {
     // After the round's other matches, so that a track they matched is not offered a second box.
     for (const Handover& h : handovers) {
       const Detection& detection = detections[h.detection];
-      Track* owner = unmatched_lookalike(detection, slots[h.slot]);
+      Track* owner = unmatched_lookalike(table_view(), detection, slots[h.slot]);
       correct_track(owner != nullptr ? *owner : slots[h.slot], detection);
     }
-  }
-
-  // handback_gate: a confirmed track handed a clean detection that looks unlike it (a box around
-  // two people, a crossing: motion cannot tell who is who there, the looks can).
-  bool looks_like_someone_else(const Track& track, const Detection& detection) const {
-    return config.handback_gate > 0.0 && track.life.ever_confirmed() && track.appearance.valid &&
-           detection.appearance.valid &&
-           appearance_distance(track.appearance, detection.appearance) > config.handback_gate;
-  }
-
-  // The confirmed track, matched within kHandbackSeconds but not yet in this update, within a
-  // walker's reach of `detection`, that looks like it within reid_gate and nearer than `matched`
-  // and every other such track by kReidMargin (a wrong hand-back costs as much as a wrong id);
-  // null if none.
-  Track* unmatched_lookalike(const Detection& detection, const Track& matched) {
-    NearestLook<Track*> nearest;
-    for (const int slot : order) {
-      Track& track = slots[slot];
-      if (&track == &matched || track.matched_now() || !track.life.ever_confirmed() ||
-          track.taken_over || !track.appearance.valid || track.class_id != detection.class_id ||
-          last_update_time - track.last_seen_seconds > kHandbackSeconds ||
-          !within_reach(track.last_observation, track.last_seen_seconds, detection.box))
-        continue;
-      nearest.consider(appearance_distance(track.appearance, detection.appearance), &track);
-    }
-    const float own = appearance_distance(matched.appearance, detection.appearance);
-    const bool clearly = nearest.clearly_within(static_cast<float>(config.reid_gate)) &&
-                         nearest.best + kReidMargin <= own;
-    return clearly ? nearest.who : nullptr;
   }
 
   void correct_track(Track& track, const Detection& detection) {
@@ -554,8 +474,9 @@ struct Tracker::State {
       track.life.settle(track.matched_now() && confirmed(track));
       track.first_confirmed_now = !was_confirmed && track.life.stage() == TrackStage::confirmed;
     }
-    if (config.resolve_crossings) resolve_crossings();  // config_problem: reid_gate is on
-    if (!departed.empty()) reidentify_newly_confirmed();
+    // resolve_crossings is only on with re-identification (config_problem: reid_gate is on).
+    if (config.resolve_crossings) resolve_crossings(table_view());
+    if (reidentifier.on()) reidentifier.reidentify_newly_confirmed(table_view());
     std::size_t kept = 0;
     for (const int slot : order) {
       Track& track = slots[slot];
@@ -568,153 +489,18 @@ struct Tracker::State {
                                        track.life.stage() == TrackStage::tentative;
       if (unproven_and_missed || (track.frames_since_update > config.max_age + kFrameTolerance &&
                                   track.steps_since_update > config.min_coast_updates)) {
-        remember_departure(track);
+        reidentifier.remember_departure(track);
         release(slot);
       } else {
         order[kept++] = slot;
       }
     }
     order.resize(kept);
-    if (config.resolve_crossings) note_crossings();
+    if (config.resolve_crossings) note_crossings(table_view());
   }
 
-  Track* live_track_with_id(std::int32_t id) {
-    for (const int slot : order)
-      if (slots[slot].id == id && !slots[slot].taken_over) return &slots[slot];
-    return nullptr;
-  }
-
-  // The crossing is over for `track`: its held sighting joins its model.
-  void end_crossing(Track& track) const {
-    if (track.held_sighting.valid)
-      blend_appearance(track.appearance, track.held_sighting,
-                       static_cast<float>(config.appearance_momentum));
-    track.held_sighting.valid = false;
-    track.crossing_partner = 0;
-  }
-
-  // Two tracks whose boxes overlapped (note_crossings) may have traded people, the motion model
-  // being all that decided while neither was seen clearly. Once each has a clear sighting, each
-  // sighting is compared with both models (frozen since the overlap): if the crossed pairing is
-  // closer by kCrossingMargin, and each crossed pair is within reid_gate, the two trade ids and
-  // models, so each id goes on with the person it was given to. Then (and when the window
-  // closes or the partner is gone) the sightings join the models.
-  void resolve_crossings() {
-    for (const int slot : order) {
-      Track& a = slots[slot];
-      if (a.crossing_partner == 0) continue;
-      Track* b = live_track_with_id(a.crossing_partner);
-      if (b == nullptr || b->crossing_partner != a.id ||
-          last_update_time - a.crossing_seconds > kCrossingSeconds) {
-        end_crossing(a);
-        continue;
-      }
-      if (!a.held_sighting.valid || !b->held_sighting.valid) continue;
-      const float kept = appearance_distance(a.appearance, a.held_sighting) +
-                         appearance_distance(b->appearance, b->held_sighting);
-      const float a_is_b = appearance_distance(b->appearance, a.held_sighting);
-      const float b_is_a = appearance_distance(a.appearance, b->held_sighting);
-      if (a_is_b + b_is_a + kCrossingMargin < kept &&
-          std::max(a_is_b, b_is_a) <= static_cast<float>(config.reid_gate)) {
-        std::swap(a.id, b->id);
-        std::swap(a.appearance, b->appearance);
-      }
-      end_crossing(a);
-      end_crossing(*b);
-    }
-  }
-
-  // Confirmed tracks with models whose boxes now overlap (one covers more than kCrossingShare of
-  // the other) become partners for kCrossingSeconds; a track that meets a third ends its
-  // crossing with the one before.
-  void note_crossings() {
-    for (std::size_t i = 0; i < order.size(); ++i) {
-      Track& a = slots[order[i]];
-      if (!a.appearance.valid || !a.life.ever_confirmed()) continue;
-      const Box box_a = current_box(a.predictor);
-      for (std::size_t j = i + 1; j < order.size(); ++j) {
-        Track& b = slots[order[j]];
-        if (!b.appearance.valid || !b.life.ever_confirmed()) continue;
-        const Box box_b = current_box(b.predictor);
-        if (std::max(covered_share(box_a, box_b), covered_share(box_b, box_a)) <= kCrossingShare)
-          continue;
-        for (Track* t : {&a, &b}) {
-          const std::int32_t other = t == &a ? b.id : a.id;
-          if (t->crossing_partner == 0 || t->crossing_partner == other) continue;
-          if (Track* before = live_track_with_id(t->crossing_partner)) end_crossing(*before);
-          end_crossing(*t);
-        }
-        a.crossing_partner = b.id;
-        b.crossing_partner = a.id;
-        a.crossing_seconds = b.crossing_seconds = last_update_time;
-      }
-    }
-  }
-
-  // Re-identification (config.reid_gate): each track confirmed for the first time in this update
-  // may take the id of a lost track (still coasting) or of a removed one (`departed`). It happens
-  // before the track is first reported, so its id does not change in the output; except for a
-  // track born partly hidden, whose first unoccluded sighting comes after its first report
-  // (kLateReidSeconds, and only at kLateReidGate): its id changes there, once.
-  void reidentify_newly_confirmed() {
-    for (const int slot : order) {
-      Track& track = slots[slot];
-      const bool seen_late = track.model_started_now && !track.first_confirmed_now &&
-                             track.life.stage() == TrackStage::confirmed &&
-                             last_update_time - track.born_seconds <= kLateReidSeconds;
-      if (!(track.first_confirmed_now || seen_late) || !track.appearance.valid) continue;
-      const float gate = seen_late ? std::min(kLateReidGate, static_cast<float>(config.reid_gate))
-                                   : static_cast<float>(config.reid_gate);
-      // The lost track's slot, or -1 and the departed record's index.
-      NearestLook<std::pair<int, int>> nearest;
-      for (const int other : order) {
-        const Track& lost = slots[other];
-        if (other == slot || lost.taken_over || lost.life.stage() != TrackStage::lost ||
-            !lost.appearance.valid || lost.class_id != track.class_id ||
-            !within_reach(lost.last_observation, lost.last_seen_seconds, track.last_observation))
-          continue;
-        nearest.consider(appearance_distance(lost.appearance, track.appearance), {other, -1});
-      }
-      for (int i = 0; i < static_cast<int>(departed.size()); ++i) {
-        const Departed& gone = departed[static_cast<std::size_t>(i)];
-        if (gone.id == 0 || gone.class_id != track.class_id ||
-            !within_reach(gone.last_box, gone.last_seen_seconds, track.last_observation))
-          continue;
-        nearest.consider(appearance_distance(gone.appearance, track.appearance), {-1, i});
-      }
-      if (!nearest.clearly_within(gate)) continue;
-      const auto [best_lost, best_departed] = nearest.who;
-      if (best_lost >= 0) {
-        Track& lost = slots[best_lost];
-        track.id = lost.id;
-        lost.taken_over = true;
-      } else {
-        Departed& gone = departed[static_cast<std::size_t>(best_departed)];
-        track.id = gone.id;
-        gone.id = 0;
-      }
-    }
-  }
-
-  // Whether a person last seen in `box` at `seen_seconds` can be at `now`.
-  bool within_reach(const Box& box, double seen_seconds, const Box& now) const {
-    const double gap = last_update_time - seen_seconds;
-    if (!(gap >= 0.0) || gap > config.reid_max_gap_s) return false;
-    const double height = std::max(box.h, now.h);
-    const double dx = (box.x + box.w / 2.0) - (now.x + now.w / 2.0);
-    const double dy = (box.y + box.h / 2.0) - (now.y + now.h / 2.0);
-    const double reach = height * (1.0 + kReidHeightsPerSecond * gap);
-    return dx * dx + dy * dy <= reach * reach;
-  }
-
-  // A confirmed track with a model, removed: kept for re-identification (the oldest entry goes
-  // when the table is full; entries older than reid_max_gap_s are never taken).
-  void remember_departure(const Track& track) {
-    if (departed.empty() || !track.life.ever_confirmed() || !track.appearance.valid) return;
-    departed[next_departed] = Departed{track.id, track.class_id, track.last_observation,
-                                       track.last_seen_seconds, track.appearance};
-    next_departed = (next_departed + 1) % departed.size();
-  }
+  // The table as the identity passes see it (crossings.hpp, handback.hpp, reidentification.hpp).
+  TrackTableView table_view() { return TrackTableView{slots, order, config, last_update_time}; }
 
   static TrackReport report(const Track& track) {
     return TrackReport{track.id,          current_box(track.predictor),
@@ -787,26 +573,17 @@ struct Tracker::State {
   std::vector<AssociationMatch> round_matches;
   std::vector<TrackReport> reports;
   std::vector<TrackReport> table;  // track_table()'s
-  // Removed tracks re-identification may give their id back to (id 0: an empty entry), a ring.
-  struct Departed {
-    std::int32_t id{0};
-    std::int32_t class_id{0};
-    Box last_box;
-    double last_seen_seconds{0.0};
-    Appearance appearance;
-  };
   // A match held back by handback_gate until the round's other matches are made.
   struct Handover {
     int detection;
     int slot;
   };
   std::vector<Handover> handovers;
-  std::vector<Departed> departed;  // sized max_tracks when re-identification is on, else empty
-  std::size_t next_departed{0};
   Associator associator;
   BoxNoise box_noise;
   ScoreCut score_cut;
-  bool cascades;  // the cascade round runs
+  bool cascades;              // the cascade round runs
+  Reidentifier reidentifier;  // with the removed tracks it remembers (sized at construction)
   std::int32_t next_id{1};
   int frame_count{0};
   double elapsed_frames{0.0};  // nominal frames since the first update

@@ -1,0 +1,53 @@
+#pragma once
+// The two tests every identity decision on the looks shares (re-identification, the hand-back):
+// whether a person could have come this far while unseen, and whether one candidate clearly looks
+// nearest. Internal to tracker/.
+#include <algorithm>
+#include <limits>
+
+#include "tracker/box.hpp"
+#include "tracker/track_table.hpp"
+
+namespace rtmot::tracker {
+
+// Re-identification: two candidates that look alike to within this are not told apart, and
+// neither gives its id (a wrong old id costs more than a new one).
+inline constexpr float kReidMargin = 0.1F;
+// The nearest in looks of some candidates (`Who` names one), and how near the runner-up came:
+// re-identification and the hand-back decide alike, so that a wrong id or box costs them alike.
+template <typename Who>
+struct NearestLook {
+  float best{std::numeric_limits<float>::infinity()};
+  float second{std::numeric_limits<float>::infinity()};
+  Who who{};
+
+  void consider(float distance, Who candidate) {
+    if (distance < best) {
+      second = best;
+      best = distance;
+      who = candidate;
+    } else if (distance < second) {
+      second = distance;
+    }
+  }
+  /// Within `gate`, and no other candidate within kReidMargin of it.
+  bool clearly_within(float gate) const { return best <= gate && best + kReidMargin <= second; }
+};
+
+// How far a person may have gone while unseen: a walker covers about one body height a second;
+// twice that, plus one height for the boxes' own error.
+inline constexpr float kReidHeightsPerSecond = 2.F;
+
+/// Whether a person last seen in `box` at `seen_seconds` can be at `now` at `table.now`.
+inline bool within_reach(const TrackTableView& table, const Box& box, double seen_seconds,
+                         const Box& now) {
+  const double gap = table.now - seen_seconds;
+  if (!(gap >= 0.0) || gap > table.config.reid_max_gap_s) return false;
+  const double height = std::max(box.h, now.h);
+  const double dx = (box.x + box.w / 2.0) - (now.x + now.w / 2.0);
+  const double dy = (box.y + box.h / 2.0) - (now.y + now.h / 2.0);
+  const double reach = height * (1.0 + kReidHeightsPerSecond * gap);
+  return dx * dx + dy * dy <= reach * reach;
+}
+
+}  // namespace rtmot::tracker
