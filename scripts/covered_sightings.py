@@ -1,0 +1,117 @@
+#!/usr/bin/env python3
+"""Which of a run's covered detections hide someone, against the ground truth (docs/appearance.md,
+"Where the models' sightings go").
+
+Usage: covered_sightings.py GT.txt DETECTIONS.txt [--last N]
+  GT.txt          the sequence's MOTChallenge ground truth (rows with conf 0 ignored)
+  DETECTIONS.txt  the detections the tracker got (rtmot run --mot-detections true: NAME.det.txt)
+  --last N        frames 1..N only (e.g. a first half)
+
+The tracker learns no appearance from a detection that another detection of the frame covers by
+more than a tenth (tracker.cpp's kOccludedShare). For each such detection that is a person (IoU >=
+0.5 with a ground-truth box, the best one), this says whether the cover is real (another person's
+ground-truth box covers a tenth of theirs) or not (the cover is a false box or a second box on the
+same person), and for both rows the share that simple rules on the covering boxes would keep:
+all scoring lower than the detection, all below 0.5, all lying at least 60 % inside it.
+Research tooling (the ground truth lies in ../shared): the product never runs it. Python's
+standard library only. Exit 2: unreadable input (the file and line named).
+"""
+import argparse
+import os
+import sys
+from collections import Counter, defaultdict
+
+from box_iou import iou
+
+COVERED_SHARE = 0.1  # tracker.cpp's kOccludedShare
+MATCH_IOU = 0.5
+
+
+def fail(message):
+    print(f"{os.path.basename(sys.argv[0])}: {message}", file=sys.stderr)
+    sys.exit(2)
+
+
+def read_rows(path, skip_ignored, last):
+    """frame -> [(id, (x, y, w, h), score or conf)] of a MOTChallenge file."""
+    frames = defaultdict(list)
+    try:
+        with open(path) as f:
+            for line_number, line in enumerate(f, 1):
+                fields = line.strip().split(",")
+                try:
+                    if len(fields) < 7:
+                        raise ValueError("fewer than 7 fields")
+                    frame, confidence = int(float(fields[0])), float(fields[6])
+                    box = tuple(float(v) for v in fields[2:6])
+                    identity = int(float(fields[1]))
+                except ValueError as problem:
+                    fail(f"{path}:{line_number}: {problem}")
+                if (skip_ignored and confidence == 0) or (last and frame > last):
+                    continue
+                frames[frame].append((identity, box, confidence))
+    except OSError as problem:
+        fail(f"{path}: {problem.strerror}")
+    return frames
+
+
+def covered_share(box, other):
+    """The share of `box` that `other` covers."""
+    ix = max(0.0, min(box[0] + box[2], other[0] + other[2]) - max(box[0], other[0]))
+    iy = max(0.0, min(box[1] + box[3], other[1] + other[3]) - max(box[1], other[1]))
+    area = box[2] * box[3]
+    return ix * iy / area if area > 0 else 0.0
+
+
+def person_of(box, people):
+    """The ground-truth (id, box) best overlapping `box` at MATCH_IOU or more, or None."""
+    best = max(people, key=lambda person: iou(person[1], box), default=None)
+    return best if best is not None and iou(best[1], box) >= MATCH_IOU else None
+
+
+RULES = (
+    ("the covers all score lower", lambda d, covers: all(c[2] < d[2] for c in covers)),
+    ("the covers all score below 0.5", lambda d, covers: all(c[2] < 0.5 for c in covers)),
+    ("the covers all lie 60 % inside it",
+     lambda d, covers: all(covered_share(c[1], d[1]) >= 0.6 for c in covers)),
+)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("gt")
+    parser.add_argument("detections")
+    parser.add_argument("--last", type=int, default=0)
+    args = parser.parse_args()
+    gt = read_rows(args.gt, skip_ignored=True, last=args.last)
+    detections = read_rows(args.detections, skip_ignored=False, last=args.last)
+    counts = Counter()
+    for frame, rows in detections.items():
+        people = [(identity, box) for identity, box, _ in gt.get(frame, [])]
+        for index, detection in enumerate(rows):
+            counts["detections"] += 1
+            covers = [other for j, other in enumerate(rows)
+                      if j != index and covered_share(detection[1], other[1]) > COVERED_SHARE]
+            if not covers:
+                counts["clear"] += 1
+                continue
+            person = person_of(detection[1], people)
+            if person is None:
+                continue
+            real = any(other_id != person[0] and covered_share(person[1], other) > COVERED_SHARE
+                       for other_id, other in people)
+            row = "real" if real else "false"
+            counts[row] += 1
+            for name, keeps in RULES:
+                counts[(row, name)] += keeps(detection, covers)
+    print(f"{counts['detections']} detections, {counts['clear']} covered by no other")
+    print("covered detections of a person | the cover is real | the cover is a false or duplicate box")
+    print(f"count | {counts['real']} | {counts['false']}")
+    for name, _ in RULES:
+        shares = [counts[(row, name)] / counts[row] if counts[row] else 0.0 for row in ("real", "false")]
+        print(f"{name} | {shares[0]:.0%} | {shares[1]:.0%}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
