@@ -12,7 +12,8 @@ more than a tenth (tracker.cpp's kOccludedShare). For each such detection that i
 0.5 with a ground-truth box, the best one), this says whether the cover is real (another person's
 ground-truth box covers a tenth of theirs) or not (the cover is a false box or a second box on the
 same person), and for both rows the share that simple rules on the covering boxes would keep:
-all scoring lower than the detection, all below 0.5, all lying at least 60 % inside it.
+all scoring lower than the detection, all below 0.5, all lying at least 60 % inside it; and what
+the false covers are.
 Research tooling (the ground truth lies in ../shared): the product never runs it. Python's
 standard library only. Exit 2: unreadable input (the file and line named).
 """
@@ -69,6 +70,19 @@ def person_of(box, people):
     return best if best is not None and iou(best[1], box) >= MATCH_IOU else None
 
 
+def cover_kind(cover, person, people):
+    """What a covering box is, where the person it covers stands clear of everyone else."""
+    its_person = person_of(cover, people)
+    if its_person is not None:
+        return ("a second box on the same person" if its_person[0] == person[0] else
+                "another person's box (their annotated boxes overlap by a tenth or less)")
+    nearest = max(people, key=lambda other: iou(other[1], cover), default=None)
+    if nearest is not None and iou(nearest[1], cover) >= 0.2:
+        return ("a poor second box on the same person (IoU 0.2-0.5)" if nearest[0] == person[0] else
+                "a poor box on another person (IoU 0.2-0.5)")
+    return "a false box (IoU below 0.2 with every annotated box)"
+
+
 RULES = (
     ("the covers all score lower", lambda d, covers: all(c[2] < d[2] for c in covers)),
     ("the covers all score below 0.5", lambda d, covers: all(c[2] < 0.5 for c in covers)),
@@ -86,6 +100,7 @@ def main():
     gt = read_rows(args.gt, skip_ignored=True, last=args.last)
     detections = read_rows(args.detections, skip_ignored=False, last=args.last)
     counts = Counter()
+    kinds = Counter()
     for frame, rows in detections.items():
         people = [(identity, box) for identity, box, _ in gt.get(frame, [])]
         for index, detection in enumerate(rows):
@@ -104,12 +119,18 @@ def main():
             counts[row] += 1
             for name, keeps in RULES:
                 counts[(row, name)] += keeps(detection, covers)
+            if not real:
+                for cover in covers:
+                    kinds[cover_kind(cover[1], person, people)] += 1
     print(f"{counts['detections']} detections, {counts['clear']} covered by no other")
     print("covered detections of a person | the cover is real | the cover is a false or duplicate box")
     print(f"count | {counts['real']} | {counts['false']}")
     for name, _ in RULES:
         shares = [counts[(row, name)] / counts[row] if counts[row] else 0.0 for row in ("real", "false")]
         print(f"{name} | {shares[0]:.0%} | {shares[1]:.0%}")
+    print("the false covers (one detection may have several):")
+    for kind, count in kinds.most_common():
+        print(f"  {kind}: {count}")
     return 0
 
 
