@@ -83,8 +83,17 @@ def cover_kind(cover, person, people):
     return "a false box (IoU below 0.2 with every annotated box)"
 
 
+def core(box):
+    """The part of a box the colour signature reads (vision/colour_signature.hpp): the middle half
+    of its width, from 12 % to 85 % of its height."""
+    return (box[0] + 0.25 * box[2], box[1] + 0.12 * box[3], 0.5 * box[2], 0.73 * box[3])
+
+
 RULES = (
     ("the covers all score lower", lambda d, covers: all(c[2] < d[2] for c in covers)),
+    ("no cover's core covers a tenth of its core",
+     lambda d, covers: all(covered_share(core(d[1]), core(c[1])) <= COVERED_SHARE
+                           for c in covers)),
     ("the covers all score below 0.5", lambda d, covers: all(c[2] < 0.5 for c in covers)),
     ("the covers all lie 60 % inside it",
      lambda d, covers: all(covered_share(c[1], d[1]) >= 0.6 for c in covers)),
