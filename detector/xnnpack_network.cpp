@@ -20,6 +20,8 @@
 #include "detector/model_files.hpp"
 #include "detector/pool_governor.hpp"
 #include "detector/xnnpack_decoding_tail.hpp"
+#include "detector/xnnpack_onnx_reading.hpp"
+#include "detector/xnnpack_quantization.hpp"
 
 namespace rtmot::detector {
 
@@ -40,6 +42,19 @@ const char* xnnpack_supported_operators() {
 }
 
 namespace {
+
+using xnnpack::activation_quantization;
+using xnnpack::attribute;
+using xnnpack::declared_size_ok;
+using xnnpack::int_attribute;
+using xnnpack::ints_attribute;
+using xnnpack::kMaxDeclaredSize;
+using xnnpack::kMaxTensorFloatsPerImage;
+using xnnpack::product;
+using xnnpack::Quantization;
+using xnnpack::quantize_per_channel;
+using xnnpack::QuantizedWeights;
+using xnnpack::shape_text;
 
 constexpr uint32_t kInputExternalId = 0;
 constexpr float kNoMin = -std::numeric_limits<float>::infinity();
@@ -75,14 +90,6 @@ struct Value {
   std::int32_t zero_point{0};
 };
 
-/// The int8 engine's weights in XNNPACK's formats, made once per model and shared by every
-/// runtime (XNNPACK keeps pointers to them and to the per-channel scales).
-struct QuantizedWeights {
-  std::map<std::string, std::vector<std::int8_t>> filters;
-  std::map<std::string, std::vector<std::int32_t>> biases;
-  std::map<std::string, std::vector<float>> scales;
-};
-
 /// What the builder does besides fp32: quantize (ranges set) or record ranges (probes set).
 struct BuildMode {
   const ActivationRanges* ranges{nullptr};
@@ -90,90 +97,6 @@ struct BuildMode {
   QuantizedWeights* quantized{nullptr};
   std::map<std::string, uint32_t>* probes{nullptr};  // tensor -> its external id
 };
-
-struct Quantization {
-  float scale;
-  std::int32_t zero_point;
-};
-
-/// Asymmetric int8 over the calibrated range widened to hold 0 (zero padding must be exact).
-Quantization activation_quantization(const ActivationRange& range) {
-  const float low = std::min(range.min, 0.F);
-  const float high = std::max(range.max, 0.F);
-  // XNNPACK wants a normal positive scale; a tensor that was always 0 gets any.
-  const float scale = std::max((high - low) / 255.F, 1e-8F);
-  const long zero_point = std::lround(-128.F - low / scale);
-  return {scale, static_cast<std::int32_t>(std::clamp(zero_point, -128L, 127L))};
-}
-
-/// Symmetric per-channel int8 weights: channel c's `per_channel` values are at(c, k), each stored
-/// at out[where(c, k)] (XNNPACK's layout). Returns the channels' scales.
-template <typename Weight, typename Slot>
-std::vector<float> quantize_per_channel(std::size_t channels, std::size_t per_channel, Weight at,
-                                        Slot where, std::vector<std::int8_t>& out) {
-  std::vector<float> scales(channels, 1.F);
-  out.assign(channels * per_channel, 0);
-  for (std::size_t c = 0; c < channels; ++c) {
-    float largest = 0.F;
-    for (std::size_t k = 0; k < per_channel; ++k) largest = std::max(largest, std::fabs(at(c, k)));
-    scales[c] = largest > 0.F ? largest / 127.F : 1.F;
-    for (std::size_t k = 0; k < per_channel; ++k) {
-      const long q = std::lround(at(c, k) / scales[c]);
-      out[where(c, k)] = static_cast<std::int8_t>(std::clamp(q, -127L, 127L));
-    }
-  }
-  return scales;
-}
-
-// Every size the file declares (tensor dimensions, kernel sizes, pads, strides, dilations, groups)
-// is bounded before anything is computed or allocated from it, and so is every tensor the builder
-// defines: a damaged or hostile model fails naming its node or tensor (bad_model), never with
-// std::bad_alloc or an overflow (issue 32: huge pads exited 1). Far above what an SSD needs (its
-// largest dimension is 1280 channels, its largest feature map 2.2 M floats an image).
-constexpr std::int64_t kMaxDeclaredSize = std::int64_t{1} << 16;
-constexpr std::size_t kMaxTensorFloatsPerImage = std::size_t{1} << 26;  // 256 MB
-
-// Saturates at SIZE_MAX instead of wrapping, so that a product compared with a bound or a count
-// stays honest.
-std::size_t product(const std::vector<std::size_t>& dims, std::size_t from = 0) {
-  std::size_t n = 1;
-  for (std::size_t i = from; i < dims.size(); ++i) {
-    if (dims[i] != 0 && n > std::numeric_limits<std::size_t>::max() / dims[i]) {
-      return std::numeric_limits<std::size_t>::max();
-    }
-    n *= dims[i];
-  }
-  return n;
-}
-
-bool declared_size_ok(std::int64_t value, std::int64_t least) {
-  return value >= least && value <= kMaxDeclaredSize;
-}
-
-std::string shape_text(const std::vector<std::size_t>& dims) {
-  std::string text;
-  for (std::size_t i = 0; i < dims.size(); ++i) text += (i ? "x" : "") + std::to_string(dims[i]);
-  return text;
-}
-
-const onnx::AttributeProto* attribute(const onnx::NodeProto& node, const char* name) {
-  for (const auto& a : node.attribute()) {
-    if (a.name() == name) return &a;
-  }
-  return nullptr;
-}
-
-std::int64_t int_attribute(const onnx::NodeProto& node, const char* name, std::int64_t fallback) {
-  const auto* a = attribute(node, name);
-  return a ? a->i() : fallback;
-}
-
-std::vector<std::int64_t> ints_attribute(const onnx::NodeProto& node, const char* name,
-                                         std::vector<std::int64_t> fallback) {
-  const auto* a = attribute(node, name);
-  if (!a) return fallback;
-  return {a->ints().begin(), a->ints().end()};
-}
 
 /// Builds one subgraph (one batch size) from the parsed model. The converted weights live in
 /// `weights`, shared by every subgraph built from the model and alive as long as the runtimes.
