@@ -6,6 +6,11 @@ Usage: covered_sightings.py GT.txt DETECTIONS.txt [--last N]
   GT.txt          the sequence's MOTChallenge ground truth (rows with conf 0 ignored)
   DETECTIONS.txt  the detections the tracker got (rtmot run --mot-detections true: NAME.det.txt)
   --last N        frames 1..N only (e.g. a first half)
+  --without-second-boxes OUT
+                  instead, write the detections (frames 1..N with --last) to OUT without their
+                  second boxes: a detection nearest (IoU >= 0.2) to a person whose own detection
+                  (IoU >= 0.5) is another one, which it covers by more than a tenth. An oracle (the
+                  ground truth decides), for what a detector without them would give: replay OUT.
 
 The tracker learns no appearance from a detection that another detection of the frame covers by
 more than a tenth (tracker.cpp's kOccludedShare). For each such detection that is a person (IoU >=
@@ -34,7 +39,7 @@ def fail(message):
 
 
 def read_rows(path, skip_ignored, last):
-    """frame -> [(id, (x, y, w, h), score or conf)] of a MOTChallenge file."""
+    """frame -> [(id, (x, y, w, h), score or conf, the line)] of a MOTChallenge file."""
     frames = defaultdict(list)
     try:
         with open(path) as f:
@@ -50,7 +55,7 @@ def read_rows(path, skip_ignored, last):
                     fail(f"{path}:{line_number}: {problem}")
                 if (skip_ignored and confidence == 0) or (last and frame > last):
                     continue
-                frames[frame].append((identity, box, confidence))
+                frames[frame].append((identity, box, confidence, line))
     except OSError as problem:
         fail(f"{path}: {problem.strerror}")
     return frames
@@ -100,18 +105,54 @@ RULES = (
 )
 
 
+def second_boxes(rows, people):
+    """The indices of `rows` that are a second box on someone: nearest (IoU >= 0.2) to a person
+    whose own detection (IoU >= MATCH_IOU, the best) is another row, which they cover by more than
+    a tenth."""
+    second = set()
+    for identity, box in people:
+        own = max(range(len(rows)), key=lambda r: iou(rows[r][1], box), default=None)
+        if own is None or iou(rows[own][1], box) < MATCH_IOU:
+            continue
+        for r, row in enumerate(rows):
+            nearest = max(people, key=lambda person: iou(person[1], row[1]))
+            if (r != own and nearest[0] == identity and iou(nearest[1], row[1]) >= 0.2 and
+                    covered_share(rows[own][1], row[1]) > COVERED_SHARE):
+                second.add(r)
+    return second
+
+
+def write_without_second_boxes(gt, detections, path):
+    """An oracle's detections (the ground truth decides): the file without its second boxes."""
+    removed = 0
+    try:
+        with open(path, "w") as out:
+            for frame in sorted(detections):
+                rows = detections[frame]
+                second = second_boxes(rows, [(row[0], row[1]) for row in gt.get(frame, [])])
+                removed += len(second)
+                out.writelines(row[3] for r, row in enumerate(rows) if r not in second)
+    except OSError as problem:
+        fail(f"{path}: {problem.strerror}")
+    print(f"wrote {path}: {removed} second boxes left out")
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("gt")
     parser.add_argument("detections")
     parser.add_argument("--last", type=int, default=0)
+    parser.add_argument("--without-second-boxes", metavar="OUT")
     args = parser.parse_args()
     gt = read_rows(args.gt, skip_ignored=True, last=args.last)
     detections = read_rows(args.detections, skip_ignored=False, last=args.last)
+    if args.without_second_boxes:
+        write_without_second_boxes(gt, detections, args.without_second_boxes)
+        return 0
     counts = Counter()
     kinds = Counter()
     for frame, rows in detections.items():
-        people = [(identity, box) for identity, box, _ in gt.get(frame, [])]
+        people = [(row[0], row[1]) for row in gt.get(frame, [])]
         for index, detection in enumerate(rows):
             counts["detections"] += 1
             covers = [other for j, other in enumerate(rows)
