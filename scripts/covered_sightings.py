@@ -2,7 +2,7 @@
 """Which of a run's covered detections hide someone, against the ground truth (docs/appearance.md,
 "Where the models' sightings go").
 
-Usage: covered_sightings.py GT.txt DETECTIONS.txt [--last N]
+Usage: covered_sightings.py GT.txt DETECTIONS.txt [--last N] [--without-second-boxes OUT]
   GT.txt          the sequence's MOTChallenge ground truth (rows with conf 0 ignored)
   DETECTIONS.txt  the detections the tracker got (rtmot run --mot-detections true: NAME.det.txt)
   --last N        frames 1..N only (e.g. a first half)
@@ -16,9 +16,8 @@ The tracker learns no appearance from a detection that another detection of the 
 more than a tenth (tracker.cpp's kOccludedShare). For each such detection that is a person (IoU >=
 0.5 with a ground-truth box, the best one), this says whether the cover is real (another person's
 ground-truth box covers a tenth of theirs) or not (the cover is a false box or a second box on the
-same person), and for both rows the share that simple rules on the covering boxes would keep:
-all scoring lower than the detection, all below 0.5, all lying at least 60 % inside it; and what
-the false covers are.
+same person), and for both rows the share that simple rules on the covering boxes would keep
+(RULES: scores, the cores the signature reads, containment); and what the false covers are.
 Research tooling (the ground truth lies in ../shared): the product never runs it. Python's
 standard library only. Exit 2: unreadable input (the file and line named).
 """
