@@ -14,6 +14,10 @@
 // named. The work is small next to the network (about 30 passes over [anchors, 4] and one softmax
 // over [anchors, classes]), and every buffer is sized when the tail is planned: a pass allocates
 // nothing.
+//
+// Its definitions: xnnpack_tail_split.cpp (split_decoding_tail, decoding_tail_operators),
+// xnnpack_decoding_tail.cpp (DecodingTail: planning, run()) and the planner's files
+// (xnnpack_tail_planner.hpp; the loop over elements that the steps run: xnnpack_tail_tensors.hpp).
 #include <onnx/onnx_pb.h>
 
 #include <cstddef>
