@@ -1,46 +1,26 @@
-#include "runner/run_setup.hpp"
-
+// run_setup.hpp's outputs: the message sinks, MOTChallenge results, annotated video, metrics and
+// the operator's page a run sends its tracks to.
 #include <fmt/format.h>
-#include <spdlog/spdlog.h>
 
-#include <algorithm>
 #include <cctype>
-#include <chrono>
 #include <filesystem>
-#include <opencv2/core/utility.hpp>
 
 #include "common/input_error.hpp"
 #include "common/input_file.hpp"
-#include "common/utf8.hpp"
-#include "detector/dnn_backend.hpp"
-#include "detector/model_checksum.hpp"
-#include "detector/replay_detector.hpp"
-#include "detector/ssd_detector.hpp"
-#include "detector/tiling_detector.hpp"
 #include "messages/binary_file_sink.hpp"
 #include "messages/jsonl_sink.hpp"
 #include "messages/udp_sink.hpp"
-#include "motio/mot_files.hpp"
 #include "outputs/annotated_video.hpp"
 #include "outputs/mqtt_publisher.hpp"
 #include "outputs/overlay.hpp"
 #include "outputs/video_encoding.hpp"
-#include "outputs/video_stream.hpp"
 #include "outputs/video_target.hpp"
 #include "platform/host_port.hpp"
-#include "platform/log_setup.hpp"
-#include "platform/looping_source.hpp"
-#include "platform/oriented_source.hpp"
-#include "platform/video_uri.hpp"
 #include "runner/class_choice.hpp"
 #include "runner/mot_results_output.hpp"
 #include "runner/run_files.hpp"
-#include "runner/sequence_clock_source.hpp"
-#include "runner/source_factory.hpp"
-#include "runner/tiling_choice.hpp"
+#include "runner/run_setup.hpp"
 #include "runner/web_geometry.hpp"
-#include "tracker/score_scale.hpp"
-#include "vision/appearance_detector.hpp"
 
 namespace rtmot::runner {
 
