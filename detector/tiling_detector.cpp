@@ -92,7 +92,7 @@ void TilingDetector::detect_batch(const cv::Mat* const* images, const std::int64
 
 int TilingDetector::max_batch() const {
   // The most passes a frame of any size seen so far takes; before the first frame, the wrapped
-  // detector's own batch (a run sizes that batch for its tiles: runner/run_setup.cpp).
+  // detector's own batch (a run sizes that batch for its tiles: runner/run_detector.cpp).
   std::size_t most = 1;
   for (const Layout& layout : layouts_) most = std::max(most, layout.passes.size());
   return std::max(1, inner_->max_batch() / static_cast<int>(most));

@@ -29,7 +29,7 @@ struct TilingConfig {
 class TilingDetector : public Detector {
  public:
   /// Wraps `inner`, which should take a whole frame's passes in one batch (its max_batch(): a run
-  /// sizes it so, runner/run_setup.cpp).
+  /// sizes it so, runner/run_detector.cpp).
   TilingDetector(std::unique_ptr<Detector> inner, TilingConfig config);
 
   void detect(const cv::Mat& bgr_image, std::int64_t frame_number,

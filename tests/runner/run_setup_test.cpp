@@ -1,4 +1,4 @@
-// The run setup (runner/run_setup.cpp) decides the detector's thread count in one place; the
+// The run setup (runner/run_detector.cpp) decides the detector's thread count in one place; the
 // detector it builds must run with that count, since XNNPACK's pool and backend auto's choice
 // depend on it (issue 32, class 6: it was handed 0, "every core", after the count was decided).
 #include "runner/run_setup.hpp"
