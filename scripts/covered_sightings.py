@@ -130,7 +130,8 @@ def write_without_second_boxes(gt, detections, path):
                 rows = detections[frame]
                 second = second_boxes(rows, [(row[0], row[1]) for row in gt.get(frame, [])])
                 removed += len(second)
-                out.writelines(row[3] for r, row in enumerate(rows) if r not in second)
+                out.writelines(row[3].rstrip("\n") + "\n"
+                               for r, row in enumerate(rows) if r not in second)
     except OSError as problem:
         fail(f"{path}: {problem.strerror}")
     print(f"wrote {path}: {removed} second boxes left out")
