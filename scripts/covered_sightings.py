@@ -26,7 +26,7 @@ import os
 import sys
 from collections import Counter, defaultdict
 
-from box_iou import iou
+from box_iou import covered_share, iou
 
 COVERED_SHARE = 0.1  # tracker.cpp's kOccludedShare
 MATCH_IOU = 0.5
@@ -58,14 +58,6 @@ def read_rows(path, skip_ignored, last):
     except OSError as problem:
         fail(f"{path}: {problem.strerror}")
     return frames
-
-
-def covered_share(box, other):
-    """The share of `box` that `other` covers."""
-    ix = max(0.0, min(box[0] + box[2], other[0] + other[2]) - max(box[0], other[0]))
-    iy = max(0.0, min(box[1] + box[3], other[1] + other[3]) - max(box[1], other[1]))
-    area = box[2] * box[3]
-    return ix * iy / area if area > 0 else 0.0
 
 
 def person_of(box, people):

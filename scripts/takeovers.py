@@ -29,7 +29,7 @@ import argparse
 import sys
 from collections import Counter, defaultdict
 
-from box_iou import iou
+from box_iou import covered_share, iou
 from crossing_frames import match, read_boxes
 
 LOOK_BACK = 7        # frames before a takeover searched for the taken person's own track
@@ -38,19 +38,12 @@ NEAR_IOU = 0.2
 MERGED_SHARE = 0.5   # of each person's box inside one detection
 
 
-def covered(box, by):
-    """The share of `box`'s area inside `by`."""
-    w = min(box[0] + box[2], by[0] + by[2]) - max(box[0], by[0])
-    h = min(box[1] + box[3], by[1] + by[3]) - max(box[1], by[1])
-    return w * h / (box[2] * box[3]) if w > 0 and h > 0 else 0.0
-
-
 def merged_box_between(gt, detections, a, b, first, last):
     """Whether one detection covers MERGED_SHARE of both a's and b's boxes in a frame first..last."""
     for f in range(first, last + 1):
         if a not in gt.get(f, {}) or b not in gt.get(f, {}):
             continue
-        if any(covered(gt[f][a], d) >= MERGED_SHARE and covered(gt[f][b], d) >= MERGED_SHARE
+        if any(covered_share(gt[f][a], d) >= MERGED_SHARE and covered_share(gt[f][b], d) >= MERGED_SHARE
                for d in detections.get(f, [])):
             return True
     return False
