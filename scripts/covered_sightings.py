@@ -13,11 +13,12 @@ Usage: covered_sightings.py GT.txt DETECTIONS.txt [--last N] [--without-second-b
                   ground truth decides), for what a detector without them would give: replay OUT.
 
 The tracker learns no appearance from a detection that another detection of the frame covers by
-more than a tenth (tracker.cpp's kOccludedShare). For each such detection that is a person (IoU >=
-0.5 with a ground-truth box, the best one), this says whether the cover is real (another person's
-ground-truth box covers a tenth of theirs) or not (the cover is a false box or a second box on the
-same person), and for both rows the share that simple rules on the covering boxes would keep
-(RULES: scores, the cores the signature reads, containment); and what the false covers are.
+more than a tenth (tracker/association_rounds.cpp's kOccludedShare). For each such detection that
+is a person (IoU >= 0.5 with a ground-truth box, the best one), this says whether the cover is
+real (another person's ground-truth box covers a tenth of theirs) or not (the cover is a false box
+or a second box on the same person), and for both rows the share that simple rules on the
+covering boxes would keep (RULES: scores, the cores the signature reads, containment); and what
+the false covers are.
 Research tooling (the ground truth lies in ../shared): the product never runs it. Python's
 standard library only. Exit 2: unreadable input (the file and line named).
 """
@@ -28,7 +29,7 @@ from collections import Counter, defaultdict
 
 from box_iou import covered_share, iou
 
-COVERED_SHARE = 0.1  # tracker.cpp's kOccludedShare
+COVERED_SHARE = 0.1  # tracker/association_rounds.cpp's kOccludedShare
 MATCH_IOU = 0.5
 
 

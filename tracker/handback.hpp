@@ -1,8 +1,8 @@
 #pragma once
 // The hand-back (handback_gate): an association round's box that looks unlike the confirmed track
 // it matched may go back to the track that had its person a moment before. The round itself
-// (tracker.cpp) holds such matches back until its other matches are made; this decides which
-// matches those are and who gets the box. Internal to tracker/.
+// (association_rounds.cpp) holds such matches back until its other matches are made; this decides
+// which matches those are and who gets the box. Internal to tracker/.
 #include "tracker/box.hpp"
 #include "tracker/track.hpp"
 #include "tracker/track_table.hpp"

@@ -12,7 +12,7 @@ namespace rtmot::tracker {
 
 /// A track's life stage, changed only by these transitions (once an update in settle(), or at
 /// birth and death). SORT's rules and ByteTrack's differ in the confirmation policy and the
-/// deletion rule (tracker.cpp), not in the stages.
+/// deletion rule (track_life.cpp), not in the stages.
 class TrackLife {
  public:
   TrackStage stage() const { return stage_; }

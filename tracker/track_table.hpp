@@ -1,6 +1,6 @@
 #pragma once
-// The Tracker's track table as the passes outside tracker.cpp see it during one update (the
-// identity passes: identity_match.hpp and what uses it). Internal to tracker/.
+// The Tracker's track table as the passes outside Tracker::State (tracker_state.hpp) see it during
+// one update (the identity passes: identity_match.hpp and what uses it). Internal to tracker/.
 #include <vector>
 
 #include "tracker/track.hpp"
