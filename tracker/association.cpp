@@ -43,16 +43,6 @@ GateVerdict weigh_appearance(const TrackerConfig& config, const AssociationCandi
   return verdict;
 }
 
-// OC-SORT's direction term: a possible pair is preferred the more the detection lies the way its
-// track has been moving, weighed by the detection's confidence (a weak box's centre says little).
-double direction_preference(const TrackerConfig& config, const AssociationCandidate& candidate,
-                            const Detection& detection) {
-  if (candidate.direction == nullptr) return 0.0;
-  const double confidence = std::clamp(double{detection.score}, 0.0, 1.0);
-  return config.direction_weight * confidence *
-         candidate.direction->agreement(candidate.age, detection.box);
-}
-
 }  // namespace
 
 Associator::Associator(int rows, int cols) {
@@ -91,8 +81,6 @@ void Associator::fill_and_solve(const TrackerConfig& config,
       double preference = value;
       const GateVerdict verdict =
           weigh_appearance(config, candidates[c], detections[r], value, preference);
-      if (config.direction_weight > 0.0 && value > threshold)
-        preference += direction_preference(config, candidates[c], detections[r]);
       const std::size_t i = cell(r, c, cols);
       affinities_[i] = value;
       preferences_[i] = preference;

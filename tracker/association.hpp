@@ -2,12 +2,10 @@
 // One association round: detections against candidate tracks, as sort.py's
 // associate_detections_to_trackers, for any affinity.
 #include <cstddef>
-#include <cstdint>
 #include <vector>
 
 #include "tracker/box.hpp"
 #include "tracker/linear_assignment.hpp"
-#include "tracker/motion_direction.hpp"
 #include "tracker/tracker_config.hpp"
 
 namespace rtmot::tracker {
@@ -18,8 +16,6 @@ struct AssociationCandidate {
   double gate_frames{1.0};  // nominal frames that widen its gate (TrackerConfig::gate_clock)
   float noise_margin{0.F};  // the gate margin the stream's box noise asks for (noise_gate_factor)
   const Appearance* appearance{nullptr};  // the track's, when it has one
-  const MotionDirection* direction{nullptr};  // the track's, for direction_weight
-  std::int32_t age{0};                        // the track's updates since birth
 };
 
 /// The distance round's pairs differ in height by at most this factor: a far detection of a

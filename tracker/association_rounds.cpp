@@ -127,8 +127,7 @@ void Tracker::State::distance_round() {
   for (const int position : positions) {
     const Track& track = slots[order[position]];
     candidates.push_back(
-        AssociationCandidate{track.predicted, step_frames, 0.F, &track.appearance,
-                             &track.direction, track.age});
+        AssociationCandidate{track.predicted, step_frames, 0.F, &track.appearance});
   }
   round_matches.clear();
   associator.associate_by_distance(config, rest, candidates, round_matches);
@@ -180,8 +179,7 @@ void Tracker::State::associate(const std::vector<Detection>& detections, Take ta
     if (track.observed_now && config.observed_gate_frames > 0.0)
       gate_time = std::min(gate_time, config.observed_gate_frames);
     candidates.push_back(
-        AssociationCandidate{track.predicted, gate_time, noise_margin,
-                                              &track.appearance, &track.direction, track.age});
+        AssociationCandidate{track.predicted, gate_time, noise_margin, &track.appearance});
   }
   round_matches.clear();
   associator.associate(config, threshold, detections, candidates, round_matches);

@@ -5,7 +5,6 @@
 
 #include "tracker/box.hpp"
 #include "tracker/confirmation_policy.hpp"
-#include "tracker/motion_direction.hpp"
 #include "tracker/predictor.hpp"
 #include "tracker/track_stage.hpp"
 
@@ -44,7 +43,6 @@ struct Track {
   // OC-SORT needs the Kalman state as it was right after the last observation.
   KalmanPredictor at_last_observation{Box{0.F, 0.F, 1.F, 1.F}};
   Box last_observation;
-  MotionDirection direction;  // from its own observations (direction_weight)
   Box predicted;
   std::int32_t id{0};
   std::int32_t hit_streak{0};

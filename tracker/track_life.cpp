@@ -80,7 +80,6 @@ void Tracker::State::correct_track(Track& track, const Detection& detection) {
     track.at_last_observation = *kalman;
   }
   track.last_observation = detection.box;
-  track.direction.observe(detection.box, track.age);
   track.model_started_now = !track.appearance.valid && detection.appearance.valid;
   if (detection.appearance.valid && track.appearance.valid && track.crossing_partner != 0) {
     track.held_sighting = detection.appearance;  // resolve_crossings() decides whose it is
@@ -151,7 +150,6 @@ void Tracker::State::start_track(const Detection& detection) {
     }
   }
   track.last_observation = detection.box;
-  track.direction.start(detection.box, 0);
   track.predicted = detection.box;
   track.hit_streak = 0;
   track.streak_frames = 0.0;

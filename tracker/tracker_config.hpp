@@ -177,11 +177,6 @@ struct TrackerConfig {
   /// as for at most this many nominal frames, not the whole gap between processed frames: the
   /// widening answers for the motion model's guess, which the image replaced. 0 = off.
   double observed_gate_frames{0.0};
-  /// OC-SORT's observation-centric momentum: among the pairs the affinity allows, the assignment
-  /// prefers a detection lying the way its track has been moving (from its observations up to
-  /// three updates back), by up to this x the detection's score x 0.5 either way. Boxes alone:
-  /// measured for the SSD pipeline (docs/appearance.md, round 28), in no preset. 0 = off.
-  double direction_weight{0.0};
 
   // --- particle filter ---
   int particle_count{100};

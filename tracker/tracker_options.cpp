@@ -329,11 +329,6 @@ std::vector<TrackerOption> make_table() {
            "nominal frames instead of the whole gap: the image replaced the motion model's guess "
            "(docs/full-rate.md: measured, in no preset; 0: off)",
            &C::observed_gate_frames, 0.0, static_cast<double>(limits::kMaxFrames)),
-      real("direction_weight",
-           "OC-SORT's direction term: among the pairs the affinity allows, the assignment "
-           "prefers a detection lying the way its track has been moving, by up to this x its "
-           "score x 0.5 (docs/appearance.md: measured, in no preset; 0: off)",
-           &C::direction_weight, 0.0, 1.0),
       flag("resolve_crossings",
            "with re-identification on (reid_gate): two confirmed tracks whose boxes overlapped "
            "trade ids when their first clear sightings after it each look like the other's model "
