@@ -6,7 +6,6 @@
 #include <vector>
 
 #include "tracker/box_geometry.hpp"
-#include "tracker/depth_levels.hpp"
 #include "tracker/handback.hpp"
 #include "tracker/tracker_extension.hpp"
 #include "tracker/tracker_state.hpp"
@@ -78,47 +77,7 @@ void Tracker::State::first_round() {
     if (extension && extension->defers(track.facts())) continue;
     positions.push_back(t);
   }
-  if (config.depth_levels > 1) {
-    depth_cascade();
-    return;
-  }
   associate(high, [&](int d) { high_taken[static_cast<std::size_t>(d)] = 1; });
-}
-
-// SparseTrack's depth cascade (depth_levels): the first round level by level from the nearest,
-// each level's detections and tracks together with what the nearer levels left, so that where
-// people overlap, the one in front (whose box the detector sees whole) is matched before the
-// ones it hides.
-void Tracker::State::depth_cascade() {
-  round_tracks.assign(positions.begin(), positions.end());
-  if (high.empty() || round_tracks.empty()) return;
-  float lowest = high.front().box.y + high.front().box.h;
-  float highest = lowest;
-  const auto widen = [&](const Box& box) {
-    lowest = std::min(lowest, box.y + box.h);
-    highest = std::max(highest, box.y + box.h);
-  };
-  for (const Detection& detection : high) widen(detection.box);
-  for (const int position : round_tracks) widen(slots[order[position]].predicted);
-  const DepthLevels levels(config.depth_levels, lowest, highest);
-  for (int level = 0; level < levels.count(); ++level) {
-    rest.clear();
-    rest_index.clear();
-    for (std::size_t d = 0; d < high.size(); ++d) {
-      if (high_taken[d] || levels.level(high[d].box) > level) continue;
-      rest.push_back(high[d]);
-      rest_index.push_back(static_cast<int>(d));
-    }
-    positions.clear();
-    for (const int position : round_tracks) {
-      const Track& track = slots[order[position]];
-      if (!track.matched_now() && levels.level(track.predicted) <= level)
-        positions.push_back(position);
-    }
-    associate(rest, [&](int r) {
-      high_taken[static_cast<std::size_t>(rest_index[static_cast<std::size_t>(r)])] = 1;
-    });
-  }
 }
 
 // DeepSORT's matching cascade in two levels: the tracks lost for a while (whose gate is wide and

@@ -51,7 +51,6 @@ Tracker::State::State(const TrackerConfig& c, std::unique_ptr<TrackerExtension> 
   high_taken.reserve(detections);
   hidden_flags.resize(2 * detections);  // high and low together: at most max_detections each
   positions.reserve(tracks);
-  round_tracks.reserve(tracks);
   candidates.reserve(tracks);
   round_matches.reserve(std::min(tracks, detections));
   handovers.reserve(std::min(tracks, detections));

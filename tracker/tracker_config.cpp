@@ -38,7 +38,6 @@ TrackerConfig with_every_option(TrackerConfig base) {
   base.appearance_weight = 0.5;
   base.reid_gate = 0.3;
   base.handback_gate = 0.5;
-  base.depth_levels = 3;
   return base;
 }
 
@@ -117,8 +116,6 @@ std::optional<std::string> config_problem(const TrackerConfig& config) {
            "contested pairs the gate refuses";
   if (!(config.observed_gate_frames >= 0.0 && config.observed_gate_frames <= limits::kMaxFrames))
     return "observed_gate_frames must be in [0, " + std::to_string(limits::kMaxFrames) + "]";
-  if (!(config.depth_levels >= 1 && config.depth_levels <= 16))
-    return "depth_levels must be in [1, 16]";
   if (config.handback_gate > 0.0 && !(config.reid_gate > 0.0))
     return "handback_gate needs re-identification on (reid_gate above 0): a box goes back to "
            "a track that re-identification would judge its person's";

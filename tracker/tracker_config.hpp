@@ -177,11 +177,6 @@ struct TrackerConfig {
   /// as for at most this many nominal frames, not the whole gap between processed frames: the
   /// widening answers for the motion model's guess, which the image replaced. 0 = off.
   double observed_gate_frames{0.0};
-  /// SparseTrack's depth cascade: the first round is run level by level over this many slices
-  /// of pseudo-depth (the boxes' bottoms), the nearest first, each level with what the nearer
-  /// ones left. Boxes alone: measured for the SSD pipeline (docs/appearance.md, round 28), in no
-  /// preset. 1 = one level (off).
-  int depth_levels{1};
 
   // --- particle filter ---
   int particle_count{100};

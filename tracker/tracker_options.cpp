@@ -329,11 +329,6 @@ std::vector<TrackerOption> make_table() {
            "nominal frames instead of the whole gap: the image replaced the motion model's guess "
            "(docs/full-rate.md: measured, in no preset; 0: off)",
            &C::observed_gate_frames, 0.0, static_cast<double>(limits::kMaxFrames)),
-      integer("depth_levels",
-              "SparseTrack's depth cascade: the first round level by level over this many slices "
-              "of the boxes' bottoms, the nearest first (docs/appearance.md: measured, in no "
-              "preset; 1: off)",
-              &C::depth_levels, 1, 16),
       flag("resolve_crossings",
            "with re-identification on (reid_gate): two confirmed tracks whose boxes overlapped "
            "trade ids when their first clear sightings after it each look like the other's model "

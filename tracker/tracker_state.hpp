@@ -44,7 +44,6 @@ struct Tracker::State {
   void forget_hidden_appearances();
   bool overlapped(const Detection& detection) const;
   void first_round();
-  void depth_cascade();
   void cascade_round();
   void second_round();
   void distance_round();
@@ -87,7 +86,6 @@ struct Tracker::State {
   std::vector<Detection> rest;     // the cascade's second level: detections left by the first
   std::vector<int> rest_index;     // their index in `high`
   std::vector<int> positions;      // the round's tracks, as indices into `order`
-  std::vector<int> round_tracks;   // the depth cascade's: every level's tracks
   std::vector<AssociationCandidate> candidates;
   std::vector<AssociationMatch> round_matches;
   std::vector<TrackReport> reports;
