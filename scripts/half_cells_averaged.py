@@ -58,7 +58,9 @@ def main():
           "worst mean MOTA difference | verdict |")
     print("|" + "---|" * (len(HEADINGS) + 5))
     best = None
-    bases = sorted({name for name in runs if not re.search(r"j\d+$", name)})
+    # The reference first, then the candidates by name.
+    bases = sorted({name for name in runs if not re.search(r"j\d+$", name)},
+                   key=lambda name: (name != args.against, name))
     for label in bases:
         copies = copies_of(runs, label, args.copies)
         if copies is None:

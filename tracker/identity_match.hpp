@@ -34,9 +34,13 @@ struct NearestLook {
   bool clearly_within(float gate) const { return best <= gate && best + kReidMargin <= second; }
 };
 
-// How far a person may have gone while unseen: a walker covers about one body height a second;
-// twice that, plus one height for the boxes' own error.
-inline constexpr float kReidHeightsPerSecond = 2.F;
+// How far from where they were last seen a returning person is looked for: one height for the
+// boxes' own error plus half a height a second unseen. A walker covers about one body height a
+// second, but a person who comes back after a gap is mostly one who stood behind someone, turned
+// or walked a curve; a reach that covers walking straight on also covers the neighbours. Chosen
+// by round 28's averaged protocol over 2 heights a second (docs/appearance.md, "How far a cell
+// moves by chance": IDF1 sum +6.4 on the first halves, +5.3 on the second, no MOTA cell lower).
+inline constexpr float kReidHeightsPerSecond = 0.5F;
 
 /// Whether a person last seen in `box` at `seen_seconds` can be at `now` at `table.now`.
 inline bool within_reach(const TrackTableView& table, const Box& box, double seen_seconds,

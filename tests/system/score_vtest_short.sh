@@ -27,8 +27,9 @@ score boxes every,250 --follow-image false
 # detector skipped and, since round 26, from each processed frame to the next.
 score image every,250
 cat "$work/scores.tsv"
-# label latency processed MOTA IDF1 DetA AssA
-expected=$'boxes/every 150 38.2 55.0 43.7 37.7\nboxes/250 87 31.0 57.1 39.8 43.2\nimage/every 150 42.6 57.8 44.1 38.5\nimage/250 87 42.8 56.6 43.5 36.5'
+# label latency processed MOTA IDF1 DetA AssA (measured again in round 28: re-identification's
+# narrower reach moved both IDF1s past the tolerance)
+expected=$'boxes/every 150 38.2 57.2 43.6 39.1\nboxes/250 87 30.8 57.9 39.8 43.3\nimage/every 150 42.6 60.0 43.8 40.2\nimage/250 87 42.8 58.2 43.5 37.9'
 awk -F'\t' -v tolerance="$tolerance" -v expected="$expected" '
   BEGIN {
     n = split(expected, lines, "\n")

@@ -87,6 +87,11 @@ TEST(Reidentification, SomeoneElseOrSomeoneTooFarOrTooLateGetsANewId) {
   EXPECT_NE(d, c);
   const auto [e, f] = back_after(0.3, 60, 150.F, colour(3), colour(3));  // 6 s: past the 5 s
   EXPECT_NE(f, e);
+  // 350 px in 2 s: walked straight on at 1.75 heights a second, beyond the reach of one height
+  // plus half a height a second (round 28: most who come back after a gap were hidden, turned or
+  // walked a curve; a reach for walking straight on covers the neighbours too).
+  const auto [g, h] = back_after(0.3, 20, 350.F, colour(3), colour(3));
+  EXPECT_NE(h, g);
 }
 
 // The person's track still coasts (max_age 30: 3 s) when they come back away from its prediction
@@ -215,7 +220,9 @@ TEST(Reidentification, TwoWhoLookAlikeGiveNeitherId) {
   EXPECT_EQ(std::count(ids[5].begin(), ids[5].end(), ids.back()[0]), 0);
 }
 
-// And the one who looks like the newcomer gets it back, though the other left nearer.
+// And the one who looks like the newcomer gets it back, though the other left nearer: the
+// newcomer is 125 px from where the first person was last seen and 175 px from the second, both
+// within a walker's reach after the 2 s gap (one height plus half a height a second: 200 px).
 TEST(Reidentification, TheOneWhoLooksLikeThemIsChosenNotTheNearest) {
   std::vector<std::vector<Detection>> frames;
   for (int k = 0; k < 10; ++k) {
@@ -223,7 +230,7 @@ TEST(Reidentification, TheOneWhoLooksLikeThemIsChosenNotTheNearest) {
                       person(400.F + 5.F * static_cast<float>(k), 200.F, colour(20))});
   }
   for (int k = 0; k < 20; ++k) frames.emplace_back();
-  for (int k = 0; k < 10; ++k) frames.push_back({person(160.F, 200.F, colour(20))});
+  for (int k = 0; k < 10; ++k) frames.push_back({person(270.F, 200.F, colour(20))});
   Tracker tracker(config(0.3));
   const auto ids = run(tracker, frames);
   ASSERT_EQ(ids[5].size(), 2U);
