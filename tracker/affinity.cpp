@@ -12,18 +12,6 @@ namespace {
 constexpr double kMarginPerLostFrame = 0.15;
 }  // namespace
 
-// Hybrid-SORT's height IoU: the overlap of the two boxes' vertical extents over their union. Of
-// two overlapping people the one behind stands higher in the picture, so their extents differ
-// even where their boxes overlap alike.
-double height_iou(const Box& a, const Box& b) {
-  const double top = std::max(double{a.y}, double{b.y});
-  const double bottom = std::min(double{a.y} + a.h, double{b.y} + b.h);
-  const double union_extent =
-      std::max(double{a.y} + a.h, double{b.y} + b.h) - std::min(double{a.y}, double{b.y});
-  if (!(union_extent > 0.0)) return 0.0;
-  return std::max(0.0, bottom - top) / union_extent;
-}
-
 float iou_affinity(const Box& track, const Box& detection) {
   return iou(track, detection);
 }
@@ -62,12 +50,9 @@ double affinity(const TrackerConfig& config, const Box& track, const Box& detect
   const float margin =
       std::min(std::max(time_margin, noise_margin), static_cast<float>(config.max_gate_margin));
   switch (config.affinity) {
-    case AffinityKind::iou: {
-      const Box a = margin > 0.F ? enlarged(track, margin) : track;
-      const Box b = margin > 0.F ? enlarged(detection, margin) : detection;
-      const double overlap = iou(a, b);
-      return config.height_modulated_iou ? overlap * height_iou(a, b) : overlap;
-    }
+    case AffinityKind::iou:
+      if (margin > 0.F) return iou(enlarged(track, margin), enlarged(detection, margin));
+      return iou(track, detection);
     case AffinityKind::linear:
       return linear_affinity(track, detection, config.image_width, config.image_height) *
              (1.0 + 2.0 * margin);

@@ -6,7 +6,6 @@
 namespace rtmot::tracker {
 
 /// Intersection over union, in [0, 1].
-double height_iou(const Box& a, const Box& b);
 float iou_affinity(const Box& track, const Box& detection);
 
 /// Sanchez-Matilla et al.'s linear cost (centre distance times area difference), inverted as in

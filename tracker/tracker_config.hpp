@@ -177,9 +177,6 @@ struct TrackerConfig {
   /// as for at most this many nominal frames, not the whole gap between processed frames: the
   /// widening answers for the motion model's guess, which the image replaced. 0 = off.
   double observed_gate_frames{0.0};
-  /// Hybrid-SORT's height-modulated IoU: the IoU affinity times the IoU of the boxes' vertical
-  /// extents (gate and preference). Measured, in no preset.
-  bool height_modulated_iou{false};
 
   // --- particle filter ---
   int particle_count{100};

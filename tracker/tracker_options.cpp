@@ -329,10 +329,6 @@ std::vector<TrackerOption> make_table() {
            "nominal frames instead of the whole gap: the image replaced the motion model's guess "
            "(docs/full-rate.md: measured, in no preset; 0: off)",
            &C::observed_gate_frames, 0.0, static_cast<double>(limits::kMaxFrames)),
-      flag("height_modulated_iou",
-           "Hybrid-SORT's height-modulated IoU: the IoU affinity times the IoU of the boxes' "
-           "vertical extents (docs/appearance.md: measured, in no preset)",
-           &C::height_modulated_iou),
       flag("resolve_crossings",
            "with re-identification on (reid_gate): two confirmed tracks whose boxes overlapped "
            "trade ids when their first clear sightings after it each look like the other's model "

@@ -74,23 +74,3 @@ TEST(Affinity, WidenedGateLoosensOnlyAfterAMissedFrame) {
 
 }  // namespace
 }  // namespace rtmot::tracker
-
-namespace rtmot::tracker {
-namespace {
-
-// Hybrid-SORT's height IoU: of two overlapping people the one behind stands higher in the
-// picture; their vertical extents overlap less than their boxes suggest.
-TEST(HeightModulatedIou, ScalesTheIouByTheOverlapOfTheVerticalExtents) {
-  const Box front{100.F, 200.F, 40.F, 100.F};
-  const Box behind{110.F, 150.F, 40.F, 100.F};  // feet 50 px higher
-  EXPECT_DOUBLE_EQ(height_iou(front, front), 1.0);
-  EXPECT_DOUBLE_EQ(height_iou(front, behind), 50.0 / 150.0);
-  EXPECT_DOUBLE_EQ(height_iou(front, Box{100.F, 400.F, 40.F, 100.F}), 0.0);
-  TrackerConfig config = TrackerConfig::sort_preset();
-  const double plain = affinity(config, front, behind, 1.0, 0.F);
-  config.height_modulated_iou = true;
-  EXPECT_NEAR(affinity(config, front, behind, 1.0, 0.F), plain * 50.0 / 150.0, 1e-6);
-}
-
-}  // namespace
-}  // namespace rtmot::tracker

@@ -69,7 +69,6 @@ TEST(TrackerOptions, EveryKnobOfTheConfigCanBeSet) {
                                      {"handback_gate", "0.35"},
                                      {"resolve_crossings", "true"},
                                      {"observed_gate_frames", "3.5"},
-                                     {"height_modulated_iou", "true"},
                                      {"particle_count", "33"},
                                      {"seed", "18446744073709551615"},
                                      {"max_tracks", "20"},
@@ -116,12 +115,11 @@ TEST(TrackerOptions, EveryKnobOfTheConfigCanBeSet) {
   EXPECT_DOUBLE_EQ(config.handback_gate, 0.35);
   EXPECT_TRUE(config.resolve_crossings);
   EXPECT_DOUBLE_EQ(config.observed_gate_frames, 3.5);
-  EXPECT_TRUE(config.height_modulated_iou);
   EXPECT_EQ(config.particle_count, 33);
   EXPECT_EQ(config.seed, 18446744073709551615ULL);
   EXPECT_EQ(config.max_tracks, 20);
   EXPECT_EQ(config.max_detections, 30);
-  EXPECT_EQ(tracker_options().size(), 47U) << "a new TrackerConfig field needs a line here too";
+  EXPECT_EQ(tracker_options().size(), 46U) << "a new TrackerConfig field needs a line here too";
 }
 
 TEST(TrackerOptions, AnAffinityBringsItsUsualThresholdUnlessOneFollows) {
