@@ -14,8 +14,12 @@ of the same seeds:
   second halves (--half second): passes with mean(d) >= 0 and no cell's mean MOTA difference
     below -0.2.
 
+With --spread it prints instead how far the reference's own copies spread: per cell, the range
+of MOTA and IDF1 over the copies and their standard deviation, and the same for the sums (the
+noise floor a rule must stand above).
+
 Research tooling; the product never runs it. Usage:
-  scripts/half_cells_averaged.py OUT --half first|second [--against head] [--copies 6]
+  scripts/half_cells_averaged.py OUT --half first|second [--against head] [--copies 6] [--spread]
 Exit 2: bad arguments or input (the file and line named); 1: the reference lacks a copy.
 """
 import argparse
@@ -38,12 +42,31 @@ def copies_of(runs, label, count):
     return None if any(c is None for c in copies) else copies
 
 
+def standard_deviation(values):
+    mean = sum(values) / len(values)
+    return math.sqrt(sum((v - mean) ** 2 for v in values) / (len(values) - 1))
+
+
+def print_spread(copies):
+    """Per cell and for the sums: MOTA and IDF1 as min-max (standard deviation) over the copies."""
+    def shown(values):
+        return f"{min(values):.1f}-{max(values):.1f} ({standard_deviation(values):.2f})"
+    print("| " + " | ".join(HEADINGS) + " | MOTA sum | IDF1 sum |")
+    print("|" + "---|" * (len(HEADINGS) + 2))
+    cells = [shown([copy[c][0] for copy in copies]) + " / " + shown([copy[c][1] for copy in copies])
+             for c in range(len(CELLS))]
+    sums = [shown([sum(cell[i] for cell in copy) for copy in copies]) for i in (0, 1)]
+    print("| " + " | ".join(cells + sums) + " |")
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("out", help="the OUT folder of scripts/half_cells.sh")
     parser.add_argument("--half", choices=("first", "second"), required=True)
     parser.add_argument("--against", default="head", help="the reference label (default head)")
     parser.add_argument("--copies", type=int, default=6, help="jittered copies (default 6)")
+    parser.add_argument("--spread", action="store_true",
+                        help="print the reference's spread over its copies instead")
     args = parser.parse_args()
     if args.copies < 1:
         fail(f"--copies must be at least 1, not {args.copies}")
@@ -54,6 +77,9 @@ def main():
     if reference is None:
         fail(f"{args.out}: the reference '{args.against}' lacks a cell on a copy", status=1)
     n = args.copies + 1
+    if args.spread:
+        print_spread(reference)
+        return
     print("| label | " + " | ".join(HEADINGS) + " | IDF1 sum | d: mean ± s.e. (range) | "
           "worst mean MOTA difference | verdict |")
     print("|" + "---|" * (len(HEADINGS) + 5))
