@@ -39,7 +39,8 @@ struct NearestLook {
 // second, but a person who comes back after a gap is mostly one who stood behind someone, turned
 // or walked a curve; a reach that covers walking straight on also covers the neighbours. Chosen
 // by round 28's averaged protocol over 2 heights a second (docs/appearance.md, "How far a cell
-// moves by chance": IDF1 sum +6.4 on the first halves, +5.3 on the second, no MOTA cell lower).
+// moves by chance": IDF1 sum +6.4 on the first halves, +5.3 on the second, no cell's mean MOTA
+// lower by 0.2). The hand-back (handback.cpp) uses the same reach.
 inline constexpr float kReidHeightsPerSecond = 0.5F;
 
 /// Whether a person last seen in `box` at `seen_seconds` can be at `now` at `table.now`.
