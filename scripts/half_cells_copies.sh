@@ -1,0 +1,40 @@
+#!/usr/bin/env bash
+# One label of the averaged rule (docs/scoring.md, "Averaged over jittered copies"): the six cells
+# of scripts/half_cells.sh replayed on a recording (label LABEL) and on N copies of it with every
+# box moved by up to half a pixel (labels LABELj1 .. LABELjN), for scripts/half_cells_averaged.py.
+# The copies are made once (scripts/jitter_detections.py) and reused by every label, so the head
+# and each candidate are compared on the same draws. Research tooling: needs ../shared.
+# Usage: scripts/half_cells_copies.sh OUT LABEL first|second [rtmot run arguments...]
+# Env: REPLAY_FROM=REC (required: a half_cells.sh OUT holding REC/off/head and REC/tiles/head,
+#      or REPLAY_LABEL's), COPIES_DIR (default OUT/copies-HALF: its sS/off/head and sS/tiles/head are
+#      made where missing),
+#      COPIES (default 6), BUILD (as half_cells.sh). Seeds: 10 S + the length of "off" or
+#      "tiles", plus 100 for the second halves (the seeds docs/appearance.md's tables used).
+set -euo pipefail
+trap 'echo "half_cells_copies.sh: failed at line $LINENO: $BASH_COMMAND" >&2' ERR
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+[[ $# -ge 3 ]] || { echo "usage: $0 OUT LABEL first|second [rtmot run arguments...]" >&2; exit 2; }
+out=$1 label=$2 half=$3
+shift 3
+case $half in
+  first) offset=0 ;;
+  second) offset=100 ;;
+  *) echo "half_cells_copies.sh: the half is first or second, not '$half'" >&2; exit 2 ;;
+esac
+[[ -n ${REPLAY_FROM:-} ]] || { echo "half_cells_copies.sh: REPLAY_FROM (the recording) is required" >&2; exit 2; }
+copies=${COPIES:-6}
+[[ $copies =~ ^[1-9][0-9]*$ ]] || { echo "half_cells_copies.sh: COPIES must be a positive integer, not '$copies'" >&2; exit 2; }
+copies_dir=${COPIES_DIR:-$out/copies-$half}  # each half its own recording, so its own copies
+recorded=${REPLAY_LABEL:-head}  # half_cells.sh replays REC/KIND/REPLAY_LABEL, the copies the same
+for ((s = 1; s <= copies; s++)); do
+  for kind in off tiles; do
+    [[ -d $copies_dir/s$s/$kind/$recorded ]] && continue
+    python3 "$root/scripts/jitter_detections.py" "$REPLAY_FROM/$kind/$recorded" \
+      "$copies_dir/s$s/$kind/$recorded" --px 0.5 --seed $((10 * s + ${#kind} + offset))
+  done
+done
+bash "$root/scripts/half_cells.sh" "$out" "$label" "$half" "$@"
+for ((s = 1; s <= copies; s++)); do
+  REPLAY_FROM="$copies_dir/s$s" bash "$root/scripts/half_cells.sh" "$out" "${label}j$s" "$half" "$@"
+done
+echo "half_cells_copies.sh: $label and ${label}j1..${label}j$copies ($half halves) in $out"
