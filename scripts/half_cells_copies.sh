@@ -13,14 +13,16 @@
 set -euo pipefail
 trap 'echo "half_cells_copies.sh: failed at line $LINENO: $BASH_COMMAND" >&2' ERR
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-[[ $# -ge 3 ]] || { echo "usage: $0 OUT LABEL first|second [rtmot run arguments...]" >&2; exit 2; }
+if (($# < 3)); then
+  echo "usage: $0 OUT LABEL first|second [rtmot run arguments...]" >&2
+  exit 2
+fi
 out=$1 label=$2 half=$3
 shift 3
-case $half in
-  first) offset=0 ;;
-  second) offset=100 ;;
-  *) echo "half_cells_copies.sh: the half is first or second, not '$half'" >&2; exit 2 ;;
-esac
+# The second halves' copies get their own seeds: the two halves are separate recordings.
+declare -A seed_offset=([first]=0 [second]=100)
+[[ -n ${seed_offset[$half]:-} ]] || { echo "half_cells_copies.sh: the half is first or second, not '$half'" >&2; exit 2; }
+offset=${seed_offset[$half]}
 [[ -n ${REPLAY_FROM:-} ]] || { echo "half_cells_copies.sh: REPLAY_FROM (the recording) is required" >&2; exit 2; }
 copies=${COPIES:-6}
 [[ $copies =~ ^[1-9][0-9]*$ ]] || { echo "half_cells_copies.sh: COPIES must be a positive integer, not '$copies'" >&2; exit 2; }
