@@ -3,8 +3,7 @@
 rule's verdict (docs/appearance.md, "How far a cell moves by chance").
 
 One replay of a recording is one draw: moving every box by half a pixel (a null change,
-scripts/jitter_detections.py) moves a cell's IDF1 by up to 5 points and its MOTA by half a
-point. So each label is replayed on the original recording and on N jittered copies, named LABEL
+scripts/jitter_detections.py) moves a cell's IDF1 by up to 5 points and its MOTA by up to 0.8. So each label is replayed on the original recording and on N jittered copies, named LABEL
 and LABELj1 .. LABELjN (scripts/half_cells.sh's labels), and compared with the reference's copies
 of the same seeds:
   d_s      the candidate's IDF1 sum minus the reference's, copy s
@@ -97,8 +96,7 @@ def main():
         d = [sum(cell[1] for cell in mine) - sum(cell[1] for cell in ref)
              for mine, ref in zip(copies, reference)]
         mean_d = sum(d) / n
-        sd = math.sqrt(sum((x - mean_d) ** 2 for x in d) / (n - 1))
-        se = sd / math.sqrt(n)
+        se = standard_deviation(d) / math.sqrt(n)
         mota = [sum(mine[c][0] - ref[c][0] for mine, ref in zip(copies, reference)) / n
                 for c in range(len(CELLS))]
         worst = min(mota)

@@ -30,9 +30,13 @@ copies_dir=${COPIES_DIR:-$out/copies-$half}  # each half its own recording, so i
 recorded=${REPLAY_LABEL:-head}  # half_cells.sh replays REC/KIND/REPLAY_LABEL, the copies the same
 for ((s = 1; s <= copies; s++)); do
   for kind in off tiles; do
-    [[ -d $copies_dir/s$s/$kind/$recorded ]] && continue
-    python3 "$root/scripts/jitter_detections.py" "$REPLAY_FROM/$kind/$recorded" \
-      "$copies_dir/s$s/$kind/$recorded" --px 0.5 --seed $((10 * s + ${#kind} + offset))
+    copy=$copies_dir/s$s/$kind/$recorded
+    [[ -d $copy ]] && continue
+    # Written aside and renamed: an interrupted copy is never taken for a whole one.
+    rm -rf "$copy.partial"
+    python3 "$root/scripts/jitter_detections.py" "$REPLAY_FROM/$kind/$recorded" "$copy.partial" \
+      --px 0.5 --seed $((10 * s + ${#kind} + offset))
+    mv "$copy.partial" "$copy"
   done
 done
 bash "$root/scripts/half_cells.sh" "$out" "$label" "$half" "$@"

@@ -20,12 +20,8 @@ import argparse
 import glob
 import os
 import random
-import sys
 
-
-def fail(message):
-    print(f"{os.path.basename(sys.argv[0])}: {message}", file=sys.stderr)
-    sys.exit(2)
+from score_table import fail
 
 
 def jitter_file(source, target, px, rng):
