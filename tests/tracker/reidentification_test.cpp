@@ -186,6 +186,92 @@ Appearance two_bins(int bin, float share) {
 // At the first clear sighting the new track's model is one sighting: with the preset's gate (0.6)
 // a return that looks 0.5 away from before keeps its new id there (kLateReidGate 0.4), and one
 // 0.3 away takes the old id; at first confirmation, the same 0.5 takes it.
+// reid_place_gap_s: a person walks right past someone who stands still, is unseen for 0.5 s and
+// comes back turned round, their box a quarter covered by the one standing (no looks to compare
+// while covered). With the place deciding, the new track takes the lost one's id when it is the
+// only lost track within reach; a second person lost nearby at the same time leaves the new id.
+struct PlaceAlone {
+  std::int32_t first{0};  // the walker's id before they left
+  std::int32_t back{0};   // the id of the track on them after they came back
+  int live{0};            // live tracks at the end
+};
+
+PlaceAlone back_covered(double place_gap_s, bool second_lost_nearby, bool with_looks = true) {
+  const Appearance none;  // invalid: a detection file's detections
+  const auto looks = [&](int bin) { return with_looks ? colour(bin) : none; };
+  const Detection standing = person(60.F, 200.F, looks(9));
+  std::vector<std::vector<Detection>> frames;
+  for (int k = 0; k < 10; ++k) {
+    frames.push_back({standing, person(110.F + 10.F * static_cast<float>(k), 200.F, looks(3))});
+    // Below the walker's path (boxes touching at y 300, overlapping nothing).
+    if (second_lost_nearby) frames.back().push_back(person(150.F, 300.F, looks(5)));
+  }
+  for (int k = 0; k < 5; ++k) frames.push_back({standing});
+  for (int k = 0; k < 10; ++k) {
+    frames.push_back({standing, person(90.F - 2.F * static_cast<float>(k), 200.F, looks(3))});
+  }
+  TrackerConfig c = config(0.3);
+  c.max_age = 30;  // the walker's track still coasts when they come back
+  c.reid_place_gap_s = place_gap_s;
+  Tracker tracker(c);
+  const auto ids = run(tracker, frames);
+  PlaceAlone seen;
+  seen.first = ids[5].at(1);
+  const std::int32_t standing_id = ids[5].at(0);
+  for (const std::int32_t id : ids.back()) {
+    if (id != standing_id) seen.back = id;
+  }
+  seen.live = tracker.live_tracks();
+  return seen;
+}
+
+TEST(Reidentification, WithoutLooksToCompareTheOnlyLostTrackWithinReachGivesItsId) {
+  const PlaceAlone alone = back_covered(1.0, false);
+  ASSERT_NE(alone.back, 0) << "the walker's new track was not reported";
+  EXPECT_EQ(alone.back, alone.first);
+  EXPECT_EQ(alone.live, 2);  // the lost track whose id was taken ended
+
+  const PlaceAlone off = back_covered(0.0, false);
+  EXPECT_NE(off.back, off.first);
+
+  const PlaceAlone two = back_covered(1.0, true);  // two lost within reach: the place cannot tell
+  ASSERT_NE(two.back, 0);
+  EXPECT_NE(two.back, two.first);
+
+  const PlaceAlone short_gap = back_covered(0.3, false);  // lost 0.6 s before: beyond 0.3 s
+  EXPECT_NE(short_gap.back, short_gap.first);
+
+  // Detection files carry no appearance: the place alone never decides there.
+  const PlaceAlone files = back_covered(1.0, false, false);
+  ASSERT_NE(files.back, 0);
+  EXPECT_NE(files.back, files.first);
+}
+
+// reacquire_gate: a person walks right and is unseen for two frames; someone who looks nothing
+// like them walks on where they would be. The first track, back after a miss, may not take them
+// with the gate; a track matched every frame is not gated (that is appearance_gate's business).
+std::pair<std::int32_t, std::int32_t> takeover_after(int missed_frames, double reacquire_gate) {
+  std::vector<std::vector<Detection>> frames;
+  float x = 100.F;
+  for (int k = 0; k < 10; ++k, x += 5.F) frames.push_back({person(x, 200.F, colour(3))});
+  for (int k = 0; k < missed_frames; ++k, x += 5.F) frames.emplace_back();
+  for (int k = 0; k < 10; ++k, x += 5.F) frames.push_back({person(x, 200.F, colour(9))});
+  TrackerConfig c = config(0.3);
+  c.reacquire_gate = reacquire_gate;
+  Tracker tracker(c);
+  const auto ids = run(tracker, frames);
+  return {ids[5].at(0), ids.back().at(0)};
+}
+
+TEST(Reidentification, ATrackBackAfterAMissTakesNoOneWhoLooksUnlikeIt) {
+  const auto [gated_first, gated_last] = takeover_after(2, 0.5);
+  EXPECT_NE(gated_last, gated_first);
+  const auto [open_first, open_last] = takeover_after(2, 1.0);
+  EXPECT_EQ(open_last, open_first);  // without the gate the coasting track takes them
+  const auto [steady_first, steady_last] = takeover_after(0, 0.5);
+  EXPECT_EQ(steady_last, steady_first);  // matched every frame: not re-acquiring
+}
+
 TEST(Reidentification, AtTheFirstClearSightingOnlyACloseLikenessGivesTheOldId) {
   const Appearance changed = two_bins(3, 0.5625F);  // Hellinger 0.5 from colour(3)
   const Appearance alike = two_bins(3, 0.8281F);    // 0.3
