@@ -37,8 +37,6 @@ void Tracker::State::split_by_score(const std::vector<Detection>& detections) {
   low.clear();
   float cut = std::max(config.detection_threshold, score_cut.observe(detections));
   if (extension) cut = std::max(cut, extension->split_cut(detections));
-  split_now = cut;
-  score_top_now = score_cut.recent_top();
   for (const Detection& detection : detections) {
     if (!usable(detection)) continue;
     if (detection.score >= cut) {

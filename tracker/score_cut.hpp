@@ -51,10 +51,6 @@ class ScoreCut {
   /// (the lowest float before any, or when the window is off).
   float range_point(double fraction) const;
 
-  /// The top of the recent scores (their 99th percentile, never capped; the lowest float before
-  /// any, or when the window is off).
-  float recent_top() const { return high_; }
-
   void reset();
 
  private:

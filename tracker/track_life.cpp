@@ -65,23 +65,6 @@ void Tracker::State::correct_with_observed(const std::vector<ObservedBox>& obser
   }
 }
 
-// With appearance_by_score a detection teaches as much as its score is trusted: Deep OC-SORT's
-// dynamic appearance, with the trust measured against the stream's own scores (no score scale
-// assumed, as ScoreCut's cuts).
-void Tracker::State::teach_appearance(Track& track, const Detection& detection) {
-  const auto momentum = static_cast<float>(config.appearance_momentum);
-  if (!config.appearance_by_score) {
-    blend_appearance(track.appearance, detection.appearance, momentum);
-    return;
-  }
-  const float span = score_top_now - split_now;
-  const float trust =
-      span > 0.F ? std::clamp((detection.score - split_now) / span, 0.F, 1.F) : 1.F;
-  if (!(trust > 0.F)) return;
-  blend_appearance(track.appearance, detection.appearance,
-                   momentum + (1.F - momentum) * (1.F - trust));
-}
-
 void Tracker::State::correct_track(Track& track, const Detection& detection) {
   // The box noise is measured on matches one nominal frame ahead only: further ahead the
   // offset is mostly the motion the time-widened gate answers for.
@@ -97,13 +80,13 @@ void Tracker::State::correct_track(Track& track, const Detection& detection) {
     track.at_last_observation = *kalman;
   }
   track.last_observation = detection.box;
-  const bool had_model = track.appearance.valid;
+  track.model_started_now = !track.appearance.valid && detection.appearance.valid;
   if (detection.appearance.valid && track.appearance.valid && track.crossing_partner != 0) {
     track.held_sighting = detection.appearance;  // resolve_crossings() decides whose it is
   } else if (detection.appearance.valid) {       // valid: no other detection covers it
-    teach_appearance(track, detection);
+    blend_appearance(track.appearance, detection.appearance,
+                     static_cast<float>(config.appearance_momentum));
   }
-  track.model_started_now = !had_model && track.appearance.valid;
   track.steps_since_update = 0;
   track.frames_since_update = 0.0;
   track.last_seen_seconds = last_update_time;
@@ -177,8 +160,7 @@ void Tracker::State::start_track(const Detection& detection) {
   track.score_sum = detection.score;
   track.matches = 1;
   track.class_id = detection.class_id;
-  track.appearance = Appearance{};
-  if (detection.appearance.valid) teach_appearance(track, detection);
+  track.appearance = detection.appearance;
   track.last_seen_seconds = last_update_time;
   track.born_seconds = last_update_time;
   track.model_started_now = false;

@@ -162,11 +162,6 @@ struct TrackerConfig {
   /// A track's appearance keeps this share of itself at each match by a detection that no other
   /// detection overlaps (a partly hidden person shows someone else's colours).
   double appearance_momentum{0.9};
-  /// Deep OC-SORT's dynamic appearance: a match teaches its track's model in proportion to its
-  /// detection's trust, where its score lies between the update's split (0) and the top of the
-  /// recent scores (1): the model keeps momentum + (1 - momentum) x (1 - trust) of itself, and a
-  /// detection at the split or below teaches nothing. false: every clear match teaches alike.
-  bool appearance_by_score{false};
   /// Re-identification: a track confirmed for the first time takes the id of a track it looks
   /// like (appearance distance at most this), of its class, lost (coasting) or removed at most
   /// reid_max_gap_s before, whose last box lies within reach of a walker: the nearest in

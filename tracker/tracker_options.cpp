@@ -312,11 +312,6 @@ std::vector<TrackerOption> make_table() {
            "a track's appearance keeps this share of itself at each match by a detection no "
            "other detection overlaps",
            &C::appearance_momentum, 0.0, 0.999),
-      flag("appearance_by_score",
-           "Deep OC-SORT's dynamic appearance: a match teaches its track's model in proportion "
-           "to where its detection's score lies between the update's split and the top of the "
-           "recent scores; one at the split or below teaches nothing (docs/appearance.md)",
-           &C::appearance_by_score),
       real("reid_gate",
            "re-identification: a track confirmed for the first time (born partly hidden: at its "
            "first clear sighting within 1 s of its birth, then within at most 0.4) takes the id "

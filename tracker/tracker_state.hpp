@@ -59,7 +59,6 @@ struct Tracker::State {
   void predict_tracks(double dt);
   void correct_with_observed(const std::vector<ObservedBox>& observed);
   void correct_track(Track& track, const Detection& detection);
-  void teach_appearance(Track& track, const Detection& detection);
   static void reupdate_from_observations(Track& track, KalmanPredictor& kalman, const Box& found);
   void start_tracks();
   void start_track(const Detection& detection);
@@ -87,10 +86,6 @@ struct Tracker::State {
   std::vector<char> high_taken;    // high[d] was matched by a round
   std::vector<char> hidden_flags;  // high's, then low's: partly covered by another detection
   bool appearances_seen{false};    // this update's detections carried appearances (images on)
-  // This update's split between high and low scores, and the top of the recent scores
-  // (appearance_by_score's trust runs from the one to the other).
-  float split_now{0.F};
-  float score_top_now{0.F};
   std::vector<Detection> rest;     // the cascade's second level: detections left by the first
   std::vector<int> rest_index;     // their index in `high`
   std::vector<int> positions;      // the round's tracks, as indices into `order`

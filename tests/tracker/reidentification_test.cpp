@@ -272,53 +272,6 @@ TEST(Reidentification, ATrackBackAfterAMissTakesNoOneWhoLooksUnlikeIt) {
   EXPECT_EQ(steady_last, steady_first);  // matched every frame: not re-acquiring
 }
 
-// appearance_by_score: a person seen with confident detections in one colour, then for a second
-// with barely confident ones in another (a lamp, a reflection), leaves and comes back in the first
-// colour. Taught by every match alike, their model drifted to the second colour and the return
-// gets a new id; taught by trust, the weak detections taught almost nothing and the id comes back.
-// Someone else standing far off with weak detections spreads the stream's scores.
-std::pair<std::int32_t, std::int32_t> back_after_weak_sightings(bool by_score) {
-  const auto scored = [](Detection d, float score) {
-    d.score = score;
-    return d;
-  };
-  const Detection faint = scored(person(600.F, 200.F, colour(20)), 0.3F);
-  std::vector<std::vector<Detection>> frames;
-  float x = 100.F;
-  for (int k = 0; k < 10; ++k, x += 5.F) frames.push_back({person(x, 200.F, colour(3)), faint});
-  for (int k = 0; k < 10; ++k, x += 5.F) {
-    frames.push_back({scored(person(x, 200.F, colour(9)), 0.35F), faint});
-  }
-  for (int k = 0; k < 10; ++k, x += 5.F) frames.push_back({faint});  // removed after 0.5 s
-  for (int k = 0; k < 10; ++k, x += 5.F) frames.push_back({person(x, 200.F, colour(3)), faint});
-  TrackerConfig c = config(0.3);
-  c.appearance_by_score = by_score;
-  Tracker tracker(c);
-  // The walker's id in a frame: the report left of the one standing far off.
-  const auto walker = [&](std::size_t k) {
-    for (const TrackReport& r : tracker.update(frames[k], static_cast<double>(k) / kFps)) {
-      if (r.box.x < 500.F) return r.id;
-    }
-    return 0;
-  };
-  std::int32_t first = 0;
-  std::int32_t last = 0;
-  for (std::size_t k = 0; k < frames.size(); ++k) {
-    const std::int32_t id = walker(k);
-    if (k == 5) first = id;
-    if (k + 1 == frames.size()) last = id;
-  }
-  return {first, last};
-}
-
-TEST(Reidentification, WeakDetectionsTeachTheModelLittleWithAppearanceByScore) {
-  const auto [trusted_first, trusted_last] = back_after_weak_sightings(true);
-  ASSERT_NE(trusted_first, 0);
-  EXPECT_EQ(trusted_last, trusted_first);
-  const auto [alike_first, alike_last] = back_after_weak_sightings(false);
-  EXPECT_NE(alike_last, alike_first);
-}
-
 TEST(Reidentification, AtTheFirstClearSightingOnlyACloseLikenessGivesTheOldId) {
   const Appearance changed = two_bins(3, 0.5625F);  // Hellinger 0.5 from colour(3)
   const Appearance alike = two_bins(3, 0.8281F);    // 0.3

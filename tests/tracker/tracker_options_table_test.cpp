@@ -65,7 +65,6 @@ TEST(TrackerOptions, EveryKnobOfTheConfigCanBeSet) {
                                      {"appearance_gate_rival_alike", "true"},
                                      {"appearance_weight", "0.3"},
                                      {"appearance_momentum", "0.8"},
-                                     {"appearance_by_score", "true"},
                                      {"reid_gate", "0.45"},
                                      {"reid_max_gap_s", "7.5"},
                                      {"reid_place_gap_s", "1.5"},
@@ -114,7 +113,6 @@ TEST(TrackerOptions, EveryKnobOfTheConfigCanBeSet) {
   EXPECT_TRUE(config.appearance_gate_rival_alike);
   EXPECT_DOUBLE_EQ(config.appearance_weight, 0.3);
   EXPECT_DOUBLE_EQ(config.appearance_momentum, 0.8);
-  EXPECT_TRUE(config.appearance_by_score);
   EXPECT_DOUBLE_EQ(config.reid_gate, 0.45);
   EXPECT_DOUBLE_EQ(config.reid_max_gap_s, 7.5);
   EXPECT_DOUBLE_EQ(config.reid_place_gap_s, 1.5);
@@ -125,7 +123,7 @@ TEST(TrackerOptions, EveryKnobOfTheConfigCanBeSet) {
   EXPECT_EQ(config.seed, 18446744073709551615ULL);
   EXPECT_EQ(config.max_tracks, 20);
   EXPECT_EQ(config.max_detections, 30);
-  EXPECT_EQ(tracker_options().size(), 49U) << "a new TrackerConfig field needs a line here too";
+  EXPECT_EQ(tracker_options().size(), 48U) << "a new TrackerConfig field needs a line here too";
 }
 
 TEST(TrackerOptions, AnAffinityBringsItsUsualThresholdUnlessOneFollows) {
