@@ -31,10 +31,6 @@ GateVerdict weigh_appearance(const TrackerConfig& config, const AssociationCandi
       !detection.appearance.valid)
     return GateVerdict::unseen;
   const double distance = appearance_distance(*candidate.appearance, detection.appearance);
-  if (candidate.reacquiring && distance > config.reacquire_gate) {
-    value = preference = kImpossible;
-    return GateVerdict::beyond;
-  }
   GateVerdict verdict = GateVerdict::within;
   if (distance > config.appearance_gate) {
     if (!config.appearance_gate_contested) {

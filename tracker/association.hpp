@@ -16,7 +16,6 @@ struct AssociationCandidate {
   double gate_frames{1.0};  // nominal frames that widen its gate (TrackerConfig::gate_clock)
   float noise_margin{0.F};  // the gate margin the stream's box noise asks for (noise_gate_factor)
   const Appearance* appearance{nullptr};  // the track's, when it has one
-  bool reacquiring{false};  // confirmed, and missed its last update (TrackerConfig::reacquire_gate)
 };
 
 /// The distance round's pairs differ in height by at most this factor: a far detection of a

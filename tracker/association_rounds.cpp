@@ -17,12 +17,6 @@ namespace {
 // its appearance does not teach its track (a tenth of a person is an arm or a bag).
 constexpr float kOccludedShare = 0.1F;
 
-// A confirmed track that missed its last update: what it takes now, it takes back after a gap
-// (TrackerConfig::reacquire_gate).
-bool reacquiring(const Track& track) {
-  return track.life.ever_confirmed() && track.steps_since_update > 1;
-}
-
 bool usable(const Detection& detection) {
   return is_finite(detection.box) && detection.box.w > 0.F && detection.box.h > 0.F &&
          std::isfinite(detection.score);
@@ -52,9 +46,6 @@ void Tracker::State::split_by_score(const std::vector<Detection>& detections) {
 // A detection that another one partly covers shows some of the other person's colours: its
 // appearance neither decides a pair nor teaches a track (kOccludedShare).
 void Tracker::State::forget_hidden_appearances() {
-  const auto carries = [](const Detection& d) { return d.appearance.valid; };
-  appearances_seen = std::any_of(high.begin(), high.end(), carries) ||
-                     std::any_of(low.begin(), low.end(), carries);
   std::size_t hidden = 0;
   for (const Detection& d : high) hidden_flags[hidden++] = d.appearance.valid && overlapped(d);
   for (const Detection& d : low) hidden_flags[hidden++] = d.appearance.valid && overlapped(d);
@@ -107,7 +98,7 @@ void Tracker::State::second_round() {
   if (config.second_round_recent_only) {
     const auto lost = [&](int position) {
       const Track& track = slots[order[position]];
-      return !track.life.ever_confirmed() || reacquiring(track);
+      return !track.life.ever_confirmed() || track.steps_since_update > 1;
     };
     positions.erase(std::remove_if(positions.begin(), positions.end(), lost), positions.end());
   }
@@ -136,8 +127,7 @@ void Tracker::State::distance_round() {
   for (const int position : positions) {
     const Track& track = slots[order[position]];
     candidates.push_back(
-        AssociationCandidate{track.predicted, step_frames, 0.F, &track.appearance,
-                             reacquiring(track)});
+        AssociationCandidate{track.predicted, step_frames, 0.F, &track.appearance});
   }
   round_matches.clear();
   associator.associate_by_distance(config, rest, candidates, round_matches);
@@ -189,8 +179,7 @@ void Tracker::State::associate(const std::vector<Detection>& detections, Take ta
     if (track.observed_now && config.observed_gate_frames > 0.0)
       gate_time = std::min(gate_time, config.observed_gate_frames);
     candidates.push_back(
-        AssociationCandidate{track.predicted, gate_time, noise_margin, &track.appearance,
-                             reacquiring(track)});
+        AssociationCandidate{track.predicted, gate_time, noise_margin, &track.appearance});
   }
   round_matches.clear();
   associator.associate(config, threshold, detections, candidates, round_matches);

@@ -35,11 +35,6 @@ void Reidentifier::reidentify_newly_confirmed(const TrackTableView& table) {
     const bool seen_late = track.model_started_now && !track.first_confirmed_now &&
                            track.life.stage() == TrackStage::confirmed &&
                            table.now - track.born_seconds <= kLateReidSeconds;
-    if (track.first_confirmed_now && !track.appearance.valid && table.appearances_seen &&
-        config.reid_place_gap_s > 0.0) {
-      reidentify_by_place(table, slot);
-      continue;
-    }
     if (!(track.first_confirmed_now || seen_late) || !track.appearance.valid) continue;
     const float gate = seen_late ? std::min(kLateReidGate, static_cast<float>(config.reid_gate))
                                  : static_cast<float>(config.reid_gate);
@@ -73,29 +68,6 @@ void Reidentifier::reidentify_newly_confirmed(const TrackTableView& table) {
       gone.id = 0;
     }
   }
-}
-
-// Every detection of the track was partly covered, so there are no looks to compare; where a
-// single lost track of its class could have come this far in this little time, the place
-// decides (reid_place_gap_s). Two within reach: no id, as two alike in looks give none.
-void Reidentifier::reidentify_by_place(const TrackTableView& table, int slot) {
-  Track& track = table.slots[slot];
-  int only = -1;
-  for (const int other : table.order) {
-    const Track& lost = table.slots[other];
-    if (other == slot || lost.taken_over || lost.life.stage() != TrackStage::lost ||
-        lost.class_id != track.class_id ||
-        table.now - lost.last_seen_seconds > table.config.reid_place_gap_s ||
-        !within_reach(table, lost.last_observation, lost.last_seen_seconds,
-                      track.last_observation))
-      continue;
-    if (only >= 0) return;
-    only = other;
-  }
-  if (only < 0) return;
-  Track& lost = table.slots[only];
-  track.id = lost.id;
-  lost.taken_over = true;
 }
 
 void Reidentifier::remember_departure(const Track& track) {

@@ -35,9 +35,6 @@ class Reidentifier {
   void remember_departure(const Track& track);
 
  private:
-  // A newly confirmed track without a model: the id of the only lost track within reach.
-  static void reidentify_by_place(const TrackTableView& table, int slot);
-
   // Removed tracks re-identification may give their id back to (id 0: an empty entry), a ring.
   struct Departed {
     std::int32_t id{0};

@@ -15,9 +15,6 @@ struct TrackTableView {
   const std::vector<int>& order;  // the live slots, oldest first (sort.py's list order)
   const TrackerConfig& config;
   double now;  // the time of the update in progress
-  // The update's detections carried appearances (the pipeline on images), even where a covered
-  // detection's was then forgotten; never on detection files.
-  bool appearances_seen;
 };
 
 }  // namespace rtmot::tracker

@@ -109,8 +109,6 @@ std::optional<std::string> config_problem(const TrackerConfig& config) {
   if (!(config.appearance_gate >= 0.0 && config.appearance_gate <= 1.0 &&
         config.appearance_weight >= 0.0 && config.appearance_weight <= 1.0))
     return "appearance_gate and appearance_weight must be in [0, 1]";
-  if (!(config.reacquire_gate >= 0.0 && config.reacquire_gate <= 1.0))
-    return "reacquire_gate must be in [0, 1]";
   if (!(config.appearance_momentum >= 0.0 && config.appearance_momentum < 1.0))
     return "appearance_momentum must be in [0, 1)";
   if (config.appearance_gate_rival_alike && !config.appearance_gate_contested)
@@ -121,11 +119,6 @@ std::optional<std::string> config_problem(const TrackerConfig& config) {
   if (config.handback_gate > 0.0 && !(config.reid_gate > 0.0))
     return "handback_gate needs re-identification on (reid_gate above 0): a box goes back to "
            "a track that re-identification would judge its person's";
-  if (!(config.reid_place_gap_s >= 0.0 && config.reid_place_gap_s <= config.reid_max_gap_s))
-    return "reid_place_gap_s must be in [0, reid_max_gap_s]";
-  if (config.reid_place_gap_s > 0.0 && !(config.reid_gate > 0.0))
-    return "reid_place_gap_s needs re-identification on (reid_gate above 0): it gives a lost "
-           "track's id where re-identification could not compare looks";
   if (config.resolve_crossings && !(config.reid_gate > 0.0))
     return "resolve_crossings needs re-identification on (reid_gate above 0): its trades are "
            "bounded by reid_gate";

@@ -141,11 +141,6 @@ struct TrackerConfig {
   /// A track and a detection whose appearances lie further apart than this (Hellinger distance)
   /// are never matched. 1 = no gate.
   double appearance_gate{1.0};
-  /// A confirmed track that missed its last update (re-acquiring its person) is never matched to a
-  /// detection further than this from its model, where both have an appearance: a track that
-  /// coasted is the one that takes a neighbour. Unlike appearance_gate, never only contested pairs.
-  /// 1 = no gate.
-  double reacquire_gate{1.0};
   /// The gate refuses only contested pairs: those whose detection or track has another pair the
   /// affinity allows. A pair alone on both sides is matched whatever its appearance (a person whose
   /// colours changed, seen nowhere else, is still that person); where two tracks or two detections
@@ -168,12 +163,6 @@ struct TrackerConfig {
   /// appearance, when no other one is nearly as near. A lost one it takes over ends. 0 = off.
   double reid_gate{0.0};
   double reid_max_gap_s{5.0};
-  /// With re-identification on, where the detections carry appearances: a track confirmed for the
-  /// first time without a model of its own (every detection it had was partly covered) takes
-  /// the id of a lost track of its class last seen at most this many seconds before, when that
-  /// is the only lost track of its class within a walker's reach of it: the place alone decides
-  /// where the looks cannot. 0 = off.
-  double reid_place_gap_s{0.0};
   /// With re-identification on: a confirmed track matched to a clean detection further than this
   /// from its model (Hellinger distance) gives it up to a confirmed track matched within the
   /// last second but not yet in this update that looks like it, as re-identification would judge

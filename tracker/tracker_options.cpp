@@ -289,11 +289,6 @@ std::vector<TrackerOption> make_table() {
            "detection that look further apart than this (Hellinger distance of their colour "
            "signatures) are never matched (1: no gate)",
            &C::appearance_gate, 0.0, 1.0),
-      real("reacquire_gate",
-           "a confirmed track that missed its last update is never matched to a detection that "
-           "looks further than this from it (Hellinger distance of their colour signatures; "
-           "docs/appearance.md; 1: no gate)",
-           &C::reacquire_gate, 0.0, 1.0),
       flag("appearance_gate_contested",
            "the appearance gate refuses only pairs whose detection or track has another pair the "
            "affinity allows; a pair alone on both sides is matched by its motion "
@@ -321,12 +316,6 @@ std::vector<TrackerOption> make_table() {
            &C::reid_gate, 0.0, 1.0),
       real("reid_max_gap_s", "the longest gap re-identification bridges, in seconds",
            &C::reid_max_gap_s, 0.0, 3600.0),
-      real("reid_place_gap_s",
-           "with re-identification on (reid_gate), where detections carry appearances: a track "
-           "confirmed for the first time without a model (every detection it had was partly "
-           "covered) takes the id of the only lost track of its class within a walker's reach, "
-           "lost at most this many seconds before (docs/appearance.md; 0: off)",
-           &C::reid_place_gap_s, 0.0, 3600.0),
       real("handback_gate",
            "with re-identification on (reid_gate): a confirmed track matched to a clean "
            "detection further than this from its model gives it up to a confirmed track "

@@ -68,9 +68,7 @@ struct Tracker::State {
   void release(int slot);
 
   // The table as the identity passes see it (crossings.hpp, handback.hpp, reidentification.hpp).
-  TrackTableView table_view() {
-    return TrackTableView{slots, order, config, last_update_time, appearances_seen};
-  }
+  TrackTableView table_view() { return TrackTableView{slots, order, config, last_update_time}; }
 
   TrackerConfig config;
   std::unique_ptr<TrackerExtension> extension;  // the study's rules; null in the product
@@ -85,7 +83,6 @@ struct Tracker::State {
   std::vector<Detection> low;
   std::vector<char> high_taken;    // high[d] was matched by a round
   std::vector<char> hidden_flags;  // high's, then low's: partly covered by another detection
-  bool appearances_seen{false};    // this update's detections carried appearances (images on)
   std::vector<Detection> rest;     // the cascade's second level: detections left by the first
   std::vector<int> rest_index;     // their index in `high`
   std::vector<int> positions;      // the round's tracks, as indices into `order`

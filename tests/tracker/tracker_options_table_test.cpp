@@ -60,14 +60,12 @@ TEST(TrackerOptions, EveryKnobOfTheConfigCanBeSet) {
                                      {"distance_gate_per_frame", "0.35"},
                                      {"distance_gate_max", "3.5"},
                                      {"appearance_gate", "0.7"},
-                                     {"reacquire_gate", "0.55"},
                                      {"appearance_gate_contested", "true"},
                                      {"appearance_gate_rival_alike", "true"},
                                      {"appearance_weight", "0.3"},
                                      {"appearance_momentum", "0.8"},
                                      {"reid_gate", "0.45"},
                                      {"reid_max_gap_s", "7.5"},
-                                     {"reid_place_gap_s", "1.5"},
                                      {"handback_gate", "0.35"},
                                      {"resolve_crossings", "true"},
                                      {"observed_gate_frames", "3.5"},
@@ -108,14 +106,12 @@ TEST(TrackerOptions, EveryKnobOfTheConfigCanBeSet) {
   EXPECT_DOUBLE_EQ(config.distance_gate_per_frame, 0.35);
   EXPECT_DOUBLE_EQ(config.distance_gate_max, 3.5);
   EXPECT_DOUBLE_EQ(config.appearance_gate, 0.7);
-  EXPECT_DOUBLE_EQ(config.reacquire_gate, 0.55);
   EXPECT_TRUE(config.appearance_gate_contested);
   EXPECT_TRUE(config.appearance_gate_rival_alike);
   EXPECT_DOUBLE_EQ(config.appearance_weight, 0.3);
   EXPECT_DOUBLE_EQ(config.appearance_momentum, 0.8);
   EXPECT_DOUBLE_EQ(config.reid_gate, 0.45);
   EXPECT_DOUBLE_EQ(config.reid_max_gap_s, 7.5);
-  EXPECT_DOUBLE_EQ(config.reid_place_gap_s, 1.5);
   EXPECT_DOUBLE_EQ(config.handback_gate, 0.35);
   EXPECT_TRUE(config.resolve_crossings);
   EXPECT_DOUBLE_EQ(config.observed_gate_frames, 3.5);
@@ -123,7 +119,7 @@ TEST(TrackerOptions, EveryKnobOfTheConfigCanBeSet) {
   EXPECT_EQ(config.seed, 18446744073709551615ULL);
   EXPECT_EQ(config.max_tracks, 20);
   EXPECT_EQ(config.max_detections, 30);
-  EXPECT_EQ(tracker_options().size(), 48U) << "a new TrackerConfig field needs a line here too";
+  EXPECT_EQ(tracker_options().size(), 46U) << "a new TrackerConfig field needs a line here too";
 }
 
 TEST(TrackerOptions, AnAffinityBringsItsUsualThresholdUnlessOneFollows) {
@@ -232,13 +228,12 @@ TEST(TrackerOptions, ParticleStorageIsCheckedAsAWhole) {
   EXPECT_FALSE(config_problem(config).has_value()) << "no particles are allocated for kalman";
 }
 
-// A setting that would do nothing is refused, naming what it needs: crossing resolution, the
-// hand-back (whose gate, reach and margin are re-identification's) and re-identification by place
-// without re-identification (the sort preset has none).
+// A setting that would do nothing is refused, naming what it needs: crossing resolution and the
+// hand-back (whose gate, reach and margin are re-identification's) without re-identification (the
+// sort preset has none).
 TEST(TrackerOptions, CrossingResolutionAndTheHandBackNeedReidentification) {
   for (const auto& [name, value] :
-       {std::pair{"resolve_crossings", "true"}, std::pair{"handback_gate", "0.4"},
-        std::pair{"reid_place_gap_s", "1"}}) {
+       {std::pair{"resolve_crossings", "true"}, std::pair{"handback_gate", "0.4"}}) {
     TrackerConfig config = with_options(*find_preset("sort"), {{name, value}});
     ASSERT_TRUE(config_problem(config).has_value()) << name;
     EXPECT_NE(config_problem(config)->find("reid_gate"), std::string::npos) << name;
