@@ -35,7 +35,7 @@ Track* unmatched_lookalike(const TrackTableView& table, const Detection& detecti
   }
   const float own = appearance_distance(matched.appearance, detection.appearance);
   const bool clearly = nearest.clearly_within(static_cast<float>(table.config.reid_gate)) &&
-                       nearest.best + kReidMargin <= own;
+                       clearly_nearer(nearest.best, own);
   return clearly ? nearest.who : nullptr;
 }
 

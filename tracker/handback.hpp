@@ -17,7 +17,7 @@ bool looks_like_someone_else(const TrackerConfig& config, const Track& track,
 
 /// The confirmed track, matched within kHandbackSeconds but not yet in this update, within a
 /// walker's reach of `detection`, that looks like it within reid_gate and nearer than `matched`
-/// and every other such track by kReidMargin (a wrong hand-back costs as much as a wrong id);
+/// and every other such track by kReidRatio (a wrong hand-back costs as much as a wrong id);
 /// null if none.
 Track* unmatched_lookalike(const TrackTableView& table, const Detection& detection,
                            const Track& matched);

@@ -239,6 +239,46 @@ TEST(Reidentification, TheOneWhoLooksLikeThemIsChosenNotTheNearest) {
   EXPECT_EQ(ids.back()[0], ids[5][1]);
 }
 
+// Two people leave (models `first` and `second`; the first was last seen nearer); a newcomer who
+// looks like `back` comes, within reach of both: 1 or 2 if it takes the first's or the second's
+// id, 0 if a new one.
+int whose_id(const Appearance& first, const Appearance& second, const Appearance& back) {
+  std::vector<std::vector<Detection>> frames;
+  for (int k = 0; k < 10; ++k) {
+    frames.push_back({person(100.F + 5.F * static_cast<float>(k), 200.F, first),
+                      person(400.F + 5.F * static_cast<float>(k), 200.F, second)});
+  }
+  for (int k = 0; k < 20; ++k) frames.emplace_back();
+  for (int k = 0; k < 10; ++k) frames.push_back({person(270.F, 200.F, back)});
+  Tracker tracker(config(0.6));  // the preset's gate
+  const auto ids = run(tracker, frames);
+  EXPECT_EQ(ids[5].size(), 2U);
+  EXPECT_EQ(ids.back().size(), 1U);
+  if (ids[5].size() != 2U || ids.back().size() != 1U) return -1;
+  // Reports are in track order: the first person's track is the first reported.
+  if (ids.back()[0] == ids[5][0]) return 1;
+  return ids.back()[0] == ids[5][1] ? 2 : 0;
+}
+
+// The nearest in looks is told apart by a ratio, not a difference (kReidRatio 0.75): 0.20
+// against 0.28 is a clear choice (a difference of 0.08, which the margin of 0.1 before round 29
+// refused); 0.49 against 0.61 is not (a difference of 0.12, which it took). Two-bin histograms
+// give exact distances from colour(3): sqrt(1 - sqrt(share)).
+TEST(Reidentification, TheNearestInLooksIsToldApartByARatioNotADifference) {
+  const Appearance back = colour(3);
+  const Appearance at_020 = two_bins(3, 0.9216F);
+  const Appearance at_028 = two_bins(3, 0.8493F);
+  const Appearance at_049 = two_bins(3, 0.5774F);
+  const Appearance at_061 = two_bins(3, 0.3943F);
+  ASSERT_NEAR(appearance_distance(back, at_020), 0.20F, 1e-3F);
+  ASSERT_NEAR(appearance_distance(back, at_028), 0.28F, 1e-3F);
+  ASSERT_NEAR(appearance_distance(back, at_049), 0.49F, 1e-3F);
+  ASSERT_NEAR(appearance_distance(back, at_061), 0.61F, 1e-3F);
+  EXPECT_EQ(whose_id(at_028, at_020, back), 2);  // the one who looks nearer, though further off
+  EXPECT_EQ(whose_id(at_020, at_028, back), 1);
+  EXPECT_EQ(whose_id(at_061, at_049, back), 0);  // 0.49 / 0.61 = 0.80: too close to tell
+}
+
 // Runs `frames` with `with` and returns the ids reported at one person's box, at x = `xs[k]` in
 // frame k (within 15 px; none where xs[k] is negative): at frame 5 and at the last frame.
 std::pair<std::int32_t, std::int32_t> ids_at(const TrackerConfig& with,
