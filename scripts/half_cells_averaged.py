@@ -18,7 +18,8 @@ of MOTA and IDF1 over the copies and their standard deviation, and the same for 
 noise floor a rule must stand above).
 
 Research tooling; the product never runs it. Usage:
-  scripts/half_cells_averaged.py OUT --half first|second [--against head] [--copies 6] [--spread]
+  scripts/half_cells_averaged.py OUT --half first|second [--against head] [--labels A,B]
+                                 [--copies 6] [--spread]
 Exit 2: bad arguments or input (the file and line named); 1: the reference lacks a copy.
 """
 import argparse
@@ -64,6 +65,8 @@ def main():
     parser.add_argument("--half", choices=("first", "second"), required=True)
     parser.add_argument("--against", default="head", help="the reference label (default head)")
     parser.add_argument("--copies", type=int, default=6, help="jittered copies (default 6)")
+    parser.add_argument("--labels", help="the candidates to compare, comma-separated (default: "
+                        "every label in OUT; a round's verdict names its own candidates only)")
     parser.add_argument("--spread", action="store_true",
                         help="print the reference's spread over its copies instead")
     args = parser.parse_args()
@@ -79,13 +82,19 @@ def main():
     if args.spread:
         print_spread(reference)
         return
+    # The reference first, then the candidates by name.
+    bases = sorted({name for name in runs if not re.search(r"j\d+$", name)},
+                   key=lambda name: (name != args.against, name))
+    if args.labels:
+        wanted = [label for label in args.labels.split(",") if label]
+        unknown = [label for label in wanted if label not in bases]
+        if unknown:
+            fail(f"{args.out}: no label {', '.join(unknown)}")
+        bases = [args.against] + [label for label in wanted if label != args.against]
     print("| label | " + " | ".join(HEADINGS) + " | IDF1 sum | d: mean ± s.e. (range) | "
           "worst mean MOTA difference | verdict |")
     print("|" + "---|" * (len(HEADINGS) + 5))
     best = None
-    # The reference first, then the candidates by name.
-    bases = sorted({name for name in runs if not re.search(r"j\d+$", name)},
-                   key=lambda name: (name != args.against, name))
     for label in bases:
         copies = copies_of(runs, label, args.copies)
         if copies is None:

@@ -8,8 +8,7 @@
 # Env: REPLAY_FROM=REC (required: a half_cells.sh OUT holding REC/off/head and REC/tiles/head,
 #      or REPLAY_LABEL's), COPIES_DIR (default OUT/copies-HALF: its sS/off/head and sS/tiles/head are
 #      made where missing),
-#      COPIES (default 6), BUILD (as half_cells.sh). Seeds: 10 S + the length of "off" or
-#      "tiles", plus 100 for the second halves (the seeds docs/appearance.md's tables used).
+#      COPIES (default 6), BUILD (as half_cells.sh). The copies: scripts/jitter_copies.sh.
 set -euo pipefail
 trap 'echo "half_cells_copies.sh: failed at line $LINENO: $BASH_COMMAND" >&2' ERR
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -19,26 +18,16 @@ if (($# < 3)); then
 fi
 out=$1 label=$2 half=$3
 shift 3
-# The second halves' copies get their own seeds: the two halves are separate recordings.
-declare -A seed_offset=([first]=0 [second]=100)
-[[ -n ${seed_offset[$half]:-} ]] || { echo "half_cells_copies.sh: the half is first or second, not '$half'" >&2; exit 2; }
-offset=${seed_offset[$half]}
+case $half in
+  first | second) ;;
+  *) echo "half_cells_copies.sh: the half is first or second, not '$half'" >&2; exit 2 ;;
+esac
 [[ -n ${REPLAY_FROM:-} ]] || { echo "half_cells_copies.sh: REPLAY_FROM (the recording) is required" >&2; exit 2; }
 copies=${COPIES:-6}
 [[ $copies =~ ^[1-9][0-9]*$ ]] || { echo "half_cells_copies.sh: COPIES must be a positive integer, not '$copies'" >&2; exit 2; }
 copies_dir=${COPIES_DIR:-$out/copies-$half}  # each half its own recording, so its own copies
-recorded=${REPLAY_LABEL:-head}  # half_cells.sh replays REC/KIND/REPLAY_LABEL, the copies the same
-for ((s = 1; s <= copies; s++)); do
-  for kind in off tiles; do
-    copy=$copies_dir/s$s/$kind/$recorded
-    [[ -d $copy ]] && continue
-    # Written aside and renamed: an interrupted copy is never taken for a whole one.
-    rm -rf "$copy.partial"
-    python3 "$root/scripts/jitter_detections.py" "$REPLAY_FROM/$kind/$recorded" "$copy.partial" \
-      --px 0.5 --seed $((10 * s + ${#kind} + offset))
-    mv "$copy.partial" "$copy"
-  done
-done
+# half_cells.sh replays REC/KIND/REPLAY_LABEL; the copies are of the same.
+COPIES=$copies bash "$root/scripts/jitter_copies.sh" "$REPLAY_FROM" "$copies_dir" "$half" off tiles
 bash "$root/scripts/half_cells.sh" "$out" "$label" "$half" "$@"
 for ((s = 1; s <= copies; s++)); do
   REPLAY_FROM="$copies_dir/s$s" bash "$root/scripts/half_cells.sh" "$out" "${label}j$s" "$half" "$@"
