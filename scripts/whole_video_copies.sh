@@ -19,8 +19,7 @@ fi
 out=$1 label=$2
 shift 2
 [[ -n ${REPLAY_FROM:-} ]] || { echo "whole_video_copies.sh: REPLAY_FROM (the recording) is required" >&2; exit 2; }
-copies=${COPIES:-6}
-[[ $copies =~ ^[1-9][0-9]*$ ]] || { echo "whole_video_copies.sh: COPIES must be a positive integer, not '$copies'" >&2; exit 2; }
+copies=${COPIES:-6}  # checked by jitter_copies.sh, which runs first
 copies_dir=${COPIES_DIR:-$out/copies-second}
 recorded=${REPLAY_LABEL:-head}
 COPIES=$copies bash "$root/scripts/jitter_copies.sh" "$REPLAY_FROM" "$copies_dir" second tiles

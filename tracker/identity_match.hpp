@@ -18,11 +18,12 @@ namespace rtmot::tracker {
 // halves' copies, +0.4 on the second's, no cell's mean MOTA lower by 0.2).
 inline constexpr float kReidRatio = 0.75F;
 
-/// Whether a distance `near` is clearly below `far` (kReidRatio; two equal ones never are, even at
-/// 0).
-inline bool clearly_nearer(float near, float far) {
-  return near <= kReidRatio * far && near < far;
+/// Whether the distance `nearest` is clearly below `runner_up` (kReidRatio; two equal ones never
+/// are, even at 0).
+inline bool clearly_nearer(float nearest, float runner_up) {
+  return nearest <= kReidRatio * runner_up && nearest < runner_up;
 }
+
 // The nearest in looks of some candidates (`Who` names one), and how near the runner-up came:
 // re-identification and the hand-back decide alike, so that a wrong id or box costs them alike.
 template <typename Who>
