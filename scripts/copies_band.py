@@ -19,7 +19,8 @@ def band(values, digits):
     """The recording's value, then the mean (lowest-highest) of all of them."""
     def shown(v):
         return f"{v:.{digits}f}"
-    return f"{shown(values[0])} · {sum(values) / len(values):.1f} ({shown(min(values))}-{shown(max(values))})"
+    mean = sum(values) / len(values)
+    return f"{shown(values[0])} · {mean:.1f} ({shown(min(values))}-{shown(max(values))})"
 
 
 def main():

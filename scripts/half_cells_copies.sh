@@ -18,12 +18,8 @@ if (($# < 3)); then
 fi
 out=$1 label=$2 half=$3
 shift 3
-case $half in
-  first | second) ;;
-  *) echo "half_cells_copies.sh: the half is first or second, not '$half'" >&2; exit 2 ;;
-esac
 [[ -n ${REPLAY_FROM:-} ]] || { echo "half_cells_copies.sh: REPLAY_FROM (the recording) is required" >&2; exit 2; }
-copies=${COPIES:-6}  # checked by jitter_copies.sh, which runs first
+copies=${COPIES:-6}  # checked, with the half, by jitter_copies.sh, which runs first
 copies_dir=${COPIES_DIR:-$out/copies-$half}  # each half its own recording, so its own copies
 # half_cells.sh replays REC/KIND/REPLAY_LABEL; the copies are of the same.
 COPIES=$copies bash "$root/scripts/jitter_copies.sh" "$REPLAY_FROM" "$copies_dir" "$half" off tiles
