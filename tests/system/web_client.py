@@ -10,6 +10,9 @@ Usage: web_client.py BASE_URL COMMAND [ARGS]
   post SOURCE TOKEN BODY     POST BODY to /api/events?source=SOURCE as the page does (TOKEN "-":
                              no Authorization header; BODY "@N": N bytes); print "STATUS JSON"
   wait-count NAME            wait until source 0's line NAME counted a crossing (300 s at most)
+  wait-generation N          wait until source 0's counts are configuration N's (300 s at most):
+                             the status switches at the first frame counted with it, not at the
+                             save or the reload (docs/web.md)
   post-settings TOKEN BODY   POST BODY to /api/settings, as `post`; print "STATUS JSON"
 """
 import http.client
@@ -121,6 +124,13 @@ elif command == "wait-count":
             break
         if time.monotonic() > deadline:
             sys.exit("FAIL: line %s counted nothing" % name)
+        time.sleep(0.2)
+elif command == "wait-generation":
+    wanted = int(sys.argv[3])
+    deadline = time.monotonic() + 300
+    while status()["events"][0]["generation"] != wanted:
+        if time.monotonic() > deadline:
+            sys.exit("FAIL: the counts are not configuration %d's" % wanted)
         time.sleep(0.2)
 else:
     sys.exit("unknown command " + command)

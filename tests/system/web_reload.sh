@@ -75,6 +75,9 @@ assert [l["name"] for l in s["geometry"][0]["lines"]] == ["door"], s["geometry"]
 # A new line: applied, counted from zero under generation 1.
 write_config 'lines: [{name: hall, from: [400, 0], to: [400, 576], in: right}]' "$model"
 hangup
+# The status' counts switch at the first frame tracked with the new configuration, which reaches
+# the sink after the reload's log line (a slow build, ASan on 2 cores, showed generation 0 there).
+client wait-generation 1 || fail "the re-read line's counts never started (generation 1)"
 check_status "the re-read line is not running" '
 assert [l["name"] for l in s["geometry"][0]["lines"]] == ["hall"], s["geometry"]
 assert [l["name"] for l in s["events"][0]["lines"]] == ["hall"], s["events"]
